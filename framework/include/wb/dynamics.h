@@ -1,0 +1,66 @@
+// What an integrator sees of a particle system: accelerations a(x, v).
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "wb/types.h"
+
+namespace wb {
+
+class Dynamics {
+ public:
+  virtual ~Dynamics() = default;
+  // a = f(x, v) / m for every particle (2 x n; a already has that size).
+  // Each call is one force evaluation and is counted.
+  void acceleration(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+    ++evals_;
+    eval(x, v, a);
+  }
+  long evals() const { return evals_; }
+  void reset_evals() const { evals_ = 0; }
+
+ protected:
+  virtual void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const = 0;
+
+ private:
+  mutable long evals_ = 0;
+};
+
+// Dynamics from a callable, for tests and small examples.
+class LambdaDynamics : public Dynamics {
+ public:
+  using Fn = std::function<void(const Mat2X& x, const Mat2X& v, Mat2X& a)>;
+  explicit LambdaDynamics(Fn fn) : fn_(std::move(fn)) {}
+
+ protected:
+  void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const override { fn_(x, v, a); }
+
+ private:
+  Fn fn_;
+};
+
+// Work arrays owned by the caller and already sized 2 x n, so that a step
+// allocates nothing. A step may use any of them; their contents on entry are
+// undefined.
+struct Scratch {
+  Mat2X a0, a1, a2, a3;  // accelerations
+  Mat2X x1, v1;          // intermediate state
+  Mat2X xs, vs;          // running sums
+  void resize(Eigen::Index n) {
+    for (Mat2X* m : {&a0, &a1, &a2, &a3, &x1, &v1, &xs, &vs}) m->resize(2, n);
+  }
+};
+
+// One step of size h: advances x and v in place.
+using StepFn = void (*)(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);
+
+struct Integrator {
+  std::string name;         // as given to --integrator
+  StepFn step;              // the step function
+  int evals_per_step;       // force evaluations per step
+  int order;                // global order of accuracy
+  std::string description;  // one line for --help
+};
+
+}  // namespace wb

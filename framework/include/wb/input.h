@@ -1,0 +1,78 @@
+// Reading scene files: every error names the file, the JSON path, the value
+// and what was expected, and is reported by the run contract with exit status 2.
+#pragma once
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "wb/types.h"
+
+namespace wb {
+
+using json = nlohmann::json;
+using ordered_json = nlohmann::ordered_json;
+
+// Bad input: the message is complete and meant for the user.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Reads typed values from one JSON object at a known path in a known file.
+//   JsonObject f(reader, doc["forces"][2], "forces[2]");
+//   double k = f.number("k", {.min = 0});
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;  // value must be > min rather than >= min
+};
+
+class JsonObject {
+ public:
+  JsonObject(std::string file, const json& j, std::string path);
+
+  const json& raw() const { return j_; }
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+  bool has(const char* key) const { return j_.contains(key); }
+
+  // Rejects keys outside `known`, naming the first unknown one and the known set.
+  void only_keys(std::initializer_list<const char*> known) const;
+
+  double number(const char* key, Range r = {}) const;
+  double number_or(const char* key, double def, Range r = {}) const;
+  Vec2 vec2(const char* key) const;
+  Vec2 vec2_or(const char* key, const Vec2& def) const;
+  std::string string(const char* key) const;
+  std::string string_or(const char* key, const std::string& def) const;
+  // A whole number in [min, max].
+  std::int64_t integer(const char* key, std::int64_t min, std::int64_t max) const;
+  std::int64_t integer_or(const char* key, std::int64_t def, std::int64_t min,
+                          std::int64_t max) const;
+  bool boolean_or(const char* key, bool def) const;
+  // The object at `key` (which must be a JSON object).
+  JsonObject object(const char* key) const;
+  // The array at `key` (missing -> empty); element paths are key[i].
+  const json& array_or_empty(const char* key) const;
+  JsonObject element(const char* key, std::size_t i) const;
+
+  [[noreturn]] void fail(const std::string& key, const json* value,
+                         const std::string& expected) const;
+  std::string key_path(const std::string& key) const;
+
+ private:
+  std::string file_;
+  const json& j_;
+  std::string path_;
+};
+
+// A short rendering of a JSON value for error messages.
+std::string describe(const json& value);
+
+// Parses a file as JSON, or throws InputError naming the file and the position.
+json read_json_file(const std::string& file);
+
+}  // namespace wb

@@ -1,0 +1,34 @@
+// A particle scene: the particles it declares or emits and its raw force list.
+// Every key is documented in docs/scenes.md.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "wb/input.h"
+#include "wb/types.h"
+
+namespace wb {
+
+struct Scene {
+  std::string file;                       // path it was read from
+  std::string name;                       // "name" key, or the file's stem
+  std::optional<double> dt, t_end;        // scene defaults, flags override
+  std::optional<std::string> integrator;  // scene default, --integrator overrides
+  Mat2X x, v;                             // positions and velocities (2 x n)
+  VecX m;                                 // masses (n), all > 0
+  VecX radius;                            // radii (n), all >= 0
+  json doc;                               // the whole document (forces and lab keys)
+  std::int64_t n() const { return x.cols(); }
+};
+
+// Reads and checks a scene. `seed` (from --seed) replaces emitter k's seed by
+// seed + k. `extra_keys` are top-level keys a lab adds (read by the lab).
+Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
+                 const std::vector<std::string>& extra_keys = {});
+
+// A deterministic uniform double in [0, 1) from a 64-bit draw.
+inline double unit_double(std::uint64_t r) { return double(r >> 11) * 0x1.0p-53; }
+
+}  // namespace wb

@@ -1,0 +1,261 @@
+// The run contract: flags, the step loop, the trace, the summary line.
+#include "wb/run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "wb/output.h"
+
+namespace wb {
+
+std::string scenes_dir() {
+#ifdef WB_SCENES_DIR
+  return WB_SCENES_DIR;
+#else
+  return "scenes";
+#endif
+}
+
+std::vector<std::string> default_scenes(const std::string& lab) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(scenes_dir() + "/" + lab, ec)) {
+    if (e.path().extension() == ".json") out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+const Integrator& find_integrator(const LabInfo& info, const std::string& name,
+                                  const std::string& where) {
+  std::string known;
+  for (const Integrator& it : info.integrators) {
+    if (it.name == name) return it;
+    known += (known.empty() ? "" : ", ") + it.name;
+  }
+  throw InputError(where + ": got \"" + name + "\", expected one of: " + known);
+}
+
+namespace {
+
+// Rows of the trace: t,id,x,y,vx,vy per particle.
+void append_trace_rows(std::string& buf, double t, const Mat2X& x, const Mat2X& v) {
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    append_number(buf, t);
+    buf += ',';
+    append_int(buf, i);
+    for (double q : {x(0, i), x(1, i), v(0, i), v(1, i)}) {
+      buf += ',';
+      append_number(buf, q);
+    }
+    buf += '\n';
+  }
+}
+
+void append_stats_row(std::string& buf, long step, double t, const Energy& e, const Vec2& p,
+                      long evals) {
+  append_int(buf, step);
+  for (double q : {t, e.total(), e.kinetic, e.potential, p.x(), p.y()}) {
+    buf += ',';
+    append_number(buf, q);
+  }
+  buf += ',';
+  append_int(buf, evals);
+  buf += '\n';
+}
+
+}  // namespace
+
+RunResult simulate(const Scene& scene, const ForceList& forces, const RunOptions& opt) {
+  RunResult r;
+  Mat2X x = scene.x, v = scene.v;
+  ParticleDynamics dyn(forces, scene.m);
+  Scratch scratch;
+  scratch.resize(x.cols());
+
+  std::optional<AtomicFile> trace, stats;
+  std::string tbuf, sbuf;
+  if (!opt.out.empty()) {
+    trace.emplace(opt.out);
+    tbuf = "t,id,x,y,vx,vy\n";
+  }
+  if (!opt.stats.empty()) {
+    stats.emplace(opt.stats);
+    sbuf = "step,t,energy,kinetic,potential,px,py,force_evals\n";
+  }
+  auto record = [&](long step, double t) {
+    if (trace) {
+      append_trace_rows(tbuf, t, x, v);
+      if (tbuf.size() > (1u << 20)) trace->write(tbuf), tbuf.clear();
+    }
+    if (stats) {
+      append_stats_row(sbuf, step, t, energy(forces, x, v, scene.m), momentum(v, scene.m),
+                       dyn.evals());
+    }
+  };
+
+  r.energy0 = energy(forces, x, v, scene.m);
+  r.momentum0 = momentum(v, scene.m);
+  record(0, 0.0);
+  const auto start = std::chrono::steady_clock::now();
+  long k = 0;
+  while (k < opt.steps) {
+    opt.integrator->step(dyn, opt.dt, x, v, scratch);
+    ++k;
+    const double t = double(k) * opt.dt;  // not accumulated: no drift in t
+    r.diverged = !(x.allFinite() && v.allFinite());
+    if (r.diverged || k == opt.steps || k % opt.every == 0) record(k, t);
+    if (r.diverged) break;
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.steps = k;
+  r.t = double(k) * opt.dt;
+  r.force_evals = dyn.evals();
+  r.energy = energy(forces, x, v, scene.m);
+  r.momentum = momentum(v, scene.m);
+  if (trace) trace->write(tbuf), trace->commit();
+  if (stats) stats->write(sbuf), stats->commit();
+  r.x = std::move(x);
+  r.v = std::move(v);
+  return r;
+}
+
+namespace {
+
+ordered_json number_or_null(double x) { return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr); }
+
+ordered_json summary_json(const RunResult& r) {
+  ordered_json j;  // keys in the documented order
+  j["status"] = r.diverged ? "diverged" : "ok";
+  j["steps"] = r.steps;
+  j["t"] = r.t;
+  j["force_evals"] = r.force_evals;
+  j["wall_s"] = r.wall_s;
+  j["energy0"] = number_or_null(r.energy0.total());
+  j["energy"] = number_or_null(r.energy.total());
+  j["momentum0"] = {number_or_null(r.momentum0.x()), number_or_null(r.momentum0.y())};
+  j["momentum"] = {number_or_null(r.momentum.x()), number_or_null(r.momentum.y())};
+  return j;
+}
+
+std::string help_footer(const LabInfo& info) {
+  std::string s = "\nIntegrators (--integrator):\n";
+  for (const Integrator& it : info.integrators) {
+    s += "  " + it.name + std::string(it.name.size() < 18 ? 18 - it.name.size() : 1, ' ') +
+         it.description + " (order " + std::to_string(it.order) + ", " +
+         std::to_string(it.evals_per_step) + " force evaluation" +
+         (it.evals_per_step == 1 ? "" : "s") + " per step)\n";
+  }
+  s += "  default: " + info.integrators.front().name + "\n\nForce types (scene \"forces\"):\n  ";
+  for (const auto& t : force_types()) s += t + (t == force_types().back() ? "\n" : ", ");
+  s += "\nDefault scenes:\n";
+  auto scenes = default_scenes(info.lab);
+  if (scenes.empty()) s += "  (none found under " + scenes_dir() + "/" + info.lab + ")\n";
+  for (const auto& f : scenes) s += "  " + f + "\n";
+  s += "\nThe last line on stdout is a JSON summary. Bad input exits with status 2.\n"
+       "Scene keys: docs/scenes.md. Run contract: docs/run-contract.md.\n";
+  return s;
+}
+
+}  // namespace
+
+int run_particle_lab(int argc, char** argv, const LabInfo& info) {
+  const std::string exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
+  CLI::App app(info.summary, exe);
+  std::string scene_file, integrator, out, stats;
+  std::optional<double> dt, t_end;
+  std::optional<long> steps, every, seed_in;
+  app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
+  app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
+  app.add_option("--dt", dt, "Step size H > 0 (overrides the scene's dt)");
+  auto* o_steps = app.add_option("--steps", steps, "Take exactly N steps");
+  auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
+  o_steps->excludes(o_tend);
+  app.add_option("--out", out, "Write a CSV trace t,id,x,y,vx,vy");
+  app.add_option("--stats", stats,
+                 "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
+  app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
+  app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
+  app.footer(help_footer(info));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << exe << ": error: " << e.what() << " (see " << exe << " --help)\n";
+    return 2;
+  }
+
+  try {
+    auto flag_error = [](const std::string& flag, const std::string& got,
+                         const std::string& expected) {
+      return InputError(flag + ": got " + got + ", expected " + expected);
+    };
+    auto num = [](double x) {
+      std::string s;
+      append_number(s, x);
+      return s;
+    };
+    if (dt && !(std::isfinite(*dt) && *dt > 0)) throw flag_error("--dt", num(*dt), "a finite number > 0");
+    if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
+      throw flag_error("--t-end", num(*t_end), "a finite number >= 0");
+    }
+    if (steps && *steps < 0) throw flag_error("--steps", std::to_string(*steps), "a whole number >= 0");
+    if (every && *every < 1) throw flag_error("--every", std::to_string(*every), "a whole number >= 1");
+    if (seed_in && *seed_in < 0) throw flag_error("--seed", std::to_string(*seed_in), "a whole number >= 0");
+
+    std::optional<std::uint64_t> seed;
+    if (seed_in) seed = std::uint64_t(*seed_in);
+    Scene scene = load_scene(scene_file, seed);
+    ForceList forces = build_forces(scene);
+
+    RunOptions opt;
+    if (!integrator.empty()) {
+      opt.integrator = &find_integrator(info, integrator, "--integrator");
+    } else if (scene.integrator) {
+      opt.integrator = &find_integrator(info, *scene.integrator, scene.file + ": integrator");
+    } else {
+      opt.integrator = &info.integrators.front();
+    }
+    if (dt) {
+      opt.dt = *dt;
+    } else if (scene.dt) {
+      opt.dt = *scene.dt;
+    } else {
+      throw InputError(scene.file + ": dt: missing, expected a number > 0 (or pass --dt)");
+    }
+    double T = t_end ? *t_end : scene.t_end.value_or(-1.0);
+    if (steps) {
+      opt.steps = *steps;
+    } else if (T >= 0) {
+      double n = std::round(T / opt.dt);
+      if (!(n <= 1e12)) {
+        throw InputError("--t-end/--dt: " + num(T) + "/" + num(opt.dt) +
+                         " steps, expected at most 1e12");
+      }
+      opt.steps = long(n);
+    } else {
+      throw InputError(scene.file + ": t_end: missing, expected a number >= 0 (or pass --steps or --t-end)");
+    }
+    opt.every = every.value_or(1);
+    opt.out = out;
+    opt.stats = stats;
+
+    RunResult r = simulate(scene, forces, opt);
+    std::cout << summary_json(r).dump() << std::endl;
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << exe << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << exe << ": internal error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace wb

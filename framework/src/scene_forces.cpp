@@ -1,0 +1,263 @@
+// Scene force terms: JSON -> Force objects that call the forces lab's functions.
+#include "wb/scene_forces.h"
+
+#include <cmath>
+
+#include "accumulate_forces.h"
+#include "attractor.h"
+#include "boids.h"
+#include "damping.h"
+#include "newton_gravity.h"
+#include "spring.h"
+#include "uniform_gravity.h"
+#include "vortex.h"
+
+namespace wb {
+
+namespace {
+
+const Range kNonNegative{0.0};
+const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
+
+class UniformGravity : public Force {
+ public:
+  explicit UniformGravity(const Vec2& g) : g_(g) {}
+  void add(const Mat2X&, const Mat2X&, const VecX& m, Mat2X& f) const override {
+    add_uniform_gravity(m, g_, f);
+  }
+  double potential(const Mat2X& x, const VecX& m) const override {
+    return -(g_.transpose() * x).dot(m);  // -sum m_i g . x_i
+  }
+  std::string type() const override { return "gravity"; }
+
+ private:
+  Vec2 g_;
+};
+
+class NewtonGravity : public Force {
+ public:
+  NewtonGravity(double G, double eps) : G_(G), eps_(eps) {}
+  void add(const Mat2X& x, const Mat2X&, const VecX& m, Mat2X& f) const override {
+    add_newton_gravity(x, m, G_, eps_, f);
+  }
+  double potential(const Mat2X& x, const VecX& m) const override {
+    double V = 0;
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      for (Eigen::Index j = i + 1; j < x.cols(); ++j) {
+        double s = (x.col(j) - x.col(i)).squaredNorm() + eps_ * eps_;
+        if (s > 0) V -= G_ * m[i] * m[j] / std::sqrt(s);
+      }
+    }
+    return V;
+  }
+  std::string type() const override { return "newton"; }
+
+ private:
+  double G_, eps_;
+};
+
+class Attractor : public Force {
+ public:
+  Attractor(const Vec2& c, double GM) : c_(c), GM_(GM) {}
+  void add(const Mat2X& x, const Mat2X&, const VecX& m, Mat2X& f) const override {
+    add_attractor(x, m, c_, GM_, f);
+  }
+  double potential(const Mat2X& x, const VecX& m) const override {
+    double V = 0;
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      double r = (x.col(i) - c_).norm();
+      if (r > 0) V -= GM_ * m[i] / r;
+    }
+    return V;
+  }
+  std::string type() const override { return "attractor"; }
+
+ private:
+  Vec2 c_;
+  double GM_;
+};
+
+class Damping : public Force {
+ public:
+  explicit Damping(double b) : b_(b) {}
+  void add(const Mat2X&, const Mat2X& v, const VecX&, Mat2X& f) const override {
+    add_damping(v, b_, f);
+  }
+  std::string type() const override { return "damping"; }
+
+ private:
+  double b_;
+};
+
+struct SpringDef {
+  Eigen::Index i, j;  // j < 0: anchored
+  Vec2 anchor;
+  double k, rest, kd;
+};
+
+// Every "spring" entry of a scene, as one term.
+class Springs : public Force {
+ public:
+  std::vector<SpringDef> springs;
+  void add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const override {
+    for (const SpringDef& s : springs) {
+      if (s.j < 0) {
+        f.col(s.i) +=
+            spring_force(x.col(s.i), s.anchor, v.col(s.i), Vec2::Zero(), s.k, s.rest, s.kd);
+      } else {
+        Vec2 fi = spring_force(x.col(s.i), x.col(s.j), v.col(s.i), v.col(s.j), s.k, s.rest, s.kd);
+        f.col(s.i) += fi;
+        f.col(s.j) -= fi;
+      }
+    }
+  }
+  double potential(const Mat2X& x, const VecX&) const override {
+    double V = 0;
+    for (const SpringDef& s : springs) {
+      Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
+      double stretch = (x.col(s.i) - xj).norm() - s.rest;
+      V += 0.5 * s.k * stretch * stretch;
+    }
+    return V;
+  }
+  std::string type() const override { return "spring"; }
+};
+
+class Boids : public Force {
+ public:
+  explicit Boids(const BoidsParams& p) : p_(p) {}
+  void add(const Mat2X& x, const Mat2X& v, const VecX& m, Mat2X& f) const override {
+    add_boids(x, v, m, p_, f);
+  }
+  std::string type() const override { return "boids"; }
+
+ private:
+  BoidsParams p_;
+};
+
+class Vortex : public Force {
+ public:
+  explicit Vortex(const VortexParams& p) : p_(p) {}
+  void add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const override {
+    add_vortex(x, v, p_, f);
+  }
+  std::string type() const override { return "vortex"; }
+
+ private:
+  VortexParams p_;
+};
+
+Eigen::Index particle_index(const JsonObject& o, const char* key, std::int64_t n) {
+  if (n == 0) o.fail(key, o.has(key) ? &o.raw().at(key) : nullptr, "a particle index, but the scene has no particles");
+  return Eigen::Index(o.integer(key, 0, n - 1));
+}
+
+BoidRule boid_rule(const JsonObject& o, const char* key) {
+  BoidRule r;
+  if (!o.has(key)) return r;
+  JsonObject b = o.object(key);
+  b.only_keys({"weight", "radius"});
+  r.weight = b.number("weight", kNonNegative);
+  r.radius = b.number("radius", kNonNegative);
+  return r;
+}
+
+}  // namespace
+
+const std::vector<std::string>& force_types() {
+  static const std::vector<std::string> types = {"gravity", "newton", "attractor", "damping",
+                                                 "spring",  "boids",  "vortex"};
+  return types;
+}
+
+ForceList build_forces(const Scene& scene) {
+  ForceList out;
+  JsonObject top(scene.file, scene.doc, "");
+  const json& list = top.array_or_empty("forces");
+  Springs* springs = nullptr;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    JsonObject o = top.element("forces", k);
+    std::string type = o.string("type");
+    if (type == "gravity") {
+      o.only_keys({"type", "g"});
+      out.push_back(std::make_unique<UniformGravity>(o.vec2("g")));
+    } else if (type == "newton") {
+      o.only_keys({"type", "G", "softening"});
+      out.push_back(std::make_unique<NewtonGravity>(o.number("G", kNonNegative),
+                                                    o.number_or("softening", 0.0, kNonNegative)));
+    } else if (type == "attractor") {
+      o.only_keys({"type", "center", "GM"});
+      out.push_back(std::make_unique<Attractor>(o.vec2_or("center", Vec2::Zero()),
+                                                o.number("GM", kNonNegative)));
+    } else if (type == "damping") {
+      o.only_keys({"type", "b"});
+      out.push_back(std::make_unique<Damping>(o.number("b", kNonNegative)));
+    } else if (type == "spring") {
+      o.only_keys({"type", "i", "j", "anchor", "k", "rest", "damping"});
+      SpringDef s;
+      s.i = particle_index(o, "i", scene.n());
+      if (o.has("j") == o.has("anchor")) {
+        o.fail("j", o.has("j") ? &o.raw().at("j") : nullptr,
+               "exactly one of \"j\" (a particle index) or \"anchor\" (a point)");
+      }
+      s.j = o.has("j") ? particle_index(o, "j", scene.n()) : -1;
+      if (s.j == s.i) o.fail("j", &o.raw().at("j"), "a particle other than i");
+      s.anchor = o.vec2_or("anchor", Vec2::Zero());
+      s.k = o.number("k", kNonNegative);
+      Vec2 xj = s.j < 0 ? s.anchor : Vec2(scene.x.col(s.j));
+      s.rest = o.number_or("rest", (scene.x.col(s.i) - xj).norm(), kNonNegative);
+      s.kd = o.number_or("damping", 0.0, kNonNegative);
+      if (!springs) {
+        out.push_back(std::make_unique<Springs>());
+        springs = static_cast<Springs*>(out.back().get());
+      }
+      springs->springs.push_back(s);
+    } else if (type == "boids") {
+      o.only_keys({"type", "separation", "alignment", "cohesion", "goal", "goal_weight"});
+      BoidsParams p;
+      p.separation = boid_rule(o, "separation");
+      p.alignment = boid_rule(o, "alignment");
+      p.cohesion = boid_rule(o, "cohesion");
+      p.goal = o.vec2_or("goal", Vec2::Zero());
+      p.goal_weight = o.number_or("goal_weight", 0.0, kNonNegative);
+      out.push_back(std::make_unique<Boids>(p));
+    } else if (type == "vortex") {
+      o.only_keys({"type", "center", "omega", "core", "drag"});
+      VortexParams p;
+      p.center = o.vec2_or("center", Vec2::Zero());
+      p.omega = o.number("omega");
+      p.core = o.number("core", kPositive);
+      p.drag = o.number("drag", kNonNegative);
+      out.push_back(std::make_unique<Vortex>(p));
+    } else {
+      std::string known;
+      for (const auto& t : force_types()) known += (known.empty() ? "" : ", ") + t;
+      o.fail("type", &o.raw().at("type"), "one of: " + known);
+    }
+  }
+  return out;
+}
+
+ParticleDynamics::ParticleDynamics(const ForceList& forces, const VecX& m)
+    : forces_(forces), m_(m), inv_m_(m.transpose().array().inverse()), f_(Mat2X::Zero(2, m.size())) {}
+
+void ParticleDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+  accumulate_forces(forces_, x, v, m_, f_);
+  if (f_.cols() != x.cols()) {
+    throw std::runtime_error("accumulate_forces left f with " + std::to_string(f_.cols()) +
+                             " columns, expected one per particle (" +
+                             std::to_string(x.cols()) + "): see TODO(F6)");
+  }
+  a.array() = f_.array().rowwise() * inv_m_;
+}
+
+Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m) {
+  Energy e;
+  e.kinetic = 0.5 * v.colwise().squaredNorm().dot(m);
+  for (const auto& term : forces) e.potential += term->potential(x, m);
+  return e;
+}
+
+Vec2 momentum(const Mat2X& v, const VecX& m) { return v * m; }
+
+}  // namespace wb

@@ -1,0 +1,6 @@
+#include "uniform_gravity.h"
+
+// TODO(F1) uniform gravity: f_i += m_i g for every particle i.
+void add_uniform_gravity(const wb::VecX& m, const wb::Vec2& g, wb::Mat2X& f) {
+  f.noalias() += g * m.transpose();  // column i gets m_i g
+}
