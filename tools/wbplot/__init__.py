@@ -1,0 +1,1 @@
+"""Figures and tables for the workbook: shared by tools/plot and tools/report."""
