@@ -1,0 +1,564 @@
+// Integrator throughput: every step function driven through the scene machinery
+// (wb::ParticleDynamics over the forces lab's solution), against hand-written
+// loops on plain arrays and a STREAM-style memory-bandwidth bound measured in
+// the same run. bench/summarize.py turns the JSON output into ratios;
+// docs/benchmarks.md explains every number.
+//
+// The system: n particles under uniform gravity g and viscous damping b, so
+//   a_i = (m_i g - b v_i) / m_i.
+// Three ways to take one step of each integrator:
+//   scene/<integrator>/<n>        the integrator's wb::StepFn on wb::ParticleDynamics
+//   hand_passes/<integrator>/<n>  the same passes over memory on std::vector<double>
+//                                 (zero f, f += m g, f -= b v, a = f / m, then the
+//                                 integrator's updates): the ratio scene / hand_passes
+//                                 is the cost of the machinery and nothing else
+//   hand_fused/<integrator>/<n>   one pass per step, everything in registers
+//                                 (a = g - (b/m) v): the best one can do
+// and two bandwidth measurements (a[i] = b[i] + s c[i]):
+//   triad_dram/<len>   arrays far larger than the caches: the bound's bandwidth
+//   triad_fit/<len>    arrays of 3n doubles, the footprint of one step at n
+//                      particles: what that footprint streams at when it fits
+//                      in a cache level
+//
+// Layout of the plain arrays: interleaved [x0 y0 x1 y1 ...], exactly Eigen's
+// column-major 2 x n, so the baselines move the same bytes in the same order
+// as the machinery and the ratio does not mix in a layout change (SoA would).
+//
+// Every heap allocation in the process is counted (malloc and friends, and
+// operator new): after one warm-up step a step must allocate nothing, which
+// is checked on every timed loop and fails the run with a clear message.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "wb/dynamics.h"
+#include "wb/scene.h"
+#include "wb/scene_forces.h"
+#ifdef WB_BENCH_HAS_EULER
+#include "explicit_euler.h"
+#include "symplectic_euler.h"
+#endif
+#ifdef WB_BENCH_HAS_MIDPOINT
+#include "midpoint.h"
+#include "trapezoid.h"
+#endif
+#ifdef WB_BENCH_HAS_RK4
+#include "wb/rk4.h"
+#endif
+
+// ---------------------------------------------------------------------------
+// Allocation counting.
+//
+// Eigen allocates through std::malloc, not operator new, so counting only
+// operator new would miss an Eigen temporary. With glibc the binary replaces
+// malloc, calloc, realloc, free and the aligned variants (glibc supports this,
+// and exports __libc_malloc & co. for the replacements to call); operator new
+// is replaced too and forwards to malloc, so each allocation counts once.
+// Elsewhere only operator new is counted.
+namespace {
+std::atomic<long> g_allocs{0};  // heap allocations since program start
+void count_alloc() { g_allocs.fetch_add(1, std::memory_order_relaxed); }
+}  // namespace
+
+#if defined(__GLIBC__)
+#define WB_COUNT_MALLOC 1
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
+void __libc_free(void*);
+
+void* malloc(std::size_t size) noexcept {
+  count_alloc();
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) noexcept {
+  count_alloc();
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, std::size_t size) noexcept {
+  count_alloc();
+  return __libc_realloc(p, size);
+}
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  count_alloc();
+  return __libc_memalign(alignment, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  count_alloc();
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+  if (alignment % sizeof(void*) != 0 || (alignment & (alignment - 1)) != 0) return EINVAL;
+  count_alloc();
+  void* p = __libc_memalign(alignment, size);
+  if (!p) return ENOMEM;
+  *out = p;
+  return 0;
+}
+void free(void* p) noexcept { __libc_free(p); }
+}  // extern "C"
+#else
+#define WB_COUNT_MALLOC 0
+#endif
+
+namespace {
+void* counted_new(std::size_t size, std::size_t alignment) {
+  if (!WB_COUNT_MALLOC) count_alloc();
+  if (size == 0) size = 1;
+  void* p = nullptr;
+  if (alignment <= alignof(std::max_align_t)) {
+    p = std::malloc(size);
+  } else if (posix_memalign(&p, alignment, size) != 0) {
+    p = nullptr;
+  }
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+void* counted_new_nothrow(std::size_t size, std::size_t alignment) noexcept {
+  try {
+    return counted_new(size, alignment);
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+}  // namespace
+
+void* operator new(std::size_t n) { return counted_new(n, 0); }
+void* operator new[](std::size_t n) { return counted_new(n, 0); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_new_nothrow(n, 0); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
+  return counted_new_nothrow(n, 0);
+}
+void* operator new(std::size_t n, std::align_val_t a) { return counted_new(n, std::size_t(a)); }
+void* operator new[](std::size_t n, std::align_val_t a) { return counted_new(n, std::size_t(a)); }
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return counted_new_nothrow(n, std::size_t(a));
+}
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return counted_new_nothrow(n, std::size_t(a));
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+
+namespace {
+
+long allocations() { return g_allocs.load(std::memory_order_relaxed); }
+
+// ---------------------------------------------------------------------------
+// The system being stepped.
+
+constexpr double kGx = 0.0, kGy = -9.81;  // gravity (m/s^2)
+constexpr double kB = 0.1;                // damping (kg/s)
+constexpr double kH = 1e-3;               // step (s)
+// Bytes one step must move at the least, per particle: read x, v (2 doubles
+// each) and one per-particle mass term, write x and v back.
+constexpr double kBoundBytesPerParticle = 8.0 * (2 + 2 + 1 + 2 + 2);
+
+const char* const kForcesJson =
+    R"({"forces":[{"type":"gravity","g":[0,-9.81]},{"type":"damping","b":0.1}]})";
+
+// A deterministic stream of doubles in [0, 1) (splitmix64).
+struct Rng {
+  std::uint64_t s;
+  double next() {
+    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return wb::unit_double(z ^ (z >> 31));
+  }
+};
+
+// n particles scattered over a 100 m square, speeds up to 5 m/s, masses 0.5..1.5 kg.
+wb::Scene make_scene(Eigen::Index n) {
+  wb::Scene s;
+  s.file = "<bench_integrators>";
+  s.name = "bench";
+  s.x.resize(2, n);
+  s.v.resize(2, n);
+  s.m.resize(n);
+  s.radius = wb::VecX::Zero(n);
+  Rng rng{12345};
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s.x.col(i) = wb::Vec2(100 * rng.next(), 100 * rng.next());
+    s.v.col(i) = wb::Vec2(10 * rng.next() - 5, 10 * rng.next() - 5);
+    s.m[i] = 0.5 + rng.next();
+  }
+  s.doc = wb::json::parse(kForcesJson);
+  return s;
+}
+
+// The same particles on plain arrays, interleaved like Eigen's 2 x n, with
+// work arrays that mirror wb::Scratch.
+struct Arrays {
+  long n = 0;
+  std::vector<double> x, v;              // 2n: positions, velocities
+  std::vector<double> m, inv_m;          // n: masses and their inverses
+  std::vector<double> f;                 // 2n: force accumulator (ParticleDynamics::f_)
+  std::vector<double> a0, a1, a2, a3;    // 2n: accelerations
+  std::vector<double> x1, v1, xs, vs;    // 2n: intermediate state, running sums
+  explicit Arrays(const wb::Scene& s) : n(long(s.n())) {
+    x.assign(s.x.data(), s.x.data() + 2 * n);
+    v.assign(s.v.data(), s.v.data() + 2 * n);
+    m.assign(s.m.data(), s.m.data() + n);
+    for (double mi : m) inv_m.push_back(1.0 / mi);
+    for (auto* w : {&f, &a0, &a1, &a2, &a3, &x1, &v1, &xs, &vs}) w->assign(2 * n, 0.0);
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Hand-written passes. Each is one loop over memory, kept out of line so the
+// compiler cannot fuse neighbouring passes: one function here is one Eigen
+// statement in the machinery.
+#define WB_PASS __attribute__((noinline))
+
+WB_PASS void pass_zero(double* f, long len) {
+  for (long k = 0; k < len; ++k) f[k] = 0.0;
+}
+// f_i += m_i g   (add_uniform_gravity)
+WB_PASS void pass_add_gravity(double* f, const double* m, long n) {
+  for (long i = 0; i < n; ++i) {
+    f[2 * i] += kGx * m[i];
+    f[2 * i + 1] += kGy * m[i];
+  }
+}
+// f -= b v   (add_damping)
+WB_PASS void pass_add_damping(double* f, const double* v, long len) {
+  for (long k = 0; k < len; ++k) f[k] -= kB * v[k];
+}
+// a_i = f_i / m_i, as ParticleDynamics does it: times the stored inverse mass
+WB_PASS void pass_divide_by_mass(double* a, const double* f, const double* inv_m, long n) {
+  for (long i = 0; i < n; ++i) {
+    a[2 * i] = f[2 * i] * inv_m[i];
+    a[2 * i + 1] = f[2 * i + 1] * inv_m[i];
+  }
+}
+// y += s u
+WB_PASS void pass_axpy(double* y, double s, const double* u, long len) {
+  for (long k = 0; k < len; ++k) y[k] += s * u[k];
+}
+// out = y + s u
+[[maybe_unused]] WB_PASS void pass_waxpy(double* out, const double* y, double s, const double* u, long len) {
+  for (long k = 0; k < len; ++k) out[k] = y[k] + s * u[k];
+}
+
+// One force evaluation, pass by pass: ParticleDynamics::eval with the
+// solution's accumulate_forces, add_uniform_gravity and add_damping.
+void hand_acceleration(Arrays& A, const double* v, double* a) {
+  pass_zero(A.f.data(), 2 * A.n);
+  pass_add_gravity(A.f.data(), A.m.data(), A.n);
+  pass_add_damping(A.f.data(), v, 2 * A.n);
+  pass_divide_by_mass(a, A.f.data(), A.inv_m.data(), A.n);
+}
+
+// a = g - (b / m) v for one coordinate: the fused loops' force evaluation.
+inline double accel(double g, double c, double v) { return g - c * v; }
+
+// ---------------------------------------------------------------------------
+// The integrators. For each: the step through the machinery, the same passes
+// on arrays, and the fused loop.
+
+// symplectic Euler: v += h a(x, v); x += h v (new v)
+#ifdef WB_BENCH_HAS_EULER
+const wb::StepFn kSymplecticEuler = symplectic_euler_step;
+const char* const kSymplecticEulerSource = "solutions/euler";
+#else
+// A copy of the provided step in framework/drivers/forces.cpp.
+void semi_implicit_euler(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Mat2X& v,
+                         wb::Scratch& s) {
+  dyn.acceleration(x, v, s.a0);
+  v += h * s.a0;
+  x += h * v;
+}
+const wb::StepFn kSymplecticEuler = semi_implicit_euler;
+const char* const kSymplecticEulerSource = "bench copy of framework/drivers/forces.cpp";
+#endif
+
+void symplectic_passes(Arrays& A, double h) {
+  const long len = 2 * A.n;
+  hand_acceleration(A, A.v.data(), A.a0.data());
+  pass_axpy(A.v.data(), h, A.a0.data(), len);
+  pass_axpy(A.x.data(), h, A.v.data(), len);
+}
+WB_PASS void symplectic_fused(Arrays& A, double h) {
+  double* x = A.x.data();
+  double* v = A.v.data();
+  const double* inv_m = A.inv_m.data();
+  for (long i = 0; i < A.n; ++i) {
+    const double c = kB * inv_m[i];  // damping rate b/m (1/s)
+    const double vx = v[2 * i] + h * accel(kGx, c, v[2 * i]);
+    const double vy = v[2 * i + 1] + h * accel(kGy, c, v[2 * i + 1]);
+    v[2 * i] = vx;
+    v[2 * i + 1] = vy;
+    x[2 * i] += h * vx;
+    x[2 * i + 1] += h * vy;
+  }
+}
+
+#ifdef WB_BENCH_HAS_EULER
+// explicit Euler: a = a(x, v); x += h v (old v); v += h a
+void explicit_passes(Arrays& A, double h) {
+  const long len = 2 * A.n;
+  hand_acceleration(A, A.v.data(), A.a0.data());
+  pass_axpy(A.x.data(), h, A.v.data(), len);
+  pass_axpy(A.v.data(), h, A.a0.data(), len);
+}
+WB_PASS void explicit_fused(Arrays& A, double h) {
+  double* x = A.x.data();
+  double* v = A.v.data();
+  const double* inv_m = A.inv_m.data();
+  for (long i = 0; i < A.n; ++i) {
+    const double c = kB * inv_m[i];
+    for (int r = 0; r < 2; ++r) {
+      const double vr = v[2 * i + r];
+      x[2 * i + r] += h * vr;
+      v[2 * i + r] = vr + h * accel(r ? kGy : kGx, c, vr);
+    }
+  }
+}
+#endif
+
+// ---------------------------------------------------------------------------
+// The table of integrators timed in this build.
+
+using HandFn = void (*)(Arrays& A, double h);
+
+struct Method {
+  const char* name;    // as given to --integrator
+  const char* source;  // where its step function comes from
+  wb::StepFn step;     // through the machinery
+  HandFn passes;       // the same passes on plain arrays
+  HandFn fused;        // one fused pass
+};
+
+std::vector<Method> methods() {
+  std::vector<Method> out;
+#ifdef WB_BENCH_HAS_EULER
+  out.push_back({"explicit-euler", "solutions/euler", explicit_euler_step, explicit_passes,
+                 explicit_fused});
+#endif
+  out.push_back({"symplectic-euler", kSymplecticEulerSource, kSymplecticEuler, symplectic_passes,
+                 symplectic_fused});
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// Benchmarks.
+
+bool g_alloc_failure = false;  // some step allocated after its warm-up step
+
+// evals < 0: not counted (the hand loops).
+void report(benchmark::State& st, const std::string& what, long n, long allocs, long evals) {
+  const double steps = double(st.iterations());
+  st.SetItemsProcessed(st.iterations() * n);  // particle-steps
+  st.counters["n"] = double(n);
+  st.counters["allocs_per_step"] = steps > 0 ? allocs / steps : 0.0;
+  if (evals >= 0) st.counters["evals_per_step"] = steps > 0 ? evals / steps : 0.0;
+  st.counters["bound_bytes"] = kBoundBytesPerParticle * double(n);
+  if (allocs != 0) {
+    g_alloc_failure = true;
+    std::fprintf(stderr,
+                 "FAIL: %s allocated %ld times in %lld timed steps after the warm-up step; "
+                 "a step must allocate nothing (use the wb::Scratch arrays)\n",
+                 (what + "/" + std::to_string(n)).c_str(), allocs, static_cast<long long>(st.iterations()));
+    st.SkipWithError("heap allocation inside a step (see stderr)");
+  }
+}
+
+void bm_scene(benchmark::State& st, const Method& method) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceList forces = wb::build_forces(scene);
+  const wb::ParticleDynamics dyn(forces, scene.m);
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(n);
+  method.step(dyn, kH, x, v, s);  // warm-up: the first step may allocate
+  dyn.reset_evals();
+  const long before = allocations();
+  for (auto _ : st) {
+    method.step(dyn, kH, x, v, s);
+    benchmark::DoNotOptimize(x.data());
+    benchmark::ClobberMemory();
+  }
+  report(st, std::string("scene/") + method.name, n, allocations() - before, dyn.evals());
+  st.SetLabel(method.source);
+}
+
+void bm_hand(benchmark::State& st, const Method& method, bool fused) {
+  const HandFn fn = fused ? method.fused : method.passes;
+  const long n = long(st.range(0));
+  Arrays A(make_scene(n));
+  fn(A, kH);  // warm-up, as for the scene
+  const long before = allocations();
+  for (auto _ : st) {
+    fn(A, kH);
+    benchmark::DoNotOptimize(A.x.data());
+    benchmark::ClobberMemory();
+  }
+  report(st, std::string(fused ? "hand_fused/" : "hand_passes/") + method.name, n,
+         allocations() - before, -1);
+}
+
+WB_PASS void triad(double* a, const double* b, const double* c, double s, long len) {
+  for (long k = 0; k < len; ++k) a[k] = b[k] + s * c[k];
+}
+
+// a[i] = b[i] + s c[i] over arrays of `len` doubles: 24 bytes per element
+// counted as STREAM counts them (two reads, one write; the write-allocate
+// read of a is not counted).
+void bm_triad(benchmark::State& st) {
+  const long len = long(st.range(0));
+  std::vector<double> a(len, 0.0), b(len, 1.0), c(len, 2.0);
+  triad(a.data(), b.data(), c.data(), 3.0, len);  // warm-up, and every page touched
+  for (auto _ : st) {
+    triad(a.data(), b.data(), c.data(), 3.0, len);
+    benchmark::DoNotOptimize(a.data());
+    benchmark::ClobberMemory();
+  }
+  st.SetBytesProcessed(st.iterations() * 24 * len);
+  st.counters["len"] = double(len);
+}
+
+// ---------------------------------------------------------------------------
+// Before timing anything: the baselines must compute what the machinery
+// computes, or their ratios mean nothing.
+
+constexpr long kCheckParticles = 1001;
+constexpr int kCheckSteps = 20;
+// The same passes do the same floating-point operations in the same order as
+// the Eigen expressions: they must agree to the last bit.
+constexpr double kPassesTol = 0.0;
+// The fused loop computes a = g - (b/m) v instead of (m g - b v)/m: a few
+// rounding errors (~1e-16 relative) per step, over 20 steps.
+constexpr double kFusedTol = 1e-13;
+
+// Largest |p - q| / max(1, |p|) over every coordinate of x and v.
+double rel_diff(const wb::Mat2X& x, const wb::Mat2X& v, const Arrays& A) {
+  double worst = 0;
+  for (long k = 0; k < 2 * A.n; ++k) {
+    worst = std::max(worst, std::abs(x.data()[k] - A.x[k]) / std::max(1.0, std::abs(A.x[k])));
+    worst = std::max(worst, std::abs(v.data()[k] - A.v[k]) / std::max(1.0, std::abs(A.v[k])));
+  }
+  return worst;
+}
+
+bool check_baselines(const std::vector<Method>& all) {
+  bool ok = true;
+  for (const Method& method : all) {
+    const wb::Scene scene = make_scene(kCheckParticles);
+    const wb::ForceList forces = wb::build_forces(scene);
+    const wb::ParticleDynamics dyn(forces, scene.m);
+    wb::Mat2X x = scene.x, v = scene.v;
+    wb::Scratch s;
+    s.resize(kCheckParticles);
+    Arrays passes(scene), fused(scene);
+    for (int k = 0; k < kCheckSteps; ++k) {
+      method.step(dyn, kH, x, v, s);
+      method.passes(passes, kH);
+      method.fused(fused, kH);
+    }
+    const double dp = rel_diff(x, v, passes), df = rel_diff(x, v, fused);
+    if (dp > kPassesTol) {
+      std::fprintf(stderr,
+                   "FAIL: hand_passes/%s differs from scene/%s by %.3g (relative) after %d "
+                   "steps; expected bit-identical results: the baseline no longer does the "
+                   "same arithmetic as the step function\n",
+                   method.name, method.name, dp, kCheckSteps);
+      ok = false;
+    }
+    if (df > kFusedTol) {
+      std::fprintf(stderr,
+                   "FAIL: hand_fused/%s differs from scene/%s by %.3g (relative) after %d "
+                   "steps; expected at most %.3g: the fused loop is a different integrator\n",
+                   method.name, method.name, df, kCheckSteps, kFusedTol);
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+constexpr long kTriadDramLen = 1L << 25;  // 3 arrays of 256 MiB: far beyond any cache
+
+void register_all(const std::vector<Method>& all) {
+  benchmark::RegisterBenchmark("triad_dram", bm_triad)->Arg(kTriadDramLen);
+  for (long n = 1000; n <= 1000000; n *= 10) {
+    for (const Method& method : all) {
+      const std::string tail = std::string(method.name);
+      benchmark::RegisterBenchmark(("scene/" + tail).c_str(), bm_scene, method)
+          ->Arg(n);
+      benchmark::RegisterBenchmark(("hand_passes/" + tail).c_str(), bm_hand, method, false)
+          ->Arg(n);
+      benchmark::RegisterBenchmark(("hand_fused/" + tail).c_str(), bm_hand, method, true)
+          ->Arg(n);
+    }
+    benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
+  }
+}
+
+// The counter must see the allocations a careless step would make: an Eigen
+// temporary (through std::malloc) and a std::vector (through operator new).
+bool check_counter() {
+  const long before = allocations();
+  {
+    wb::Mat2X tmp(2, 16);
+    std::vector<double> w(16);
+    benchmark::DoNotOptimize(tmp.data());
+    benchmark::DoNotOptimize(w.data());
+  }
+  if (allocations() - before >= 2) return true;
+  std::fprintf(stderr, "FAIL: the allocation counter saw %ld of 2 allocations (an Eigen matrix "
+                       "and a std::vector); allocations per step cannot be trusted\n",
+               allocations() - before);
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!check_counter()) return 1;
+  const std::vector<Method> all = methods();
+  if (!check_baselines(all)) return 1;
+  register_all(all);
+  benchmark::AddCustomContext("wb_integrators", [&] {
+    std::string names;
+    for (const Method& m : all) names += (names.empty() ? "" : ",") + std::string(m.name);
+    return names;
+  }());
+  benchmark::AddCustomContext("wb_bound_bytes_per_particle",
+                              std::to_string(int(kBoundBytesPerParticle)));
+  benchmark::AddCustomContext("wb_allocation_counting",
+                              WB_COUNT_MALLOC ? "malloc family and operator new"
+                                              : "operator new only");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (g_alloc_failure) {
+    std::fprintf(stderr, "FAIL: some step allocated on the heap after its warm-up step (above)\n");
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,231 @@
+#!/usr/bin/python3
+"""Summarize a bench_integrators JSON run as a table of throughputs and ratios to its baselines."""
+import argparse
+import json
+import math
+import os
+import statistics
+import sys
+import tempfile
+
+TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+KINDS = ("scene", "hand_passes", "hand_fused")
+TARGET_RATIO = 1.1  # issue target for scene / hand_passes at 10^6 particles
+
+COLUMNS = [
+    ("integrator", "integrator", "{}"),
+    ("n", "n", "{}"),
+    ("Mpsteps_per_s", "M particle-steps/s", "{:.1f}"),
+    ("ns_per_psteps", "ns/particle-step", "{:.2f}"),
+    ("vs_hand_passes", "/hand passes", "{:.3f}"),
+    ("vs_hand_fused", "/hand fused", "{:.2f}"),
+    ("vs_dram_bound", "/DRAM bound", "{:.2f}"),
+    ("vs_fit_bound", "/fit bound", "{:.2f}"),
+    ("fused_vs_dram_bound", "fused/DRAM bound", "{:.2f}"),
+    ("allocs_per_step", "allocs/step", "{:g}"),
+    ("spread_pct", "spread %", "{:.1f}"),
+]
+
+
+class BadInput(Exception):
+    pass
+
+
+def parse_args():
+    p = argparse.ArgumentParser(
+        description="Read the --benchmark_format=json output of bench_integrators and print, "
+        "for every integrator and particle count: particle-steps per second through the scene "
+        "machinery, the time ratio to the hand-written loop doing the same passes, to the fused "
+        "hand loop, to the memory-bandwidth bound (72 bytes per particle-step at the STREAM "
+        "triad bandwidth measured in the same run, on arrays beyond the caches and on arrays of "
+        "the step's own footprint), and heap allocations per step. Ratios are times: above 1 "
+        "means the scene machinery is slower. With repetitions, every figure is the median of "
+        "the repetitions and 'spread %' is (max - min) / median of the scene benchmark. "
+        "Exit status: 0, 1 when the run recorded a failure (an allocating step, an error), "
+        "2 on bad input.")
+    p.add_argument("json_file", help="bench_integrators --benchmark_format=json output ('-' for stdin)")
+    p.add_argument("--time", choices=("cpu", "real"), default="cpu",
+                   help="which time to use: cpu (default; robust when other processes share the "
+                   "cores) or real (wall clock)")
+    p.add_argument("--csv", metavar="PATH", help="also write the table as CSV to PATH")
+    return p.parse_args()
+
+
+def load(path):
+    try:
+        if path == "-":
+            return json.load(sys.stdin)
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except OSError as e:
+        raise BadInput(f"{path}: cannot read: {e.strerror}")
+    except json.JSONDecodeError as e:
+        raise BadInput(f"{path}: not JSON (line {e.lineno}, column {e.colno}: {e.msg}); "
+                       "expected the output of bench_integrators --benchmark_format=json")
+
+
+def split_name(path, i, name):
+    """'scene/rk4/1000' -> ('scene', 'rk4', 1000); 'triad_dram/33554432' -> ('triad_dram', None, len)."""
+    parts = [p for p in name.split("/") if ":" not in p]  # drop min_time:, repeats:, ...
+    try:
+        if parts[0] in ("triad_dram", "triad_fit") and len(parts) == 2:
+            return parts[0], None, int(parts[1])
+        if parts[0] in KINDS and len(parts) == 3:
+            return parts[0], parts[1], int(parts[2])
+    except ValueError:
+        pass
+    raise BadInput(f"{path}: benchmarks[{i}].run_name is {name!r}; expected "
+                   "<scene|hand_passes|hand_fused>/<integrator>/<n> or triad_<dram|fit>/<length>")
+
+
+def collect(doc, path, time_key):
+    """Per benchmark: the list of repetition times (s), and the recorded failures."""
+    if not isinstance(doc, dict) or not isinstance(doc.get("benchmarks"), list):
+        raise BadInput(f"{path}: no \"benchmarks\" list at the top level; expected the output of "
+                       "bench_integrators --benchmark_format=json")
+    runs, medians, allocs, failures = {}, {}, {}, []
+    for i, b in enumerate(doc["benchmarks"]):
+        if not isinstance(b, dict):
+            raise BadInput(f"{path}: benchmarks[{i}] is not an object")
+        name = b.get("run_name", b.get("name"))
+        if not isinstance(name, str):
+            raise BadInput(f"{path}: benchmarks[{i}] has no string \"run_name\"")
+        key = split_name(path, i, name)
+        if b.get("error_occurred"):
+            failures.append(f"{name}: {b.get('error_message', 'error')}")
+            continue
+        run_type = b.get("run_type", "iteration")
+        if run_type == "aggregate" and b.get("aggregate_name") != "median":
+            continue
+        t = b.get(time_key)
+        unit = b.get("time_unit", "ns")
+        if not isinstance(t, (int, float)) or unit not in TIME_UNITS or not t > 0:
+            raise BadInput(f"{path}: benchmarks[{i}] ({name}): {time_key}={t!r}, "
+                           f"time_unit={unit!r}; expected a positive time in ns, us, ms or s")
+        seconds = t * TIME_UNITS[unit]
+        if run_type == "aggregate":
+            medians[key] = seconds
+        else:
+            runs.setdefault(key, []).append(seconds)
+            a = b.get("allocs_per_step")
+            if isinstance(a, (int, float)):
+                allocs[key] = max(allocs.get(key, 0.0), float(a))
+    times = {}
+    for key in set(runs) | set(medians):
+        reps = runs.get(key, [])
+        med = statistics.median(reps) if reps else medians[key]
+        spread = (max(reps) - min(reps)) / med if len(reps) > 1 else math.nan
+        times[key] = (med, spread)
+    return times, allocs, failures
+
+
+def table(times, allocs, bound_bytes):
+    dram = [k for k in times if k[0] == "triad_dram"]
+    if not dram:
+        raise BadInput("no triad_dram benchmark in the run: the bandwidth bound needs it "
+                       "(did --benchmark_filter leave it out?)")
+    dram_len = max(k[2] for k in dram)
+    bw_dram = 24 * dram_len / times[("triad_dram", None, dram_len)][0]
+    rows = []
+    scenes = sorted((k for k in times if k[0] == "scene"), key=lambda k: (k[1], k[2]))
+    for _, integ, n in scenes:
+        t, spread = times[("scene", integ, n)]
+        passes = times.get(("hand_passes", integ, n))
+        fused = times.get(("hand_fused", integ, n))
+        fit = times.get(("triad_fit", None, 3 * n))
+        bound = bound_bytes * n / bw_dram
+        rows.append({
+            "integrator": integ,
+            "n": n,
+            "Mpsteps_per_s": n / t / 1e6,
+            "ns_per_psteps": t / n * 1e9,
+            "vs_hand_passes": t / passes[0] if passes else math.nan,
+            "vs_hand_fused": t / fused[0] if fused else math.nan,
+            "vs_dram_bound": t / bound,
+            "vs_fit_bound": t / (bound_bytes * n / (24 * 3 * n / fit[0])) if fit else math.nan,
+            "fused_vs_dram_bound": fused[0] / bound if fused else math.nan,
+            "allocs_per_step": allocs.get(("scene", integ, n), math.nan),
+            "spread_pct": 100 * spread,
+        })
+    return rows, bw_dram
+
+
+def fmt(value, spec):
+    if isinstance(value, float) and math.isnan(value):
+        return "-"
+    return spec.format(value)
+
+
+def print_table(rows):
+    cells = [[head for _, head, _ in COLUMNS]]
+    cells += [[fmt(r[key], spec) for key, _, spec in COLUMNS] for r in rows]
+    widths = [max(len(row[c]) for row in cells) for c in range(len(COLUMNS))]
+    for j, row in enumerate(cells):
+        print("  ".join(c.rjust(w) if k > 0 else c.ljust(w) for k, (c, w) in enumerate(zip(row, widths))))
+        if j == 0:
+            print("  ".join("-" * w for w in widths))
+
+
+def write_csv(path, rows):
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".summarize-", suffix=".csv")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
+            f.write(",".join(key for key, _, _ in COLUMNS) + "\n")
+            for r in rows:
+                f.write(",".join(fmt(r[key], spec) for key, _, spec in COLUMNS) + "\n")
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def main():
+    args = parse_args()
+    try:
+        doc = load(args.json_file)
+        times, allocs, failures = collect(doc, args.json_file, args.time + "_time")
+        ctx = doc.get("context", {}) if isinstance(doc.get("context"), dict) else {}
+        try:
+            bound_bytes = float(ctx.get("wb_bound_bytes_per_particle", 72))
+        except ValueError:
+            raise BadInput(f"{args.json_file}: context.wb_bound_bytes_per_particle is "
+                           f"{ctx['wb_bound_bytes_per_particle']!r}; expected a number")
+        rows, bw_dram = table(times, allocs, bound_bytes)
+    except BadInput as e:
+        print(f"summarize.py: {e}", file=sys.stderr)
+        return 2
+    print(f"host {ctx.get('host_name', '?')}, {ctx.get('num_cpus', '?')} cpus at "
+          f"{ctx.get('mhz_per_cpu', '?')} MHz, load average {ctx.get('load_avg', '?')}, "
+          f"{ctx.get('date', '?')}")
+    print(f"{args.time} time; median of the repetitions; ratios are times (scene / baseline)")
+    print(f"DRAM triad bandwidth {bw_dram / 1e9:.2f} GB/s; bound = {bound_bytes:g} bytes per "
+          "particle-step / bandwidth")
+    fits = sorted(k for k in times if k[0] == "triad_fit")
+    if fits:
+        print("triad on the step's footprint (3n doubles): " + ", ".join(
+            f"n={k[2] // 3}: {24 * k[2] / times[k][0] / 1e9:.1f} GB/s" for k in fits))
+    print()
+    print_table(rows)
+    big = [r for r in rows if r["n"] == 1000000]
+    for r in big:
+        if r["vs_hand_passes"] > TARGET_RATIO:
+            print(f"note: {r['integrator']} at n=10^6 is {r['vs_hand_passes']:.3f} x the hand "
+                  f"loop doing the same passes (target <= {TARGET_RATIO})")
+    for r in rows:
+        if r["allocs_per_step"] > 0:
+            failures.append(f"scene/{r['integrator']}/{r['n']}: {r['allocs_per_step']:g} heap "
+                            "allocations per step after the warm-up step (expected 0)")
+    if args.csv:
+        try:
+            write_csv(args.csv, rows)
+        except OSError as e:
+            print(f"summarize.py: --csv {args.csv}: cannot write: {e.strerror}", file=sys.stderr)
+            return 2
+    for f in failures:
+        print(f"FAIL: {f}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
