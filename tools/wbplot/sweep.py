@@ -160,12 +160,13 @@ def plot_convergence(runs, scene, out, scale=1.0):
     fig, ax = new_figure(figsize=(8.4, 4.6))
     groups = by_integrator(runs)
     names = [n for n, _ in groups]
-    all_pts = []
+    all_pts, used_all = [], []
     any_div = False
     for name, group in groups:
         color, marker = integrator_style(name, names)
         order, used = measured_order(group, scale)
         used_set = set(used)
+        used_all += used
         ok = [(r.dt, r.error) for r in group if not r.diverged and r.error > 0]
         all_pts += ok
         label = f"{name}: order {order:.2f}" if order is not None else f"{name}: order n/a"
@@ -185,13 +186,14 @@ def plot_convergence(runs, scene, out, scale=1.0):
     hs = [h for h, _ in all_pts]
     es = [e for _, e in all_pts if e is not None]
     if hs and es:
-        ylo, yhi = min(es), max(es)
-        ax.set_ylim(ylo / 3, yhi * 3)
+        ax.set_ylim(min(es) / 3, max(es) * 3)
         h0, h1 = min(hs), max(hs)
-        # Guides through a point near the top right, falling as dt falls.
-        e_ref = yhi
+        # Guides start just above the fitted points' top right corner and fall with dt.
+        anchor = used_all or [(h, e) for h, e in all_pts if e is not None]
+        ha = max(h for h, _ in anchor)
+        ea = 2 * max(e for _, e in anchor)
         for p, style in ((1, (0, (6, 3))), (2, (0, (3, 3))), (4, (0, (1, 2)))):
-            ax.plot([h0, h1], [e_ref * (h0 / h1) ** p, e_ref], color="0.45", lw=0.9, ls=style,
+            ax.plot([h0, ha], [ea * (h0 / ha) ** p, ea], color="0.45", lw=0.9, ls=style,
                     label=f"slope {p} (guide)")
         ax.set_xlim(h0 / 1.3, h1 * 1.3)
     ax.set_xlabel("time step dt (s)")
