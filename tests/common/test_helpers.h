@@ -67,3 +67,44 @@ inline void require_finite(const wb::Mat2X& m, const std::string& what) {
 }
 
 }  // namespace wbtest
+
+// ---- Appended for the forces tests (random clusters, finite differences) ----
+#include <cstdint>
+#include <functional>
+#include <random>
+
+namespace wbtest {
+
+// n points with coordinates uniform in [lo, hi), from a fixed seed: the same
+// numbers on every platform (mt19937_64 is fully specified, and the mapping to
+// doubles is ours, not the library's distribution).
+inline wb::Mat2X random_points(Eigen::Index n, std::uint64_t seed, double lo, double hi) {
+  std::mt19937_64 gen(seed);
+  wb::Mat2X p(2, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (int r = 0; r < 2; ++r) {
+      const double u = double(gen() >> 11) * 0x1.0p-53;  // uniform in [0, 1)
+      p(r, i) = lo + (hi - lo) * u;
+    }
+  }
+  return p;
+}
+
+// -dV/dx by central differences, column by column: entry (r, i) is
+//   -(V(x + h e_ri) - V(x - h e_ri)) / (2 h),
+// whose error is h^2/6 |d^3V/dx_ri^3| (truncation) plus about eps_mach |V| / h (rounding).
+inline wb::Mat2X minus_gradient(const std::function<double(const wb::Mat2X&)>& V,
+                                const wb::Mat2X& x, double h) {
+  wb::Mat2X g(2, x.cols());
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    for (int r = 0; r < 2; ++r) {
+      wb::Mat2X xp = x, xm = x;
+      xp(r, i) += h;
+      xm(r, i) -= h;
+      g(r, i) = -(V(xp) - V(xm)) / (2 * h);
+    }
+  }
+  return g;
+}
+
+}  // namespace wbtest

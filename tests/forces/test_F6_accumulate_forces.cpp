@@ -1,0 +1,169 @@
+// F6 accumulate all forces: f = the sum of every term, whatever f held before
+// (labs/forces/accumulate_forces.h).
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "accumulate_forces.h"
+#include "test_helpers.h"
+
+using wb::Mat2X;
+using wb::Vec2;
+using wb::VecX;
+using Terms = std::vector<std::unique_ptr<wb::Force>>;
+
+namespace {
+
+// The terms below add small integers and halves: every sum is exact, so
+// any correct order of summation gives the same bits. 1e-12 is rounding slack.
+constexpr double kTol = 1e-12;
+
+// Force::add must get f already 2 x n (the interface says terms never resize it).
+void check_size(const Mat2X& x, const Mat2X& f, const char* term) {
+  if (f.cols() != x.cols()) {
+    throw std::logic_error(std::string("accumulate_forces passed f with ") +
+                           std::to_string(f.cols()) + " columns to the " + term + " term, but there are " +
+                           std::to_string(x.cols()) +
+                           " particles: make f 2 x n (and zero) before calling the terms");
+  }
+}
+
+// f_i += m_i (1, -2): depends on the masses.
+class MassTerm : public wb::Force {
+ public:
+  void add(const Mat2X& x, const Mat2X&, const VecX& m, Mat2X& f) const override {
+    check_size(x, f, "mass");
+    for (Eigen::Index i = 0; i < x.cols(); ++i) f.col(i) += m[i] * Vec2(1, -2);
+  }
+  std::string type() const override { return "test-mass"; }
+};
+
+// f_i += -2 x_i: depends on the positions.
+class PositionTerm : public wb::Force {
+ public:
+  void add(const Mat2X& x, const Mat2X&, const VecX&, Mat2X& f) const override {
+    check_size(x, f, "position");
+    f -= 2.0 * x;
+  }
+  std::string type() const override { return "test-position"; }
+};
+
+// f_i += -0.5 v_i + (i, 0.5): depends on the velocities and the index.
+class VelocityTerm : public wb::Force {
+ public:
+  void add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const override {
+    check_size(x, f, "velocity");
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      f.col(i) += -0.5 * v.col(i) + Vec2(double(i), 0.5);
+    }
+  }
+  std::string type() const override { return "test-velocity"; }
+};
+
+struct System {
+  Mat2X x, v;
+  VecX m;
+};
+
+// Four particles with exactly representable coordinates.
+System four() {
+  System s;
+  s.x.resize(2, 4);
+  s.x << 1.0, -2.5, 0.5, 3.0,  //
+      2.0, 0.25, -1.0, 4.0;
+  s.v.resize(2, 4);
+  s.v << 0.5, 1.0, -2.0, 0.0,  //
+      -1.5, 2.0, 0.25, 3.0;
+  s.m.resize(4);
+  s.m << 1.0, 2.0, 0.5, 4.0;
+  return s;
+}
+
+Terms three_terms() {
+  Terms t;
+  t.push_back(std::make_unique<MassTerm>());
+  t.push_back(std::make_unique<PositionTerm>());
+  t.push_back(std::make_unique<VelocityTerm>());
+  return t;
+}
+
+// The sum of the three terms above, written out: m_i (1, -2) - 2 x_i - 0.5 v_i + (i, 0.5).
+Mat2X expected_sum(const System& s) {
+  Mat2X f(2, s.x.cols());
+  for (Eigen::Index i = 0; i < s.x.cols(); ++i) {
+    f.col(i) = s.m[i] * Vec2(1, -2) - 2.0 * s.x.col(i) - 0.5 * s.v.col(i) + Vec2(double(i), 0.5);
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("F6 accumulate forces: the total is the sum of every term", "[forces][F6][4pts]") {
+  const System s = four();
+  const Terms terms = three_terms();
+  Mat2X f = Mat2X::Zero(2, 4);
+  accumulate_forces(terms, s.x, s.v, s.m, f);
+  wbtest::require_near(f, expected_sum(s), kTol,
+                       "superposition: the total force is the sum of the terms' forces", kTol);
+
+  // One term alone gives that term alone.
+  Terms one;
+  one.push_back(std::make_unique<MassTerm>());
+  accumulate_forces(one, s.x, s.v, s.m, f);
+  Mat2X mass_only(2, 4);
+  mass_only << 1.0, 2.0, 0.5, 4.0,  //
+      -2.0, -4.0, -1.0, -8.0;
+  wbtest::require_near(f, mass_only, kTol, "a single term: the total is that term's force", kTol);
+}
+
+TEST_CASE("F6 accumulate forces: f of the wrong size or full of garbage still gives the sum",
+          "[forces][F6][3pts]") {
+  const System s = four();
+  const Terms terms = three_terms();
+  const Mat2X expected = expected_sum(s);
+
+  // Too many columns, full of huge values (last step's forces of another scene, say).
+  Mat2X f = Mat2X::Constant(2, 7, 1e30);
+  accumulate_forces(terms, s.x, s.v, s.m, f);
+  wbtest::require_near(f, expected, kTol,
+                       "f came in 2 x 7: it must leave 2 x n holding only the sum of the terms",
+                       kTol);
+
+  // Too few columns.
+  f = Mat2X::Constant(2, 1, -3.0);
+  accumulate_forces(terms, s.x, s.v, s.m, f);
+  wbtest::require_near(f, expected, kTol,
+                       "f came in 2 x 1: it must leave 2 x n holding only the sum of the terms",
+                       kTol);
+
+  // The right size but NaN everywhere: nothing of it may survive.
+  f = Mat2X::Constant(2, 4, std::numeric_limits<double>::quiet_NaN());
+  accumulate_forces(terms, s.x, s.v, s.m, f);
+  wbtest::require_finite(f, "f came in full of NaN");
+  wbtest::require_near(f, expected, kTol,
+                       "f came in full of NaN: its old contents must not leak into the sum",
+                       kTol);
+}
+
+TEST_CASE("F6 accumulate forces: calling it twice gives the same result", "[forces][F6][2pts]") {
+  // The driver reuses the same f every step: the second call must not add on top of the first.
+  const System s = four();
+  const Terms terms = three_terms();
+  Mat2X f = Mat2X::Zero(2, 4);
+  accumulate_forces(terms, s.x, s.v, s.m, f);
+  accumulate_forces(terms, s.x, s.v, s.m, f);
+  wbtest::require_near(f, expected_sum(s), kTol,
+                       "the force is a function of the state: evaluating it twice must give the "
+                       "same total, not twice the total",
+                       kTol);
+}
+
+TEST_CASE("F6 accumulate forces: no terms give zero force of the right size",
+          "[forces][F6][1pts]") {
+  const System s = four();
+  const Terms none;
+  Mat2X f = Mat2X::Constant(2, 2, 5.0);
+  accumulate_forces(none, s.x, s.v, s.m, f);
+  wbtest::require_near(f, Mat2X::Zero(2, 4), 0.0,
+                       "no force terms: every particle is free, f = 0 (2 x n)");
+}
