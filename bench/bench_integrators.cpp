@@ -260,7 +260,7 @@ WB_PASS void pass_axpy(double* y, double s, const double* u, long len) {
   for (long k = 0; k < len; ++k) y[k] += s * u[k];
 }
 // out = y + s u
-[[maybe_unused]] WB_PASS void pass_waxpy(double* out, const double* y, double s, const double* u, long len) {
+WB_PASS void pass_waxpy(double* out, const double* y, double s, const double* u, long len) {
   for (long k = 0; k < len; ++k) out[k] = y[k] + s * u[k];
 }
 
@@ -273,14 +273,41 @@ void hand_acceleration(Arrays& A, const double* v, double* a) {
   pass_divide_by_mass(a, A.f.data(), A.inv_m.data(), A.n);
 }
 
-// a = g - (b / m) v for one coordinate: the fused loops' force evaluation.
-inline double accel(double g, double c, double v) { return g - c * v; }
+// y = u (a copy, as `s.xs = v`)
+WB_PASS void pass_copy(double* y, const double* u, long len) {
+  for (long k = 0; k < len; ++k) y[k] = u[k];
+}
+// y += u
+WB_PASS void pass_add(double* y, const double* u, long len) {
+  for (long k = 0; k < len; ++k) y[k] += u[k];
+}
+// out = 0.5 (p + q)
+WB_PASS void pass_average(double* out, const double* p, const double* q, long len) {
+  for (long k = 0; k < len; ++k) out[k] = 0.5 * (p[k] + q[k]);
+}
+
+// The fused loops: particle i's two coordinates are independent under gravity
+// and damping (a = g - c v with c = b / m_i), so one pass can take the whole
+// step of every coordinate in registers. `step(g, c, x, v)` advances one.
+template <class Step>
+void fused_loop(Arrays& A, Step step) {
+  double* x = A.x.data();
+  double* v = A.v.data();
+  const double* inv_m = A.inv_m.data();
+  for (long i = 0; i < A.n; ++i) {
+    const double c = kB * inv_m[i];  // damping rate b/m (1/s)
+    step(kGx, c, x[2 * i], v[2 * i]);
+    step(kGy, c, x[2 * i + 1], v[2 * i + 1]);
+  }
+}
 
 // ---------------------------------------------------------------------------
 // The integrators. For each: the step through the machinery, the same passes
-// on arrays, and the fused loop.
+// on arrays (one per Eigen statement of the step function, in its order), and
+// the fused loop. check_baselines() keeps the passes honest: a step function
+// that changes without its passes here fails the run.
 
-// symplectic Euler: v += h a(x, v); x += h v (new v)
+// symplectic Euler: v += h a(x, v); x += h v (the new v)
 #ifdef WB_BENCH_HAS_EULER
 const wb::StepFn kSymplecticEuler = symplectic_euler_step;
 const char* const kSymplecticEulerSource = "solutions/euler";
@@ -303,22 +330,14 @@ void symplectic_passes(Arrays& A, double h) {
   pass_axpy(A.x.data(), h, A.v.data(), len);
 }
 WB_PASS void symplectic_fused(Arrays& A, double h) {
-  double* x = A.x.data();
-  double* v = A.v.data();
-  const double* inv_m = A.inv_m.data();
-  for (long i = 0; i < A.n; ++i) {
-    const double c = kB * inv_m[i];  // damping rate b/m (1/s)
-    const double vx = v[2 * i] + h * accel(kGx, c, v[2 * i]);
-    const double vy = v[2 * i + 1] + h * accel(kGy, c, v[2 * i + 1]);
-    v[2 * i] = vx;
-    v[2 * i + 1] = vy;
-    x[2 * i] += h * vx;
-    x[2 * i + 1] += h * vy;
-  }
+  fused_loop(A, [h](double g, double c, double& x, double& v) {
+    v += h * (g - c * v);
+    x += h * v;
+  });
 }
 
 #ifdef WB_BENCH_HAS_EULER
-// explicit Euler: a = a(x, v); x += h v (old v); v += h a
+// explicit Euler: a0 = a(x, v); x += h v (the old v); v += h a0
 void explicit_passes(Arrays& A, double h) {
   const long len = 2 * A.n;
   hand_acceleration(A, A.v.data(), A.a0.data());
@@ -326,22 +345,99 @@ void explicit_passes(Arrays& A, double h) {
   pass_axpy(A.v.data(), h, A.a0.data(), len);
 }
 WB_PASS void explicit_fused(Arrays& A, double h) {
-  double* x = A.x.data();
-  double* v = A.v.data();
-  const double* inv_m = A.inv_m.data();
-  for (long i = 0; i < A.n; ++i) {
-    const double c = kB * inv_m[i];
-    for (int r = 0; r < 2; ++r) {
-      const double vr = v[2 * i + r];
-      x[2 * i + r] += h * vr;
-      v[2 * i + r] = vr + h * accel(r ? kGy : kGx, c, vr);
-    }
-  }
+  fused_loop(A, [h](double g, double c, double& x, double& v) {
+    const double a0 = g - c * v;
+    x += h * v;
+    v += h * a0;
+  });
+}
+#endif
+
+#ifdef WB_BENCH_HAS_MIDPOINT
+// midpoint: a0 = a(x, v); x1 = x + h/2 v; v1 = v + h/2 a0; a1 = a(x1, v1);
+// x += h v1; v += h a1
+void midpoint_passes(Arrays& A, double h) {
+  const long len = 2 * A.n;
+  hand_acceleration(A, A.v.data(), A.a0.data());
+  pass_waxpy(A.x1.data(), A.x.data(), 0.5 * h, A.v.data(), len);
+  pass_waxpy(A.v1.data(), A.v.data(), 0.5 * h, A.a0.data(), len);
+  hand_acceleration(A, A.v1.data(), A.a1.data());
+  pass_axpy(A.x.data(), h, A.v1.data(), len);
+  pass_axpy(A.v.data(), h, A.a1.data(), len);
+}
+WB_PASS void midpoint_fused(Arrays& A, double h) {
+  fused_loop(A, [h](double g, double c, double& x, double& v) {
+    const double v1 = v + 0.5 * h * (g - c * v);
+    x += h * v1;
+    v += h * (g - c * v1);
+  });
+}
+
+// trapezoid: a0 = a(x, v); (x1, v1) = (x, v) + h (v, a0); a1 = a(x1, v1);
+// (xs, vs) = (x, v) + h (v1, a1); (x, v) = average of (x1, v1) and (xs, vs)
+void trapezoid_passes(Arrays& A, double h) {
+  const long len = 2 * A.n;
+  hand_acceleration(A, A.v.data(), A.a0.data());
+  pass_waxpy(A.x1.data(), A.x.data(), h, A.v.data(), len);
+  pass_waxpy(A.v1.data(), A.v.data(), h, A.a0.data(), len);
+  hand_acceleration(A, A.v1.data(), A.a1.data());
+  pass_waxpy(A.xs.data(), A.x.data(), h, A.v1.data(), len);
+  pass_waxpy(A.vs.data(), A.v.data(), h, A.a1.data(), len);
+  pass_average(A.x.data(), A.x1.data(), A.xs.data(), len);
+  pass_average(A.v.data(), A.v1.data(), A.vs.data(), len);
+}
+WB_PASS void trapezoid_fused(Arrays& A, double h) {
+  fused_loop(A, [h](double g, double c, double& x, double& v) {
+    const double xa = x + h * v, va = v + h * (g - c * v);
+    const double xb = x + h * va, vb = v + h * (g - c * va);
+    x = 0.5 * (xa + xb);
+    v = 0.5 * (va + vb);
+  });
+}
+#endif
+
+#ifdef WB_BENCH_HAS_RK4
+// classic RK4 as wb::rk4_step writes it: running sums xs, vs of the slopes,
+// stages through x1, v1
+void rk4_passes(Arrays& A, double h) {
+  const long len = 2 * A.n;
+  double *x = A.x.data(), *v = A.v.data(), *x1 = A.x1.data(), *v1 = A.v1.data();
+  double *xs = A.xs.data(), *vs = A.vs.data();
+  hand_acceleration(A, v, A.a0.data());
+  pass_copy(xs, v, len);
+  pass_copy(vs, A.a0.data(), len);
+  pass_waxpy(x1, x, 0.5 * h, v, len);
+  pass_waxpy(v1, v, 0.5 * h, A.a0.data(), len);
+  hand_acceleration(A, v1, A.a1.data());
+  pass_axpy(xs, 2.0, v1, len);
+  pass_axpy(vs, 2.0, A.a1.data(), len);
+  pass_waxpy(x1, x, 0.5 * h, v1, len);
+  pass_waxpy(v1, v, 0.5 * h, A.a1.data(), len);
+  hand_acceleration(A, v1, A.a2.data());
+  pass_axpy(xs, 2.0, v1, len);
+  pass_axpy(vs, 2.0, A.a2.data(), len);
+  pass_waxpy(x1, x, h, v1, len);
+  pass_waxpy(v1, v, h, A.a2.data(), len);
+  hand_acceleration(A, v1, A.a3.data());
+  pass_add(xs, v1, len);
+  pass_add(vs, A.a3.data(), len);
+  pass_axpy(x, h / 6.0, xs, len);
+  pass_axpy(v, h / 6.0, vs, len);
+}
+WB_PASS void rk4_fused(Arrays& A, double h) {
+  fused_loop(A, [h](double g, double c, double& x, double& v) {
+    const double a1 = g - c * v;
+    const double v2 = v + 0.5 * h * a1, a2 = g - c * v2;
+    const double v3 = v + 0.5 * h * a2, a3 = g - c * v3;
+    const double v4 = v + h * a3, a4 = g - c * v4;
+    x += (h / 6.0) * (v + 2.0 * v2 + 2.0 * v3 + v4);
+    v += (h / 6.0) * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+  });
 }
 #endif
 
 // ---------------------------------------------------------------------------
-// The table of integrators timed in this build.
+// The table of integrators timed in this build, in teaching order.
 
 using HandFn = void (*)(Arrays& A, double h);
 
@@ -361,6 +457,15 @@ std::vector<Method> methods() {
 #endif
   out.push_back({"symplectic-euler", kSymplecticEulerSource, kSymplecticEuler, symplectic_passes,
                  symplectic_fused});
+#ifdef WB_BENCH_HAS_MIDPOINT
+  out.push_back({"midpoint", "solutions/midpoint", midpoint_step, midpoint_passes,
+                 midpoint_fused});
+  out.push_back({"trapezoid", "solutions/midpoint", trapezoid_step, trapezoid_passes,
+                 trapezoid_fused});
+#endif
+#ifdef WB_BENCH_HAS_RK4
+  out.push_back({"rk4", "framework/src/rk4.cpp", wb::rk4_step, rk4_passes, rk4_fused});
+#endif
   return out;
 }
 
@@ -380,7 +485,7 @@ void report(benchmark::State& st, const std::string& what, long n, long allocs, 
   if (allocs != 0) {
     g_alloc_failure = true;
     std::fprintf(stderr,
-                 "FAIL: %s allocated %ld times in %lld timed steps after the warm-up step; "
+                 "FAIL: %s made %ld heap allocations in %lld timed steps after the warm-up step; "
                  "a step must allocate nothing (use the wb::Scratch arrays)\n",
                  (what + "/" + std::to_string(n)).c_str(), allocs, static_cast<long long>(st.iterations()));
     st.SkipWithError("heap allocation inside a step (see stderr)");

@@ -84,6 +84,7 @@ def collect(doc, path, time_key):
         raise BadInput(f"{path}: no \"benchmarks\" list at the top level; expected the output of "
                        "bench_integrators --benchmark_format=json")
     runs, medians, allocs, failures = {}, {}, {}, []
+    order = {}  # integrator -> position of its first benchmark (the program's teaching order)
     for i, b in enumerate(doc["benchmarks"]):
         if not isinstance(b, dict):
             raise BadInput(f"{path}: benchmarks[{i}] is not an object")
@@ -91,6 +92,8 @@ def collect(doc, path, time_key):
         if not isinstance(name, str):
             raise BadInput(f"{path}: benchmarks[{i}] has no string \"run_name\"")
         key = split_name(path, i, name)
+        if key[1] is not None:
+            order.setdefault(key[1], len(order))
         if b.get("error_occurred"):
             failures.append(f"{name}: {b.get('error_message', 'error')}")
             continue
@@ -116,18 +119,17 @@ def collect(doc, path, time_key):
         med = statistics.median(reps) if reps else medians[key]
         spread = (max(reps) - min(reps)) / med if len(reps) > 1 else math.nan
         times[key] = (med, spread)
-    return times, allocs, failures
+    return times, allocs, failures, order
 
 
-def table(times, allocs, bound_bytes):
+def table(times, allocs, order, bound_bytes):
     dram = [k for k in times if k[0] == "triad_dram"]
-    if not dram:
-        raise BadInput("no triad_dram benchmark in the run: the bandwidth bound needs it "
-                       "(did --benchmark_filter leave it out?)")
-    dram_len = max(k[2] for k in dram)
-    bw_dram = 24 * dram_len / times[("triad_dram", None, dram_len)][0]
+    bw_dram = math.nan  # no bound without the triad (a filtered run)
+    if dram:
+        dram_len = max(k[2] for k in dram)
+        bw_dram = 24 * dram_len / times[("triad_dram", None, dram_len)][0]
     rows = []
-    scenes = sorted((k for k in times if k[0] == "scene"), key=lambda k: (k[1], k[2]))
+    scenes = sorted((k for k in times if k[0] == "scene"), key=lambda k: (order[k[1]], k[2]))
     for _, integ, n in scenes:
         t, spread = times[("scene", integ, n)]
         passes = times.get(("hand_passes", integ, n))
@@ -184,14 +186,14 @@ def main():
     args = parse_args()
     try:
         doc = load(args.json_file)
-        times, allocs, failures = collect(doc, args.json_file, args.time + "_time")
+        times, allocs, failures, order = collect(doc, args.json_file, args.time + "_time")
         ctx = doc.get("context", {}) if isinstance(doc.get("context"), dict) else {}
         try:
             bound_bytes = float(ctx.get("wb_bound_bytes_per_particle", 72))
         except ValueError:
             raise BadInput(f"{args.json_file}: context.wb_bound_bytes_per_particle is "
                            f"{ctx['wb_bound_bytes_per_particle']!r}; expected a number")
-        rows, bw_dram = table(times, allocs, bound_bytes)
+        rows, bw_dram = table(times, allocs, order, bound_bytes)
     except BadInput as e:
         print(f"summarize.py: {e}", file=sys.stderr)
         return 2
@@ -199,8 +201,11 @@ def main():
           f"{ctx.get('mhz_per_cpu', '?')} MHz, load average {ctx.get('load_avg', '?')}, "
           f"{ctx.get('date', '?')}")
     print(f"{args.time} time; median of the repetitions; ratios are times (scene / baseline)")
-    print(f"DRAM triad bandwidth {bw_dram / 1e9:.2f} GB/s; bound = {bound_bytes:g} bytes per "
-          "particle-step / bandwidth")
+    if math.isnan(bw_dram):
+        print("no triad_dram in the run (filtered out?): no DRAM bound")
+    else:
+        print(f"DRAM triad bandwidth {bw_dram / 1e9:.2f} GB/s; bound = {bound_bytes:g} bytes per "
+              "particle-step / bandwidth")
     fits = sorted(k for k in times if k[0] == "triad_fit")
     if fits:
         print("triad on the step's footprint (3n doubles): " + ", ".join(
