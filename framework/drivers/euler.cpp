@@ -1,0 +1,18 @@
+// The euler lab executable: scenes stepped with the student's two Euler steps.
+#include "explicit_euler.h"
+#include "symplectic_euler.h"
+#include "wb/run.h"
+
+int main(int argc, char** argv) {
+  wb::LabInfo info;
+  info.lab = WB_LAB;
+  info.side = WB_SIDE;
+  info.summary = "Euler lab: explicit and semi-implicit Euler steps on particle scenes.";
+  info.integrators = {
+      {"explicit-euler", explicit_euler_step, 1, 1,
+       "explicit Euler (TODO E1): positions with the old velocities"},
+      {"symplectic-euler", symplectic_euler_step, 1, 1,
+       "semi-implicit Euler (TODO E2): velocities first, positions with the new ones"}};
+  info.sweep = true;
+  return wb::run_particle_lab(argc, argv, info);
+}

@@ -1,0 +1,208 @@
+// Graded tests for TODO(E1), the explicit Euler step (labs/euler/explicit_euler.cpp).
+// Expected values come from the step's definition x' = x + h v, v' = v + h a(x, v)
+// and what it implies in closed form; never from a run of the solution.
+#include <cmath>
+
+#include "euler_test_helpers.h"
+#include "explicit_euler.h"
+
+using namespace eulertest;
+using wbtest::require_near;
+
+namespace {
+
+// One step is a handful of additions: a few ulps of the largest term.
+constexpr double kStepTol = 1e-14;
+// A ratio of two energies each rounded to ~1e-16 relative, a few times over.
+constexpr double kRatioTol = 1e-12;
+// 10^6 steps each adding ~1e-16 relative rounding: the worst case is ~1e-10.
+constexpr double kLongRunTol = 1e-8;
+
+}  // namespace
+
+TEST_CASE("E1 one step: positions move with the old velocities", "[euler][E1][8pts]") {
+  // Accelerations that depend on x and v, different for every particle.
+  auto accel = [](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      a.col(i) = Vec2(-3.0 * x(0, i) + 0.5 * v(1, i) + 1.0 + double(i),
+                      2.0 * x(1, i) * x(0, i) - 0.25 * v(0, i) - 0.5 * double(i));
+    }
+  };
+  const Mat2X x0 = cols({{1.0, 2.0}, {-0.5, 0.25}, {3.0, -1.5}});
+  const Mat2X v0 = cols({{0.5, -1.0}, {2.0, 0.75}, {-1.25, 0.125}});
+  const double h = 0.25;
+  Mat2X a0(2, 3);
+  accel(x0, v0, a0);
+
+  Run r(accel, x0, v0);
+  r.step(explicit_euler_step, h);
+  require_near(r.x, Mat2X(x0 + h * v0), kStepTol,
+               "explicit Euler position x1 = x0 + h v0 (the velocity at the START of the step)",
+               kStepTol);
+  require_near(r.v, Mat2X(v0 + h * a0), kStepTol,
+               "explicit Euler velocity v1 = v0 + h a(x0, v0)", kStepTol);
+}
+
+TEST_CASE("E1 harmonic oscillator: energy grows by exactly 1 + (h w)^2 per step",
+          "[euler][E1][12pts]") {
+  // For a = -(k/m) x:  E' = 1/2 m (v + h a)^2 + 1/2 k (x + h v)^2
+  //                       = (1 + h^2 k/m) E   (the cross terms cancel),
+  // so the orbit spirals out at EVERY step size, however small.
+  const double m = 2.5, k = 10.0, w = std::sqrt(k / m);
+  struct Case {
+    double hw;
+    int steps;
+  };
+  // hw = 1000/60: the stiff spring of scenes/euler/stiff-spring.json at h = 1/60.
+  for (Case c : {Case{0.001, 2000}, Case{0.01, 2000}, Case{0.1, 500}, Case{0.5, 200},
+                 Case{1.0, 200}, Case{2.5, 100}, Case{1000.0 / 60.0, 40}}) {
+    const double h = c.hw / w;
+    const double factor = 1.0 + c.hw * c.hw;
+    INFO("h w = " << c.hw << " (h = " << h << ")");
+    Run r(oscillator(w), cols({{0.7, -0.3}}), cols({{0.2, 0.5}}));
+    double E = oscillator_energy(r.x, r.v, m, k);
+    for (int n = 1; n <= c.steps; ++n) {
+      r.step(explicit_euler_step, h);
+      const double E1 = oscillator_energy(r.x, r.v, m, k);
+      INFO("step " << n);
+      require_near(E1 / E, factor, 0.0,
+                   "explicit Euler multiplies E = 1/2 m v^2 + 1/2 k x^2 by 1 + (h w)^2 each step",
+                   kRatioTol);
+      E = E1;
+    }
+  }
+}
+
+TEST_CASE("E1 free fall: x_n = x0 + v0 t + g t^2/2 - g h t/2", "[euler][E1][7pts]") {
+  // With a = g: v_n = v0 + g t_n exactly, and x_n = x0 + h (v_0 + ... + v_{n-1})
+  //   = x0 + v0 t_n + g h^2 n(n-1)/2 = x0 + v0 t_n + 1/2 g t_n^2 - 1/2 g h t_n.
+  const Vec2 g(0.3, -9.81);
+  auto accel = [g](const Mat2X& x, const Mat2X&, Mat2X& a) { a = g.replicate(1, x.cols()); };
+  const Mat2X x0 = cols({{0.0, 100.0}, {5.0, 0.0}, {-2.0, 40.0}});
+  const Mat2X v0 = cols({{1.0, 0.0}, {0.0, 20.0}, {-3.0, 7.5}});
+  const double h = 0.01;
+  Run r(accel, x0, v0);
+  for (int n = 1; n <= 1000; ++n) {
+    r.step(explicit_euler_step, h);
+    const double t = n * h;
+    Mat2X xe = x0 + v0 * t;
+    xe.colwise() += (0.5 * t * t - 0.5 * h * t) * g;
+    Mat2X ve = v0;
+    ve.colwise() += t * g;
+    INFO("step " << n << ", t = " << t);
+    require_near(r.x, xe, 1e-9, "explicit Euler free fall x0 + v0 t + g t^2/2 - g h t/2", 1e-12);
+    require_near(r.v, ve, 1e-9, "free fall velocity v0 + g t", 1e-12);
+  }
+}
+
+TEST_CASE("E1 viscous damping: velocities decay by 1 - h b/m per step",
+          "[euler][E1][6pts]") {
+  // a_i = -(b / m_i) v_i: v_n = r_i^n v0 with r_i = 1 - h b / m_i (distinct masses),
+  // and x_n = x0 + h v0 (1 + r + ... + r^(n-1)) = x0 + h v0 (1 - r^n) / (1 - r).
+  const double b = 0.3, h = 0.1;
+  const Eigen::Vector3d m(0.5, 2.0, 7.0);
+  auto accel = [&](const Mat2X&, const Mat2X& v, Mat2X& a) {
+    for (Eigen::Index i = 0; i < v.cols(); ++i) a.col(i) = -(b / m[i]) * v.col(i);
+  };
+  const Mat2X x0 = cols({{0.0, 0.0}, {1.0, -1.0}, {2.0, 3.0}});
+  const Mat2X v0 = cols({{4.0, -2.0}, {-1.0, 3.0}, {0.5, 6.0}});
+  Run r(accel, x0, v0);
+  const int N = 60;
+  for (int n = 1; n <= N; ++n) r.step(explicit_euler_step, h);
+  for (int i = 0; i < 3; ++i) {
+    const double ri = 1.0 - h * b / m[i];
+    const double rn = std::pow(ri, N);
+    INFO("particle " << i << " of mass " << m[i]);
+    require_near(Vec2(r.v.col(i)), Vec2(rn * v0.col(i)), 1e-12,
+                 "explicit Euler damping v_n = (1 - h b/m)^n v0", 1e-12);
+    require_near(Vec2(r.x.col(i)), Vec2(x0.col(i) + h * (1.0 - rn) / (1.0 - ri) * v0.col(i)),
+                 1e-12, "explicit Euler damping x_n = x0 + h v0 (1 - r^n)/(1 - r)", 1e-12);
+  }
+}
+
+TEST_CASE("E1 one force evaluation per step at the start of the step", "[euler][E1][5pts]") {
+  // Explicit Euler needs a(x_n, v_n) only: one call per step, at the old state.
+  Run r(oscillator(3.0), cols({{1.0, 0.5}, {-2.0, 0.0}}), cols({{0.0, 1.0}, {0.5, 0.5}}));
+  r.record = true;
+  for (int n = 0; n < 25; ++n) {
+    const Mat2X xn = r.x, vn = r.v;
+    const std::size_t before = r.seen_x.size();
+    r.step(explicit_euler_step, 0.05);
+    INFO("step " << n + 1);
+    {
+      INFO("force evaluations in this step: expected 1, got " << r.seen_x.size() - before);
+      REQUIRE(r.seen_x.size() == before + 1);
+    }
+    require_near(r.seen_x.back(), xn, 0.0, "the evaluation must see the positions x_n");
+    require_near(r.seen_v.back(), vn, 0.0, "the evaluation must see the velocities v_n");
+  }
+  INFO("Dynamics::evals() after 25 steps");
+  REQUIRE(r.dyn.evals() == 25);
+}
+
+TEST_CASE("E1 several particles step independently", "[euler][E1][4pts]") {
+  // Particle i is an oscillator with its own w_i. Per coordinate the step is
+  // the linear map (x, v) -> (x + h v, v - h w^2 x): its n-th power is exact.
+  const Eigen::Index n = 6;
+  const double h = 0.02;
+  Eigen::VectorXd w(n);
+  w << 1.0, 2.0, 3.5, 5.0, 8.0, 13.0;
+  auto accel = [&](const Mat2X& x, const Mat2X&, Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) a.col(i) = -(w[i] * w[i]) * x.col(i);
+  };
+  Mat2X x0(2, n), v0(2, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x0.col(i) = Vec2(1.0 + 0.5 * double(i), -0.25 * double(i));
+    v0.col(i) = Vec2(0.1 * double(i), 2.0 - 0.3 * double(i));
+  }
+  const int N = 100;
+  Run r(accel, x0, v0);
+  for (int k = 0; k < N; ++k) r.step(explicit_euler_step, h);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    wb::Mat2 M;  // (x, v) of one coordinate -> one explicit Euler step later
+    M << 1.0, h, -h * w[i] * w[i], 1.0;
+    wb::Mat2 P = wb::Mat2::Identity();
+    for (int k = 0; k < N; ++k) P = M * P;
+    for (int d = 0; d < 2; ++d) {
+      const Vec2 e = P * Vec2(x0(d, i), v0(d, i));
+      INFO("particle " << i << " (w = " << w[i] << "), coordinate " << d
+                       << ": every column must be stepped with its own state only");
+      require_near(Vec2(r.x(d, i), r.v(d, i)), e, 1e-12,
+                   "(x, v) after 100 steps = M^100 (x0, v0), M = [1 h, -h w^2 1]", 1e-10);
+    }
+  }
+}
+
+TEST_CASE("E1 eccentric orbit: angular momentum grows by 1 + h^2 GM/r^3 per step",
+          "[euler][E1][5pts]") {
+  // A central force a = -GM x/r^3 has x cross a = 0, so for x' = x + h v,
+  // v' = v + h a:  L' = (x + h v) cross (v + h a) = L + h^2 v cross a = L (1 + h^2 GM / r^3).
+  // The orbit (e = 0.9, started at periapsis r = 0.1) gains angular momentum
+  // fastest where it passes closest.
+  const double GM = 1.0, e = 0.9, a = 1.0, h = 1e-3;
+  const double rp = a * (1.0 - e), vp = std::sqrt(GM * (1.0 + e) / rp);
+  Run r(attractor(GM), cols({{rp, 0.0}}), cols({{0.0, vp}}));
+  double L = wb::cross(r.x.col(0), r.v.col(0));
+  for (int n = 1; n <= 2000; ++n) {
+    const double radius = r.x.col(0).norm();
+    r.step(explicit_euler_step, h);
+    const double L1 = wb::cross(r.x.col(0), r.v.col(0));
+    INFO("step " << n << ", r = " << radius);
+    require_near(L1 / L, 1.0 + h * h * GM / (radius * radius * radius), 0.0,
+                 "explicit Euler: L_{n+1} = L_n (1 + h^2 GM / r_n^3) for a central force",
+                 kRatioTol);
+    L = L1;
+  }
+}
+
+TEST_CASE("E1 long run: 10^6 steps follow E_n = (1 + (h w)^2)^n E_0", "[euler][E1][3pts]") {
+  // At h w = 10^-3 each step gains only 10^-6 of the energy, yet after 10^6
+  // steps the energy has grown by (1 + 10^-6)^(10^6), almost e.
+  const double w = 2.0, hw = 1e-3, h = hw / w, m = 1.0, k = w * w;
+  const long N = 1000000;
+  Run r(oscillator(w), cols({{1.0, 0.0}}), cols({{0.0, 0.5}}));
+  const double E0 = oscillator_energy(r.x, r.v, m, k);
+  for (long n = 0; n < N; ++n) r.step(explicit_euler_step, h);
+  require_near(oscillator_energy(r.x, r.v, m, k) / E0, std::pow(1.0 + hw * hw, double(N)), 0.0,
+               "explicit Euler energy after 10^6 steps at h w = 10^-3", kLongRunTol);
+}

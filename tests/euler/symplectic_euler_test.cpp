@@ -1,0 +1,298 @@
+// Graded tests for TODO(E2), the semi-implicit Euler step (labs/euler/symplectic_euler.cpp).
+// Expected values come from the step's definition v' = v + h a(x, v), x' = x + h v'
+// and what it implies in closed form; never from a run of the solution.
+#include <algorithm>
+#include <cmath>
+
+#include "euler_test_helpers.h"
+#include "symplectic_euler.h"
+
+using namespace eulertest;
+using wbtest::require_near;
+
+namespace {
+
+// One step is a handful of additions: a few ulps of the largest term.
+constexpr double kStepTol = 1e-14;
+// A conserved quantity over ~10^4 steps: rounding adds ~1e-16 relative per step.
+constexpr double kConservedTol = 1e-11;
+// Over 10^6 steps the rounding of a conserved quantity stays below ~1e-10.
+constexpr double kLongRunTol = 1e-9;
+
+// For hw < 2 the discrete oscillator's energy E = Q / (1 - (hw/2) sin 2phi)
+// sweeps [Q/(1 + hw/2), Q/(1 - hw/2)] as the phase phi turns (see
+// handouts/euler.md): the relative wobble max E / min E - 1.
+double predicted_wobble(double hw) { return (1.0 + 0.5 * hw) / (1.0 - 0.5 * hw) - 1.0; }
+
+}  // namespace
+
+TEST_CASE("E2 one step: velocities first then positions with the new velocities",
+          "[euler][E2][8pts]") {
+  // Accelerations that depend on x and v, different for every particle.
+  auto accel = [](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      a.col(i) = Vec2(-3.0 * x(0, i) + 0.5 * v(1, i) + 1.0 + double(i),
+                      2.0 * x(1, i) * x(0, i) - 0.25 * v(0, i) - 0.5 * double(i));
+    }
+  };
+  const Mat2X x0 = cols({{1.0, 2.0}, {-0.5, 0.25}, {3.0, -1.5}});
+  const Mat2X v0 = cols({{0.5, -1.0}, {2.0, 0.75}, {-1.25, 0.125}});
+  const double h = 0.25;
+  Mat2X a0(2, 3);
+  accel(x0, v0, a0);
+  const Mat2X v1 = v0 + h * a0;
+
+  Run r(accel, x0, v0);
+  r.step(symplectic_euler_step, h);
+  require_near(r.v, v1, kStepTol, "semi-implicit Euler velocity v1 = v0 + h a(x0, v0)", kStepTol);
+  require_near(r.x, Mat2X(x0 + h * v1), kStepTol,
+               "semi-implicit Euler position x1 = x0 + h v1 (the NEW velocity)", kStepTol);
+}
+
+TEST_CASE("E2 harmonic oscillator: modified energy conserved and energy bounded for h w below 2",
+          "[euler][E2][8pts]") {
+  // For v' = v - h w^2 x, x' = x + h v' the quantity
+  //   Q = 1/2 m v^2 + 1/2 k x^2 - 1/2 h k x v        (k = m w^2)
+  // is conserved exactly (expand Q(x', v') - Q(x, v): every term cancels).
+  // The true energy E = Q + 1/2 h k x v wobbles around it without drifting.
+  const double m = 0.8, k = 20.0, w = std::sqrt(k / m);
+  for (double hw : {0.01, 0.1, 0.5, 1.0, 1.5, 1.99}) {
+    const double h = hw / w;
+    INFO("h w = " << hw << " (h = " << h << ")");
+    Run r(oscillator(w), cols({{0.6, -0.2}}), cols({{1.5, 0.4}}));
+    auto Q = [&] {
+      return oscillator_energy(r.x, r.v, m, k) - 0.5 * h * k * r.x.col(0).dot(r.v.col(0));
+    };
+    const double Q0 = Q();
+    double Emin = oscillator_energy(r.x, r.v, m, k), Emax = Emin;
+    for (int n = 1; n <= 5000; ++n) {
+      r.step(symplectic_euler_step, h);
+      INFO("step " << n);
+      require_near(Q(), Q0, 0.0,
+                   "semi-implicit Euler conserves Q = 1/2 m v^2 + 1/2 k x^2 - 1/2 h k x.v",
+                   kConservedTol);
+      const double E = oscillator_energy(r.x, r.v, m, k);
+      require_near(E, 0.5 * (Q0 / (1.0 + 0.5 * hw) + Q0 / (1.0 - 0.5 * hw)),
+                   0.5 * (Q0 / (1.0 - 0.5 * hw) - Q0 / (1.0 + 0.5 * hw)) * (1.0 + 1e-9),
+                   "energy bounded: Q/(1 + h w/2) <= E <= Q/(1 - h w/2)");
+      Emin = std::min(Emin, E);
+      Emax = std::max(Emax, E);
+    }
+    // The orbit really turns: over 5000 steps the phase visits angles all
+    // around, so the energy sweeps a good part of its predicted range (near
+    // h w = 2 the extremes are sharp peaks that discrete samples only graze,
+    // hence a quarter of the range).
+    INFO("energy range max/min - 1 = " << Emax / Emin - 1.0 << ", predicted "
+                                       << predicted_wobble(hw));
+    REQUIRE(Emax / Emin - 1.0 >= 0.25 * predicted_wobble(hw));
+  }
+}
+
+TEST_CASE("E2 harmonic oscillator: each step turns the phase by theta with cos theta = 1 - (h w)^2/2",
+          "[euler][E2][4pts]") {
+  // The step matrix M = [1 - (hw)^2, h; -h w^2, 1] has det 1 and trace
+  // 2 - (hw)^2 = 2 cos theta. By Cayley-Hamilton x_{n+1} = 2 cos theta x_n - x_{n-1},
+  // so x_n = x0 cos(n theta) + (x1 - x0 cos theta) / sin theta sin(n theta)
+  // with x1 = (1 - (hw)^2) x0 + h v0.
+  const double w = 3.0;
+  for (double hw : {0.05, 0.7, 1.9}) {
+    const double h = hw / w;
+    const double theta = std::acos(1.0 - 0.5 * hw * hw);
+    const Vec2 x0(1.0, -0.5), v0(0.3, 2.0);
+    const Vec2 x1 = (1.0 - hw * hw) * x0 + h * v0;
+    Run r(oscillator(w), cols({x0}), cols({v0}));
+    const double amplitude = 1.0 + v0.norm() / w;
+    for (int n = 1; n <= 2000; ++n) {
+      r.step(symplectic_euler_step, h);
+      const Vec2 xe = x0 * std::cos(n * theta) +
+                      (x1 - x0 * std::cos(theta)) / std::sin(theta) * std::sin(n * theta);
+      INFO("h w = " << hw << ", step " << n);
+      // Rounding of n theta grows like n * 1e-16: 1e-10 of the amplitude is ample.
+      require_near(Vec2(r.x.col(0)), xe, 1e-10 * amplitude,
+                   "semi-implicit Euler oscillator x_n = x0 cos(n theta) + B sin(n theta)");
+    }
+  }
+}
+
+TEST_CASE("E2 harmonic oscillator above h w = 2 grows by the step matrix's largest eigenvalue",
+          "[euler][E2][6pts]") {
+  // For hw > 2 the trace 2 - (hw)^2 < -2: both eigenvalues are real, negative,
+  // with product 1. The larger one in size,
+  //   lambda = (2 - (hw)^2 - sqrt((2 - (hw)^2)^2 - 4)) / 2,
+  // takes over: x_{n+1} / x_n -> lambda (the sign flips every step).
+  const double w = 1000.0;  // k/m = 10^6 as in scenes/euler/stiff-spring.json
+  for (double hw : {2.5, 3.0, 1000.0 / 60.0}) {
+    const double h = hw / w;
+    const double tr = 2.0 - hw * hw;
+    const double lambda = 0.5 * (tr - std::sqrt(tr * tr - 4.0));
+    Run r(oscillator(w), cols({{0.01, 0.0}}), cols({{0.0, 0.0}}));
+    double prev = r.x(0, 0);
+    for (int n = 1; n <= 30; ++n) {
+      r.step(symplectic_euler_step, h);
+      if (n >= 25) {  // (1/lambda^2)^24 is below 1e-9 for every case
+        INFO("h w = " << hw << ", step " << n);
+        require_near(r.x(0, 0) / prev, lambda, 0.0,
+                     "growth per step x_{n+1}/x_n -> lambda, the eigenvalue of the step matrix",
+                     1e-8);
+      }
+      prev = r.x(0, 0);
+    }
+  }
+}
+
+TEST_CASE("E2 free fall: x_n = x0 + v0 t + g t^2/2 + g h t/2", "[euler][E2][7pts]") {
+  // With a = g: v_n = v0 + g t_n exactly, and x_n = x0 + h (v_1 + ... + v_n)
+  //   = x0 + v0 t_n + g h^2 n(n+1)/2 = x0 + v0 t_n + 1/2 g t_n^2 + 1/2 g h t_n:
+  // the same error as explicit Euler with the opposite sign.
+  const Vec2 g(0.3, -9.81);
+  auto accel = [g](const Mat2X& x, const Mat2X&, Mat2X& a) { a = g.replicate(1, x.cols()); };
+  const Mat2X x0 = cols({{0.0, 100.0}, {5.0, 0.0}, {-2.0, 40.0}});
+  const Mat2X v0 = cols({{1.0, 0.0}, {0.0, 20.0}, {-3.0, 7.5}});
+  const double h = 0.01;
+  Run r(accel, x0, v0);
+  for (int n = 1; n <= 1000; ++n) {
+    r.step(symplectic_euler_step, h);
+    const double t = n * h;
+    Mat2X xe = x0 + v0 * t;
+    xe.colwise() += (0.5 * t * t + 0.5 * h * t) * g;
+    Mat2X ve = v0;
+    ve.colwise() += t * g;
+    INFO("step " << n << ", t = " << t);
+    require_near(r.x, xe, 1e-9, "semi-implicit Euler free fall x0 + v0 t + g t^2/2 + g h t/2",
+                 1e-12);
+    require_near(r.v, ve, 1e-9, "free fall velocity v0 + g t", 1e-12);
+  }
+}
+
+TEST_CASE("E2 viscous damping: velocities decay by 1 - h b/m per step", "[euler][E2][5pts]") {
+  // a_i = -(b / m_i) v_i: v_n = r_i^n v0 with r_i = 1 - h b / m_i (distinct masses),
+  // and x_n = x0 + h (v_1 + ... + v_n) = x0 + h v0 r (1 - r^n) / (1 - r).
+  const double b = 0.3, h = 0.1;
+  const Eigen::Vector3d m(0.5, 2.0, 7.0);
+  auto accel = [&](const Mat2X&, const Mat2X& v, Mat2X& a) {
+    for (Eigen::Index i = 0; i < v.cols(); ++i) a.col(i) = -(b / m[i]) * v.col(i);
+  };
+  const Mat2X x0 = cols({{0.0, 0.0}, {1.0, -1.0}, {2.0, 3.0}});
+  const Mat2X v0 = cols({{4.0, -2.0}, {-1.0, 3.0}, {0.5, 6.0}});
+  Run r(accel, x0, v0);
+  const int N = 60;
+  for (int n = 1; n <= N; ++n) r.step(symplectic_euler_step, h);
+  for (int i = 0; i < 3; ++i) {
+    const double ri = 1.0 - h * b / m[i];
+    const double rn = std::pow(ri, N);
+    INFO("particle " << i << " of mass " << m[i]);
+    require_near(Vec2(r.v.col(i)), Vec2(rn * v0.col(i)), 1e-12,
+                 "semi-implicit Euler damping v_n = (1 - h b/m)^n v0", 1e-12);
+    require_near(Vec2(r.x.col(i)),
+                 Vec2(x0.col(i) + h * ri * (1.0 - rn) / (1.0 - ri) * v0.col(i)), 1e-12,
+                 "semi-implicit Euler damping x_n = x0 + h v0 r (1 - r^n)/(1 - r)", 1e-12);
+  }
+}
+
+TEST_CASE("E2 one force evaluation per step at the start of the step", "[euler][E2][4pts]") {
+  // Semi-implicit Euler needs a(x_n, v_n) only: one call per step, at the old state.
+  Run r(oscillator(3.0), cols({{1.0, 0.5}, {-2.0, 0.0}}), cols({{0.0, 1.0}, {0.5, 0.5}}));
+  r.record = true;
+  for (int n = 0; n < 25; ++n) {
+    const Mat2X xn = r.x, vn = r.v;
+    const std::size_t before = r.seen_x.size();
+    r.step(symplectic_euler_step, 0.05);
+    INFO("step " << n + 1);
+    {
+      INFO("force evaluations in this step: expected 1, got " << r.seen_x.size() - before);
+      REQUIRE(r.seen_x.size() == before + 1);
+    }
+    require_near(r.seen_x.back(), xn, 0.0, "the evaluation must see the positions x_n");
+    require_near(r.seen_v.back(), vn, 0.0, "the evaluation must see the velocities v_n");
+  }
+  INFO("Dynamics::evals() after 25 steps");
+  REQUIRE(r.dyn.evals() == 25);
+}
+
+TEST_CASE("E2 several particles step independently", "[euler][E2][3pts]") {
+  // Particle i is an oscillator with its own w_i. Per coordinate the step is
+  // the linear map (x, v) -> (x + h v', v' = v - h w^2 x): its n-th power is exact.
+  const Eigen::Index n = 6;
+  const double h = 0.02;
+  Eigen::VectorXd w(n);
+  w << 1.0, 2.0, 3.5, 5.0, 8.0, 13.0;
+  auto accel = [&](const Mat2X& x, const Mat2X&, Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) a.col(i) = -(w[i] * w[i]) * x.col(i);
+  };
+  Mat2X x0(2, n), v0(2, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x0.col(i) = Vec2(1.0 + 0.5 * double(i), -0.25 * double(i));
+    v0.col(i) = Vec2(0.1 * double(i), 2.0 - 0.3 * double(i));
+  }
+  const int N = 100;
+  Run r(accel, x0, v0);
+  for (int k = 0; k < N; ++k) r.step(symplectic_euler_step, h);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double hw2 = h * h * w[i] * w[i];
+    wb::Mat2 M;  // (x, v) of one coordinate -> one semi-implicit Euler step later
+    M << 1.0 - hw2, h, -h * w[i] * w[i], 1.0;
+    wb::Mat2 P = wb::Mat2::Identity();
+    for (int k = 0; k < N; ++k) P = M * P;
+    for (int d = 0; d < 2; ++d) {
+      const Vec2 e = P * Vec2(x0(d, i), v0(d, i));
+      INFO("particle " << i << " (w = " << w[i] << "), coordinate " << d
+                       << ": every column must be stepped with its own state only");
+      require_near(Vec2(r.x(d, i), r.v(d, i)), e, 1e-12,
+                   "(x, v) after 100 steps = M^100 (x0, v0), M = [1 - (hw)^2 h, -h w^2 1]",
+                   1e-10);
+    }
+  }
+}
+
+TEST_CASE("E2 eccentric orbit: angular momentum conserved and energy error does not drift",
+          "[euler][E2][3pts]") {
+  // For a central force x cross a = 0, so v' = v + h a keeps x cross v, and
+  // x' = x + h v' keeps it again: L is conserved to rounding. The energy error
+  // is bounded (a modified energy is conserved), so it does not grow orbit after orbit.
+  const double GM = 1.0, e = 0.9, a = 1.0, h = 1e-3;
+  const double rp = a * (1.0 - e), vp = std::sqrt(GM * (1.0 + e) / rp);
+  const double period = 2.0 * M_PI * std::sqrt(a * a * a / GM);
+  const int per_orbit = int(std::lround(period / h));
+  Run r(attractor(GM), cols({{rp, 0.0}}), cols({{0.0, vp}}));
+  auto energy = [&] { return 0.5 * r.v.squaredNorm() - GM / r.x.norm(); };
+  const double L0 = wb::cross(r.x.col(0), r.v.col(0)), E0 = energy();
+  double first = 0, last = 0, rmax = 0;
+  const int orbits = 10;
+  for (int n = 1; n <= orbits * per_orbit; ++n) {
+    r.step(symplectic_euler_step, h);
+    const double dE = std::abs(energy() - E0);
+    if (n <= per_orbit) first = std::max(first, dE);
+    if (n > (orbits - 1) * per_orbit) last = std::max(last, dE);
+    rmax = std::max(rmax, r.x.norm());
+  }
+  require_near(wb::cross(r.x.col(0), r.v.col(0)), L0, 0.0,
+               "semi-implicit Euler conserves angular momentum L = x cross v (central force)",
+               kConservedTol);
+  // The particle must actually travel the orbit: apoapsis a (1 + e) = 1.9.
+  require_near(rmax, a * (1.0 + e), 0.05, "largest distance reached = apoapsis a (1 + e)");
+  INFO("largest |E - E0| in orbit 1: " << first << ", in orbit " << orbits << ": " << last);
+  // No drift: the last orbit's error is no larger than the first's (50% margin
+  // for where the samples fall on the orbit).
+  REQUIRE(last <= 1.5 * first);
+}
+
+TEST_CASE("E2 long run: 10^6 steps conserve the modified energy", "[euler][E2][2pts]") {
+  const double w = 2.0, hw = 0.01, h = hw / w, m = 1.0, k = w * w;
+  const long N = 1000000;
+  Run r(oscillator(w), cols({{1.0, 0.0}}), cols({{0.0, 0.5}}));
+  auto Q = [&] { return oscillator_energy(r.x, r.v, m, k) - 0.5 * h * k * r.x.col(0).dot(r.v.col(0)); };
+  const double Q0 = Q();
+  double Emin = oscillator_energy(r.x, r.v, m, k), Emax = Emin;
+  for (long n = 0; n < N; ++n) {
+    r.step(symplectic_euler_step, h);
+    if (n % 97 == 0) {  // sampled: the phase still visits every angle
+      const double E = oscillator_energy(r.x, r.v, m, k);
+      Emin = std::min(Emin, E);
+      Emax = std::max(Emax, E);
+    }
+  }
+  require_near(Q(), Q0, 0.0, "modified energy Q after 10^6 semi-implicit Euler steps",
+               kLongRunTol);
+  INFO("energy range max/min - 1 = " << Emax / Emin - 1.0);
+  REQUIRE(Emax / Emin - 1.0 >= 0.5 * predicted_wobble(hw));
+}
