@@ -66,7 +66,9 @@
 // Elsewhere only operator new is counted.
 namespace {
 std::atomic<long> g_allocs{0};  // heap allocations since program start
-void count_alloc() { g_allocs.fetch_add(1, std::memory_order_relaxed); }
+void count_alloc() {
+  g_allocs.fetch_add(1, std::memory_order_relaxed);
+}
 }  // namespace
 
 #if defined(__GLIBC__)
@@ -106,7 +108,9 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept
   *out = p;
   return 0;
 }
-void free(void* p) noexcept { __libc_free(p); }
+void free(void* p) noexcept {
+  __libc_free(p);
+}
 }  // extern "C"
 #else
 #define WB_COUNT_MALLOC 0
@@ -134,38 +138,72 @@ void* counted_new_nothrow(std::size_t size, std::size_t alignment) noexcept {
 }
 }  // namespace
 
-void* operator new(std::size_t n) { return counted_new(n, 0); }
-void* operator new[](std::size_t n) { return counted_new(n, 0); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_new_nothrow(n, 0); }
+void* operator new(std::size_t n) {
+  return counted_new(n, 0);
+}
+void* operator new[](std::size_t n) {
+  return counted_new(n, 0);
+}
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  return counted_new_nothrow(n, 0);
+}
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, 0);
 }
-void* operator new(std::size_t n, std::align_val_t a) { return counted_new(n, std::size_t(a)); }
-void* operator new[](std::size_t n, std::align_val_t a) { return counted_new(n, std::size_t(a)); }
+void* operator new(std::size_t n, std::align_val_t a) {
+  return counted_new(n, std::size_t(a));
+}
+void* operator new[](std::size_t n, std::align_val_t a) {
+  return counted_new(n, std::size_t(a));
+}
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, std::size_t(a));
 }
 void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, std::size_t(a));
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
 void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
   std::free(p);
 }
 
 namespace {
 
-long allocations() { return g_allocs.load(std::memory_order_relaxed); }
+long allocations() {
+  return g_allocs.load(std::memory_order_relaxed);
+}
 
 // ---------------------------------------------------------------------------
 // The system being stepped.
@@ -214,11 +252,11 @@ wb::Scene make_scene(Eigen::Index n) {
 // work arrays that mirror wb::Scratch.
 struct Arrays {
   long n = 0;
-  std::vector<double> x, v;              // 2n: positions, velocities
-  std::vector<double> m, inv_m;          // n: masses and their inverses
-  std::vector<double> f;                 // 2n: force accumulator (ParticleDynamics::f_)
-  std::vector<double> a0, a1, a2, a3;    // 2n: accelerations
-  std::vector<double> x1, v1, xs, vs;    // 2n: intermediate state, running sums
+  std::vector<double> x, v;            // 2n: positions, velocities
+  std::vector<double> m, inv_m;        // n: masses and their inverses
+  std::vector<double> f;               // 2n: force accumulator (ParticleDynamics::f_)
+  std::vector<double> a0, a1, a2, a3;  // 2n: accelerations
+  std::vector<double> x1, v1, xs, vs;  // 2n: intermediate state, running sums
   explicit Arrays(const wb::Scene& s) : n(long(s.n())) {
     x.assign(s.x.data(), s.x.data() + 2 * n);
     v.assign(s.v.data(), s.v.data() + 2 * n);
@@ -231,36 +269,39 @@ struct Arrays {
 // ---------------------------------------------------------------------------
 // Hand-written passes. Each is one loop over memory, kept out of line so the
 // compiler cannot fuse neighbouring passes: one function here is one Eigen
-// statement in the machinery.
+// statement in the machinery. Their arrays never overlap, and __restrict says
+// so, as Eigen assumes for these expressions (no runtime overlap checks).
 #define WB_PASS __attribute__((noinline))
 
-WB_PASS void pass_zero(double* f, long len) {
+WB_PASS void pass_zero(double* __restrict f, long len) {
   for (long k = 0; k < len; ++k) f[k] = 0.0;
 }
 // f_i += m_i g   (add_uniform_gravity)
-WB_PASS void pass_add_gravity(double* f, const double* m, long n) {
+WB_PASS void pass_add_gravity(double* __restrict f, const double* __restrict m, long n) {
   for (long i = 0; i < n; ++i) {
     f[2 * i] += kGx * m[i];
     f[2 * i + 1] += kGy * m[i];
   }
 }
 // f -= b v   (add_damping)
-WB_PASS void pass_add_damping(double* f, const double* v, long len) {
+WB_PASS void pass_add_damping(double* __restrict f, const double* __restrict v, long len) {
   for (long k = 0; k < len; ++k) f[k] -= kB * v[k];
 }
 // a_i = f_i / m_i, as ParticleDynamics does it: times the stored inverse mass
-WB_PASS void pass_divide_by_mass(double* a, const double* f, const double* inv_m, long n) {
+WB_PASS void pass_divide_by_mass(double* __restrict a, const double* __restrict f,
+                                 const double* __restrict inv_m, long n) {
   for (long i = 0; i < n; ++i) {
     a[2 * i] = f[2 * i] * inv_m[i];
     a[2 * i + 1] = f[2 * i + 1] * inv_m[i];
   }
 }
 // y += s u
-WB_PASS void pass_axpy(double* y, double s, const double* u, long len) {
+WB_PASS void pass_axpy(double* __restrict y, double s, const double* __restrict u, long len) {
   for (long k = 0; k < len; ++k) y[k] += s * u[k];
 }
 // out = y + s u
-WB_PASS void pass_waxpy(double* out, const double* y, double s, const double* u, long len) {
+WB_PASS void pass_waxpy(double* __restrict out, const double* __restrict y, double s,
+                        const double* __restrict u, long len) {
   for (long k = 0; k < len; ++k) out[k] = y[k] + s * u[k];
 }
 
@@ -274,15 +315,16 @@ void hand_acceleration(Arrays& A, const double* v, double* a) {
 }
 
 // y = u (a copy, as `s.xs = v`)
-WB_PASS void pass_copy(double* y, const double* u, long len) {
+WB_PASS void pass_copy(double* __restrict y, const double* __restrict u, long len) {
   for (long k = 0; k < len; ++k) y[k] = u[k];
 }
 // y += u
-WB_PASS void pass_add(double* y, const double* u, long len) {
+WB_PASS void pass_add(double* __restrict y, const double* __restrict u, long len) {
   for (long k = 0; k < len; ++k) y[k] += u[k];
 }
 // out = 0.5 (p + q)
-WB_PASS void pass_average(double* out, const double* p, const double* q, long len) {
+WB_PASS void pass_average(double* __restrict out, const double* __restrict p,
+                          const double* __restrict q, long len) {
   for (long k = 0; k < len; ++k) out[k] = 0.5 * (p[k] + q[k]);
 }
 
@@ -452,16 +494,15 @@ struct Method {
 std::vector<Method> methods() {
   std::vector<Method> out;
 #ifdef WB_BENCH_HAS_EULER
-  out.push_back({"explicit-euler", "solutions/euler", explicit_euler_step, explicit_passes,
-                 explicit_fused});
+  out.push_back(
+      {"explicit-euler", "solutions/euler", explicit_euler_step, explicit_passes, explicit_fused});
 #endif
   out.push_back({"symplectic-euler", kSymplecticEulerSource, kSymplecticEuler, symplectic_passes,
                  symplectic_fused});
 #ifdef WB_BENCH_HAS_MIDPOINT
-  out.push_back({"midpoint", "solutions/midpoint", midpoint_step, midpoint_passes,
-                 midpoint_fused});
-  out.push_back({"trapezoid", "solutions/midpoint", trapezoid_step, trapezoid_passes,
-                 trapezoid_fused});
+  out.push_back({"midpoint", "solutions/midpoint", midpoint_step, midpoint_passes, midpoint_fused});
+  out.push_back(
+      {"trapezoid", "solutions/midpoint", trapezoid_step, trapezoid_passes, trapezoid_fused});
 #endif
 #ifdef WB_BENCH_HAS_RK4
   out.push_back({"rk4", "framework/src/rk4.cpp", wb::rk4_step, rk4_passes, rk4_fused});
@@ -487,7 +528,8 @@ void report(benchmark::State& st, const std::string& what, long n, long allocs, 
     std::fprintf(stderr,
                  "FAIL: %s made %ld heap allocations in %lld timed steps after the warm-up step; "
                  "a step must allocate nothing (use the wb::Scratch arrays)\n",
-                 (what + "/" + std::to_string(n)).c_str(), allocs, static_cast<long long>(st.iterations()));
+                 (what + "/" + std::to_string(n)).c_str(), allocs,
+                 static_cast<long long>(st.iterations()));
     st.SkipWithError("heap allocation inside a step (see stderr)");
   }
 }
@@ -527,7 +569,8 @@ void bm_hand(benchmark::State& st, const Method& method, bool fused) {
          allocations() - before, -1);
 }
 
-WB_PASS void triad(double* a, const double* b, const double* c, double s, long len) {
+WB_PASS void triad(double* __restrict a, const double* __restrict b, const double* __restrict c,
+                   double s, long len) {
   for (long k = 0; k < len; ++k) a[k] = b[k] + s * c[k];
 }
 
@@ -612,12 +655,9 @@ void register_all(const std::vector<Method>& all) {
   for (long n = 1000; n <= 1000000; n *= 10) {
     for (const Method& method : all) {
       const std::string tail = std::string(method.name);
-      benchmark::RegisterBenchmark(("scene/" + tail).c_str(), bm_scene, method)
-          ->Arg(n);
-      benchmark::RegisterBenchmark(("hand_passes/" + tail).c_str(), bm_hand, method, false)
-          ->Arg(n);
-      benchmark::RegisterBenchmark(("hand_fused/" + tail).c_str(), bm_hand, method, true)
-          ->Arg(n);
+      benchmark::RegisterBenchmark(("scene/" + tail).c_str(), bm_scene, method)->Arg(n);
+      benchmark::RegisterBenchmark(("hand_passes/" + tail).c_str(), bm_hand, method, false)->Arg(n);
+      benchmark::RegisterBenchmark(("hand_fused/" + tail).c_str(), bm_hand, method, true)->Arg(n);
     }
     benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
   }
@@ -634,8 +674,9 @@ bool check_counter() {
     benchmark::DoNotOptimize(w.data());
   }
   if (allocations() - before >= 2) return true;
-  std::fprintf(stderr, "FAIL: the allocation counter saw %ld of 2 allocations (an Eigen matrix "
-                       "and a std::vector); allocations per step cannot be trusted\n",
+  std::fprintf(stderr,
+               "FAIL: the allocation counter saw %ld of 2 allocations (an Eigen matrix "
+               "and a std::vector); allocations per step cannot be trusted\n",
                allocations() - before);
   return false;
 }
@@ -656,9 +697,9 @@ int main(int argc, char** argv) {
   }());
   benchmark::AddCustomContext("wb_bound_bytes_per_particle",
                               std::to_string(int(kBoundBytesPerParticle)));
-  benchmark::AddCustomContext("wb_allocation_counting",
-                              WB_COUNT_MALLOC ? "malloc family and operator new"
-                                              : "operator new only");
+  benchmark::AddCustomContext("wb_allocation_counting", WB_COUNT_MALLOC
+                                                            ? "malloc family and operator new"
+                                                            : "operator new only");
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   if (g_alloc_failure) {
