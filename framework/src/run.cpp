@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "wb/output.h"
+#include "wb/sweep.h"
 
 namespace wb {
 
@@ -157,6 +158,13 @@ std::string help_footer(const LabInfo& info) {
   auto scenes = default_scenes(info.lab);
   if (scenes.empty()) s += "  (none found under " + scenes_dir() + "/" + info.lab + ")\n";
   for (const auto& f : scenes) s += "  " + f + "\n";
+  if (info.sweep) {
+    s += "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
+         "step size (--dts list, or dt*2^k for k = 3..-6 from --dt or the scene's dt) to\n"
+         "t_end; one row per run: scene,integrator,dt,steps,force_evals,wall_s,error,\n"
+         "energy_error,reference,status. Errors against the scene's \"exact\" motion or an\n"
+         "RK4 run at the smallest dt/16. See docs/sweep.md.\n";
+  }
   s += "\nThe last line on stdout is a JSON summary. Bad input exits with status 2.\n"
        "Scene keys: docs/scenes.md. Run contract: docs/run-contract.md.\n";
   return s;
@@ -171,16 +179,36 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
   std::optional<double> dt, t_end;
   std::optional<long> steps, every, seed_in;
   app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
-  app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
-  app.add_option("--dt", dt, "Step size H > 0 (overrides the scene's dt)");
+  auto* o_integrator =
+      app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
+  app.add_option("--dt", dt, "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
   auto* o_steps = app.add_option("--steps", steps, "Take exactly N steps");
   auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);
-  app.add_option("--out", out, "Write a CSV trace t,id,x,y,vx,vy");
-  app.add_option("--stats", stats,
-                 "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
-  app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
+  auto* o_out = app.add_option("--out", out, "Write a CSV trace t,id,x,y,vx,vy");
+  auto* o_stats = app.add_option("--stats", stats,
+                                 "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
+  auto* o_every = app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
   app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
+  // Sweep mode (integration labs): docs/sweep.md.
+  SweepOptions sweep;
+  if (info.sweep) {
+    auto* o_sweep = app.add_option(
+        "--sweep", sweep.csv,
+        "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
+        "k = 3..-6) to t_end and write one CSV row per run");
+    app.add_option("--integrators", sweep.integrators,
+                   "Sweep: only these integrators (comma-separated; default all)")
+        ->delimiter(',')
+        ->needs(o_sweep);
+    app.add_option("--dts", sweep.dts, "Sweep: these step sizes (comma-separated)")
+        ->delimiter(',')
+        ->needs(o_sweep);
+    app.add_option("--repeats", sweep.repeats,
+                   "Sweep: wall_s is the fastest of R timed step loops (default 3)")
+        ->needs(o_sweep);
+    for (CLI::Option* o : {o_integrator, o_steps, o_out, o_stats, o_every}) o_sweep->excludes(o);
+  }
   app.footer(help_footer(info));
   try {
     app.parse(argc, argv);
@@ -211,8 +239,22 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
 
     std::optional<std::uint64_t> seed;
     if (seed_in) seed = std::uint64_t(*seed_in);
-    Scene scene = load_scene(scene_file, seed);
+    Scene scene = load_scene(scene_file, seed,
+                             info.sweep ? sweep_scene_keys() : std::vector<std::string>{});
     ForceList forces = build_forces(scene);
+    if (info.sweep) read_exact(scene);  // checks the "exact" key in every mode
+    if (!sweep.csv.empty()) {
+      sweep.dt = dt;
+      sweep.t_end = t_end;
+      SweepResult sr = run_sweep(info, scene, forces, sweep);
+      ordered_json j;
+      j["status"] = "ok";
+      j["sweep"] = sweep.csv;
+      j["runs"] = sr.runs;
+      j["diverged"] = sr.diverged;
+      std::cout << j.dump() << std::endl;
+      return 0;
+    }
 
     RunOptions opt;
     if (!integrator.empty()) {
