@@ -4,6 +4,7 @@ import os
 import matplotlib
 
 from matplotlib.lines import Line2D
+from matplotlib.transforms import blended_transform_factory
 
 from .common import (InputError, column, finite, integrator_style, new_figure, read_csv,
                      save_figure)
@@ -83,6 +84,7 @@ def plot_trace(path, out, ids=None, title=None):
         ax.scatter([p for p, _ in starts], [q for _, q in starts], s=size, facecolors="white",
                    edgecolors="black", linewidths=0.8, zorder=3)
         ax.scatter([p for p, _ in ends], [q for _, q in ends], s=size, color="black", zorder=4)
+    clipped = _clip_runaway(ax, data, ids) if diverged else False
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
@@ -95,9 +97,38 @@ def plot_trace(path, out, ids=None, title=None):
         handles = ax.get_legend_handles_labels()[0] + handles
     if diverged:
         handles.append(Line2D([], [], ls="", label=f"{diverged} diverged (non-finite)"))
+    if clipped:
+        handles.append(Line2D([], [], ls="", label=f"view clipped to {RUNAWAY}x the\n"
+                                                   "starting size: the run ran away"))
     ax.legend(handles=handles, loc="best", framealpha=0.85)
     fig.tight_layout()
     save_figure(fig, out)
+
+
+CLIP_ENERGY = 1e3  # an energy figure whose values pass this many times the start is clipped
+RUNAWAY = 20  # the view of a run that diverged is clipped to this many times its starting size
+
+
+def _clip_runaway(ax, data, ids):
+    """For a run that diverged: limits the view to RUNAWAY times the size of the starting
+    positions when the paths go farther; True if it did."""
+    starts = [(data[i]["x"][0], data[i]["y"][0]) for i in ids
+              if finite(data[i]["x"][0]) and finite(data[i]["y"][0])]
+    pts = [(x, y) for i in ids for x, y in zip(*_finite_xy(data[i]))]
+    if not starts or not pts:
+        return False
+    cx = (min(p for p, _ in starts) + max(p for p, _ in starts)) / 2
+    cy = (min(q for _, q in starts) + max(q for _, q in starts)) / 2
+    size = max([abs(p - cx) for p, _ in starts] + [abs(q - cy) for _, q in starts]
+               + [0.5 * max(abs(p) for p, _ in starts), 0.5 * max(abs(q) for _, q in starts)])
+    size = size if size > 0 else 1.0
+    reach = max(max(abs(p - cx), abs(q - cy)) for p, q in pts)
+    if reach <= RUNAWAY * size * 1.0001:
+        return False
+    half = RUNAWAY * size
+    ax.set_xlim(cx - half, cx + half)
+    ax.set_ylim(cy - half, cy + half)
+    return True
 
 
 def read_stats(path):
@@ -179,8 +210,15 @@ def plot_energy(paths, labels, out, relative=False, title=None):
                          "one label per file")
     fig, ax = new_figure(figsize=(6.4, 4.4))
     drawn = 0
+    scale_all, peak, sane_all, marks = [], 0.0, [], []
+    clip = None
     for path, label in zip(paths, labels):
         s = read_stats(path)
+        first = [abs(v) for k in ("energy", "kinetic", "potential") for v in s[k][:1] if finite(v)]
+        if first and max(first) > 0:
+            scale_all.append(max(first))
+        peak = max([peak] + [abs(v) for v in s["energy"] if finite(v)])
+        sane_all += [v for v in s["energy"] if finite(v)]
         color, marker = integrator_style(label, labels)
         div = _diverged_at(s)
         suffix = f" (diverged at t = {div:g} s)" if div is not None else ""
@@ -196,13 +234,32 @@ def plot_energy(paths, labels, out, relative=False, title=None):
             t, y = _finite_pairs(s["t"], s["energy"])
             ax.plot(t, y, color=color, label=label + suffix)
         if div is not None and t:
-            ax.plot([t[-1]], [(d if relative else y)[-1]], marker="x", color=color, ms=8, mew=2)
+            marks.append((t[-1], (d if relative else y)[-1], color))
         drawn += 1
     if relative:
         ax.set_yscale("log")
         ax.set_ylabel("relative energy error |E - E0| / |E0|")
+    elif scale_all and peak > CLIP_ENERGY * max(scale_all):
+        # A run that blew up: a full axis would flatten every other curve, so the view
+        # keeps the values within CLIP_ENERGY times the starting energies.
+        lim = CLIP_ENERGY * max(scale_all)
+        sane = [v for v in sane_all if abs(v) <= lim] or [-lim, lim]
+        lo, hi = min(sane), max(sane)
+        pad = 0.08 * (hi - lo) if hi > lo else max(abs(hi), 1.0) * 0.1
+        clip = (lo - pad, hi + pad)
+        ax.set_ylim(*clip)
+        ax.set_ylabel("total energy E (J)")
+        ax.plot([], [], ls="", label="(view clipped: runs that blew up leave the chart)")
     else:
         ax.set_ylabel("total energy E (J)")
+    # The last finite value of a run that diverged: an x (on the edge when out of view).
+    edge = blended_transform_factory(ax.transData, ax.transAxes)
+    for t_last, v_last, color in marks:
+        if clip and not clip[0] <= v_last <= clip[1]:
+            ax.plot([t_last], [0.98 if v_last > clip[1] else 0.02], marker="x", color=color,
+                    ms=8, mew=2, transform=edge, clip_on=False)
+        else:
+            ax.plot([t_last], [v_last], marker="x", color=color, ms=8, mew=2)
     ax.set_xlabel("time t (s)")
     ax.set_title(title or ("Relative energy error" if relative else "Total energy") + " by run")
     ax.legend(loc="best", framealpha=0.85)

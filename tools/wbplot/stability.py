@@ -18,6 +18,21 @@ AMPLIFICATION = {
 METHODS = ["explicit-euler", "symplectic-euler", "midpoint", "trapezoid", "rk4"]
 
 
+VIEW_MAX = 8.0  # marks farther than this from 0 are shown by an arrow at the edge
+
+
+def _to_edge(z, re_lo, re_hi, im_hi):
+    """The point where the ray from 0 towards z leaves the view (a little inside it)."""
+    ts = []
+    if z.real < 0:
+        ts.append(re_lo / z.real)
+    if z.real > 0:
+        ts.append(re_hi / z.real)
+    if z.imag != 0:
+        ts.append(im_hi / abs(z.imag))
+    return z * min(ts) * 0.96
+
+
 def oscillator_points(hw, zeta=None):
     """z = h lambda for the eigenvalues of x'' + 2 zeta w x' + w^2 x = 0."""
     if zeta is None or zeta == 0:
@@ -53,9 +68,13 @@ def plot_stability(out, methods=None, marks=(), zeta=None, title=None):
         raise InputError(f"--damping: got {zeta}, expected a damping ratio zeta >= 0")
 
     pts = [z for hw in marks for z in oscillator_points(hw, zeta)]
-    re_lo = min([-3.2] + [z.real * 1.15 for z in pts])
-    im_hi = max([3.1] + [abs(z.imag) * 1.15 for z in pts])
+    # The view holds the regions and the marks up to |z| = VIEW_MAX, about square.
+    shown = [z for z in pts if abs(z) <= VIEW_MAX]
+    re_lo = min([-3.2] + [z.real * 1.15 for z in shown])
+    im_hi = max([3.1] + [abs(z.imag) * 1.15 for z in shown])
     re_hi = 1.2
+    re_lo = min(re_lo, re_hi - 2 * im_hi / 1.35)
+    im_hi = max(im_hi, (re_hi - re_lo) / 2 / 1.1)
     w = 5.6
     fig, ax = new_figure(figsize=(w, w * 2 * im_hi / (re_hi - re_lo)))
     n = 801
@@ -99,11 +118,20 @@ def plot_stability(out, methods=None, marks=(), zeta=None, title=None):
     ax.axhline(0, color="0.2", lw=0.7)
     ax.axvline(0, color="0.2", lw=0.7)
     if pts:
-        ax.plot([z.real for z in pts], [z.imag for z in pts], ls="", marker="*", ms=13,
+        ax.plot([z.real for z in shown], [z.imag for z in shown], ls="", marker="*", ms=13,
                 color="black", mfc="gold", zorder=6)
         for hw in marks:
             z = oscillator_points(hw, zeta)[0]
-            ax.annotate(f"hω = {hw:.3g}", (z.real, z.imag), xytext=(8, 6),
+            text = f"hω = {hw:.3g}"
+            if abs(z) > VIEW_MAX:
+                # Off the chart: an arrow at the edge, pointing at where it lies.
+                zc = _to_edge(z, re_lo, re_hi, im_hi)
+                ax.annotate("", (zc.real, zc.imag), xytext=(zc.real - 0.9 * z.real / abs(z),
+                                                            zc.imag - 0.9 * z.imag / abs(z)),
+                            arrowprops=dict(arrowstyle="->", lw=1.6), zorder=7)
+                text += f"\nz = {z.real:.3g} ± {abs(z.imag):.3g}i, off the chart"
+                z = zc - 0.9 * z / abs(z)
+            ax.annotate(text, (z.real, z.imag), xytext=(8, 6),
                         textcoords="offset points", fontsize=9, zorder=7,
                         bbox=dict(fc="white", ec="none", alpha=0.8))
         what = "±i·hω" if not zeta else f"hω(-ζ ± i√(1-ζ²)), ζ = {zeta:.3g}"
