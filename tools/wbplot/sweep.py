@@ -14,6 +14,9 @@ SWEEP_COLUMNS = ["scene", "integrator", "dt", "steps", "force_evals", "wall_s", 
 FLOOR_REL = 1e-13    # error below FLOOR_REL * scale: rounding floor, excluded
 CEILING_REL = 0.1    # error at or above CEILING_REL * scale: O(1), not asymptotic
 PLATEAU_SLOPE = 0.5  # smallest-dt points whose local slope is below this: plateau, excluded
+BLOWUP_REL = 1e3    # a finite error past this times the scene size is drawn as a blow-up
+BLOWUP_LABEL = "blew up (top edge): diverged,\nor error > 1000 x scene size"
+MIN_POINTS = 3       # fewer points left in the range: no order is given ("n/a")
 
 
 class Run:
@@ -102,12 +105,15 @@ def asymptotic_points(runs, scale=1.0):
             pts.pop(0)
         else:
             break
+    # Error must grow with dt across the range: drop the largest steps until it does.
+    while len(pts) >= 2 and any(pts[i + 1][1] <= pts[i][1] for i in range(len(pts) - 1)):
+        pts.pop()
     return pts
 
 
 def fit_slope(pts):
-    """Least-squares slope of log(error) against log(dt), None below two distinct dt."""
-    if len(pts) < 2:
+    """Least-squares slope of log(error) against log(dt), None below MIN_POINTS points."""
+    if len(pts) < MIN_POINTS:
         return None
     xs = [math.log(h) for h, _ in pts]
     ys = [math.log(e) for _, e in pts]
@@ -132,12 +138,23 @@ def _mark_diverged(ax, xs, color, marker_label=False):
             transform=tr, clip_on=False)
 
 
-def plot_work_precision(runs, scene, out):
+def blew_up(r, scale):
+    """Diverged, or finite but with an error past BLOWUP_REL times the scene size."""
+    return r.diverged or r.error > BLOWUP_REL * scale
+
+
+def plot_work_precision(runs, scene, out, scale=1.0):
     fig, (a1, a2) = new_figure(1, 2, figsize=(10.0, 4.4))
     names = [n for n, _ in by_integrator(runs)]
+    any_div = False
     for name, group in by_integrator(runs):
         color, marker = integrator_style(name, names)
-        ok = [r for r in group if not r.diverged and r.error > 0]
+        ok = [r for r in group if not blew_up(r, scale) and r.error > 0]
+        div = [r for r in group if blew_up(r, scale)]
+        any_div = any_div or bool(div)
+        _mark_diverged(a1, [r.wall_s for r in div if finite(r.wall_s) and r.wall_s > 0], color)
+        _mark_diverged(a2, [r.force_evals for r in div if finite(r.force_evals)
+                            and r.force_evals > 0], color)
         for ax, attr in ((a1, "wall_s"), (a2, "force_evals")):
             pts = sorted((getattr(r, attr), r.error) for r in ok
                          if finite(getattr(r, attr)) and getattr(r, attr) > 0)
@@ -150,7 +167,11 @@ def plot_work_precision(runs, scene, out):
         ax.set_ylabel("final position error (m)")
     a1.set_title("Error against wall time")
     a2.set_title("Error against force evaluations")
-    a2.legend(loc="best", framealpha=0.85)
+    handles, _ = a2.get_legend_handles_labels()
+    if any_div:
+        handles.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
+                              label=BLOWUP_LABEL))
+    a2.legend(handles=handles, loc="best", framealpha=0.85)
     fig.suptitle(f"Work-precision, scene {scene}: lower left is better", fontsize=11)
     fig.tight_layout()
     save_figure(fig, out)
@@ -167,7 +188,7 @@ def plot_convergence(runs, scene, out, scale=1.0):
         order, used = measured_order(group, scale)
         used_set = set(used)
         used_all += used
-        ok = [(r.dt, r.error) for r in group if not r.diverged and r.error > 0]
+        ok = [(r.dt, r.error) for r in group if not blew_up(r, scale) and r.error > 0]
         all_pts += ok
         label = f"{name}: order {order:.2f}" if order is not None else f"{name}: order n/a"
         ax.plot([h for h, _ in ok], [e for _, e in ok], color=color, lw=1.2, label=label)
@@ -177,7 +198,7 @@ def plot_convergence(runs, scene, out, scale=1.0):
                 ms=5)
         ax.plot([h for h, _ in rest], [e for _, e in rest], ls="", marker=marker, mfc="white",
                 mec=color, ms=5)
-        div = [r.dt for r in group if r.diverged]
+        div = [r.dt for r in group if blew_up(r, scale)]
         any_div = any_div or bool(div)
         all_pts += [(h, None) for h in div]
         _mark_diverged(ax, div, color)
@@ -204,14 +225,14 @@ def plot_convergence(runs, scene, out, scale=1.0):
                           label="not used for the order"))
     if any_div:
         handles.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
-                              label="diverged (top edge)"))
+                              label=BLOWUP_LABEL))
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8,
               frameon=False)
     fig.tight_layout()
     save_figure(fig, out)
 
 
-def plot_energy_error(runs, scene, out):
+def plot_energy_error(runs, scene, out, scale=1.0):
     fig, ax = new_figure(figsize=(8.4, 4.6))
     groups = by_integrator(runs)
     names = [n for n, _ in groups]
@@ -219,10 +240,10 @@ def plot_energy_error(runs, scene, out):
     for name, group in groups:
         color, marker = integrator_style(name, names)
         pts = [(r.dt, r.energy_error) for r in group
-               if not r.diverged and finite(r.energy_error) and r.energy_error > 0]
+               if not blew_up(r, scale) and finite(r.energy_error) and r.energy_error > 0]
         ax.plot([h for h, _ in pts], [e for _, e in pts], marker=marker, color=color, ms=4.5,
                 label=name)
-        div = [r.dt for r in group if r.diverged]
+        div = [r.dt for r in group if blew_up(r, scale)]
         any_div = any_div or bool(div)
         _mark_diverged(ax, div, color)
     ax.set_xscale("log")
@@ -233,7 +254,7 @@ def plot_energy_error(runs, scene, out):
     handles, _ = ax.get_legend_handles_labels()
     if any_div:
         handles.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
-                              label="diverged (top edge)"))
+                              label=BLOWUP_LABEL))
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
     fig.tight_layout()
     save_figure(fig, out)
@@ -243,9 +264,9 @@ def plot_sweep(path, prefix, scene=None, scale=1.0):
     runs, scene = select_scene(path, read_sweep(path), scene)
     outs = [prefix + "-work-precision.png", prefix + "-convergence.png",
             prefix + "-energy-error.png"]
-    plot_work_precision(runs, scene, outs[0])
+    plot_work_precision(runs, scene, outs[0], scale)
     plot_convergence(runs, scene, outs[1], scale)
-    plot_energy_error(runs, scene, outs[2])
+    plot_energy_error(runs, scene, outs[2], scale)
     return outs
 
 
