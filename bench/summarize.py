@@ -18,6 +18,8 @@ COLUMNS = [
     ("Mpsteps_per_s", "M particle-steps/s", "{:.1f}"),
     ("ns_per_psteps", "ns/particle-step", "{:.2f}"),
     ("vs_hand_passes", "/hand passes", "{:.3f}"),
+    ("vs_hand_passes_min", "(min", "{:.3f}"),
+    ("vs_hand_passes_max", "max)", "{:.3f}"),
     ("vs_hand_fused", "/hand fused", "{:.2f}"),
     ("vs_dram_bound", "/DRAM bound", "{:.2f}"),
     ("vs_fit_bound", "/fit bound", "{:.2f}"),
@@ -40,7 +42,9 @@ def parse_args():
         "triad bandwidth measured in the same run, on arrays beyond the caches and on arrays of "
         "the step's own footprint), and heap allocations per step. Ratios are times: above 1 "
         "means the scene machinery is slower. With repetitions, every figure is the median of "
-        "the repetitions and 'spread %' is (max - min) / median of the scene benchmark. "
+        "the repetitions, '(min max)' is the range of scene / hand passes over the repetitions "
+        "(each paired with the hand repetition of the same index), and 'spread %%' is "
+        "(max - min) / median of the scene benchmark's repetitions. "
         "Exit status: 0, 1 when the run recorded a failure (an allocating step, an error), "
         "2 on bad input.")
     p.add_argument("json_file", help="bench_integrators --benchmark_format=json output ('-' for stdin)")
@@ -109,17 +113,29 @@ def collect(doc, path, time_key):
         if run_type == "aggregate":
             medians[key] = seconds
         else:
-            runs.setdefault(key, []).append(seconds)
+            rep = b.get("repetition_index", len(runs.get(key, {})))
+            runs.setdefault(key, {})[rep] = seconds
             a = b.get("allocs_per_step")
             if isinstance(a, (int, float)):
                 allocs[key] = max(allocs.get(key, 0.0), float(a))
     times = {}
     for key in set(runs) | set(medians):
-        reps = runs.get(key, [])
+        reps = list(runs.get(key, {}).values())
         med = statistics.median(reps) if reps else medians[key]
         spread = (max(reps) - min(reps)) / med if len(reps) > 1 else math.nan
-        times[key] = (med, spread)
+        times[key] = (med, spread, runs.get(key, {}))
     return times, allocs, failures, order
+
+
+def ratio_range(a, b):
+    """Smallest and largest a/b over the repetitions, pairing equal repetition indices."""
+    if not a or not b:
+        return math.nan, math.nan
+    common = sorted(set(a[2]) & set(b[2]))
+    if len(common) < 2:
+        return math.nan, math.nan
+    ratios = [a[2][k] / b[2][k] for k in common]
+    return min(ratios), max(ratios)
 
 
 def table(times, allocs, order, bound_bytes):
@@ -131,17 +147,20 @@ def table(times, allocs, order, bound_bytes):
     rows = []
     scenes = sorted((k for k in times if k[0] == "scene"), key=lambda k: (order[k[1]], k[2]))
     for _, integ, n in scenes:
-        t, spread = times[("scene", integ, n)]
+        t, spread, _ = times[("scene", integ, n)]
         passes = times.get(("hand_passes", integ, n))
         fused = times.get(("hand_fused", integ, n))
         fit = times.get(("triad_fit", None, 3 * n))
         bound = bound_bytes * n / bw_dram
+        lo, hi = ratio_range(times[("scene", integ, n)], passes)
         rows.append({
             "integrator": integ,
             "n": n,
             "Mpsteps_per_s": n / t / 1e6,
             "ns_per_psteps": t / n * 1e9,
             "vs_hand_passes": t / passes[0] if passes else math.nan,
+            "vs_hand_passes_min": lo,
+            "vs_hand_passes_max": hi,
             "vs_hand_fused": t / fused[0] if fused else math.nan,
             "vs_dram_bound": t / bound,
             "vs_fit_bound": t / (bound_bytes * n / (24 * 3 * n / fit[0])) if fit else math.nan,
