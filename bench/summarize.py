@@ -43,7 +43,7 @@ def parse_args():
         "the step's own footprint), and heap allocations per step. Ratios are times: above 1 "
         "means the scene machinery is slower. With repetitions, every figure is the median of "
         "the repetitions, '(min max)' is the range of scene / hand passes over the repetitions "
-        "(each paired with the hand repetition of the same index), and 'spread %%' is "
+        "(each paired with the hand repetition of the same index), and 'spread %' is "
         "(max - min) / median of the scene benchmark's repetitions. "
         "Exit status: 0, 1 when the run recorded a failure (an allocating step, an error), "
         "2 on bad input.")
@@ -115,9 +115,9 @@ def collect(doc, path, time_key):
         else:
             rep = b.get("repetition_index", len(runs.get(key, {})))
             runs.setdefault(key, {})[rep] = seconds
-            a = b.get("allocs_per_step")
-            if isinstance(a, (int, float)):
-                allocs[key] = max(allocs.get(key, 0.0), float(a))
+        a = b.get("allocs_per_step")
+        if isinstance(a, (int, float)):
+            allocs[key] = max(allocs.get(key, 0.0), float(a))
     times = {}
     for key in set(runs) | set(medians):
         reps = list(runs.get(key, {}).values())
