@@ -14,6 +14,16 @@
 
 namespace wb {
 
+namespace {
+
+std::string num(double x) {
+  std::string s;
+  append_number(s, x);
+  return s;
+}
+
+}  // namespace
+
 const std::vector<std::string>& sweep_scene_keys() {
   static const std::vector<std::string> keys = {"exact"};
   return keys;
@@ -48,7 +58,7 @@ ExactSolution read_exact(const Scene& scene) {
                                   "\" (it has " + std::to_string(forces.size()) + ")");
   JsonObject f = top.element("forces", 0);
   require(f.string("type") == one_force,
-          "exactly one force, a \"" + one_force + "\", for \"" + kind + "\" (forces[0] is a \"" +
+          "exactly one force, a \"" + one_force + "\", for \"" + kind + "\" (forces[0] has type \"" +
               f.string("type") + "\")");
   ex.x0 = scene.x.col(0);
   ex.v0 = scene.v.col(0);
@@ -59,8 +69,7 @@ ExactSolution read_exact(const Scene& scene) {
     require(f.has("anchor"), "a spring to an \"anchor\" for \"oscillator\" (forces[0] joins two particles)");
     ex.center = f.vec2("anchor");
     const double rest = f.number_or("rest", (ex.x0 - ex.center).norm(), Range{0.0});
-    require(rest == 0.0, "a spring of \"rest\": 0 for \"oscillator\" (rest is " +
-                             std::to_string(rest) + ")");
+    require(rest == 0.0, "a spring of \"rest\": 0 for \"oscillator\" (rest is " + num(rest) + ")");
     require(f.number_or("damping", 0.0, Range{0.0}) == 0.0,
             "an undamped spring for \"oscillator\" (forces[0].damping is not 0)");
     const double k = f.number("k", Range{0.0});
@@ -91,12 +100,6 @@ std::vector<double> default_dt_ladder(double dt) {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string num(double x) {
-  std::string s;
-  append_number(s, x);
-  return s;
-}
 
 // A CSV field: quoted only when it holds a comma, a quote or a line break.
 std::string csv_field(const std::string& s) {
