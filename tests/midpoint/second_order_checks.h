@@ -10,6 +10,7 @@
 #pragma once
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -24,6 +25,13 @@ using wb::StepFn;
 
 // Work arrays of the right size, filled with NaN: a step must write a work
 // array before it reads it (their contents on entry are undefined).
+// A number as a reader would write it (0.1, not 0.100000).
+inline std::string num(double x) {
+  std::ostringstream o;
+  o << x;
+  return o.str();
+}
+
 inline wb::Scratch nan_scratch(Eigen::Index n) {
   wb::Scratch s;
   s.resize(n);
@@ -134,7 +142,7 @@ inline void check_linear_step(StepFn step, const std::string& method, const std:
     xe.col(i) = x1;
     ve.col(i) = v1;
   }
-  const std::string law = method + ", one step of h = " + std::to_string(h) +
+  const std::string law = method + ", one step of h = " + num(h) +
                           " on a = -k x - c v: the lecture's method gives (I + hA + (hA)^2/2) X";
   wbtest::require_near(x, xe, kRoundTol, law + " (positions)", kRoundTol);
   wbtest::require_near(v, ve, kRoundTol, law + " (velocities)", kRoundTol);
@@ -155,7 +163,7 @@ inline void check_energy_factor(StepFn step, const std::string& method) {
       const double e0 = E();
       step(dyn, h, x, v, s);
       wbtest::require_near(E() / e0, factor, 0.0,
-                           method + " on the oscillator a = -w^2 x, h w = " + std::to_string(z) +
+                           method + " on the oscillator a = -w^2 x, h w = " + num(z) +
                                ", step " + std::to_string(n + 1) +
                                ": energy ratio E_n+1 / E_n must be exactly 1 + (h w)^4 / 4",
                            kRoundTol);
@@ -202,14 +210,14 @@ inline void check_third_order_term(StepFn step, const std::string& method, doubl
       const double ax = -std::cos(xd), av = -3.0 * kDrag * vd * vd;
       const double T2 = vd + h * a0 + 0.5 * h * h * (ax * vd + av * a0);
       const double d2a = std::sin(xd) * vd * vd - 6.0 * kDrag * vd * a0 * a0;
-      const std::string where = method + ", one step of h = " + std::to_string(h) +
+      const std::string where = method + ", one step of h = " + num(h) +
                                 " on a = -sin x - b v^3, coordinate " + std::to_string(d);
       wbtest::require_near(x(d, 0), xd + h * vd + 0.5 * h * h * a0, kRoundTol,
                            where + ": the position must be x + h v + h^2/2 a(x, v) exactly");
       const double measured = (v(d, 0) - T2) / (h * h * h * d2a);
       wbtest::require_near(measured, coef, 0.0,
                            where + ": (v' - Taylor 2nd order step) / (h^3 a''[f,f]) must be " +
-                               std::to_string(coef) +
+                               num(coef) +
                                " (the h^3 term that makes this method differ from the other one)",
                            kTermRelTol);
     }
