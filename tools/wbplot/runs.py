@@ -140,7 +140,10 @@ def drift_series(s):
     """(t, |E - E0| / |E0|) or None when E0 is 0 or not finite (no relative drift)."""
     e0 = s["energy"][0]
     scale = max(abs(e0), 0.0)
-    typical = max([abs(v) for v in s["kinetic"] + s["potential"] if finite(v)], default=0.0)
+    # E0 counts as 0 when it is a cancellation of much larger initial kinetic and
+    # potential energies; judged at the start, since a run that blew up has huge
+    # energies later that say nothing about E0.
+    typical = max([abs(v) for v in (s["kinetic"][0], s["potential"][0]) if finite(v)], default=0.0)
     if not finite(e0) or scale == 0.0 or scale < 1e-12 * typical:
         return None
     t = [ti for ti, e in zip(s["t"], s["energy"]) if finite(e)]
