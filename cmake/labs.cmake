@@ -70,6 +70,16 @@ function(wb_add_lab lab side)
     catch_discover_tests(${tests}
       TEST_PREFIX "${side}/"
       EXTRA_ARGS -w NoTests
-      PROPERTIES LABELS "${lab};${side}" TIMEOUT 120)
+      TEST_LIST ${tests}_TESTS)
+    # Labels and a time limit for every discovered test. A list passed through
+    # catch_discover_tests' PROPERTIES is flattened ("LABELS forces solution"
+    # sets one label), so they are set here, from the list Catch's generated
+    # file defines; CTest reads this file after Catch's.
+    set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${tests}_labels.cmake)
+    file(WRITE ${labels_file}
+      "foreach(t IN LISTS ${tests}_TESTS)\n"
+      "  set_tests_properties(\"\${t}\" PROPERTIES LABELS \"${lab};${side}\" TIMEOUT 120)\n"
+      "endforeach()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_file})
   endif()
 endfunction()
