@@ -204,6 +204,9 @@ def write_csv(path, rows):
             f.write(",".join(key for key, _, _ in COLUMNS) + "\n")
             for r in rows:
                 f.write(",".join(fmt(r[key], spec) for key, _, spec in COLUMNS) + "\n")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes it private; give it a normal file's mode
         os.replace(tmp, path)
     except BaseException:
         os.unlink(tmp)
