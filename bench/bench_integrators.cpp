@@ -63,7 +63,8 @@
 // malloc, calloc, realloc, free and the aligned variants (glibc supports this,
 // and exports __libc_malloc & co. for the replacements to call); operator new
 // is replaced too and forwards to malloc, so each allocation counts once.
-// Elsewhere only operator new is counted.
+// Elsewhere only operator new is counted (the program says which in its
+// context line "wb_allocation_counting").
 namespace {
 std::atomic<long> g_allocs{0};  // heap allocations since program start
 void count_alloc() {
@@ -71,7 +72,8 @@ void count_alloc() {
 }
 }  // namespace
 
-#if defined(__GLIBC__)
+// Not under AddressSanitizer, which supplies its own malloc.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
 #define WB_COUNT_MALLOC 1
 extern "C" {
 void* __libc_malloc(std::size_t);
