@@ -67,9 +67,7 @@
 // context line "wb_allocation_counting").
 namespace {
 std::atomic<long> g_allocs{0};  // heap allocations since program start
-void count_alloc() {
-  g_allocs.fetch_add(1, std::memory_order_relaxed);
-}
+void count_alloc() { g_allocs.fetch_add(1, std::memory_order_relaxed); }
 }  // namespace
 
 // Not under AddressSanitizer, which supplies its own malloc.
@@ -110,9 +108,7 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept
   *out = p;
   return 0;
 }
-void free(void* p) noexcept {
-  __libc_free(p);
-}
+void free(void* p) noexcept { __libc_free(p); }
 }  // extern "C"
 #else
 #define WB_COUNT_MALLOC 0
@@ -140,72 +136,40 @@ void* counted_new_nothrow(std::size_t size, std::size_t alignment) noexcept {
 }
 }  // namespace
 
-void* operator new(std::size_t n) {
-  return counted_new(n, 0);
-}
-void* operator new[](std::size_t n) {
-  return counted_new(n, 0);
-}
+void* operator new(std::size_t n) { return counted_new(n, 0); }
+void* operator new[](std::size_t n) { return counted_new(n, 0); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, 0);
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, 0);
 }
-void* operator new(std::size_t n, std::align_val_t a) {
-  return counted_new(n, std::size_t(a));
-}
-void* operator new[](std::size_t n, std::align_val_t a) {
-  return counted_new(n, std::size_t(a));
-}
+void* operator new(std::size_t n, std::align_val_t a) { return counted_new(n, std::size_t(a)); }
+void* operator new[](std::size_t n, std::align_val_t a) { return counted_new(n, std::size_t(a)); }
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, std::size_t(a));
 }
 void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
   return counted_new_nothrow(n, std::size_t(a));
 }
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
   std::free(p);
 }
 
 namespace {
 
-long allocations() {
-  return g_allocs.load(std::memory_order_relaxed);
-}
+long allocations() { return g_allocs.load(std::memory_order_relaxed); }
 
 // ---------------------------------------------------------------------------
 // The system being stepped.
@@ -496,13 +460,14 @@ struct Method {
 std::vector<Method> methods() {
   std::vector<Method> out;
 #ifdef WB_BENCH_HAS_EULER
-  out.push_back(
-      {"explicit-euler", "solutions/euler", explicit_euler_step, explicit_passes, explicit_fused});
+  out.push_back({"explicit-euler", "solutions/euler", explicit_euler_step, explicit_passes,
+                 explicit_fused});
 #endif
   out.push_back({"symplectic-euler", kSymplecticEulerSource, kSymplecticEuler, symplectic_passes,
                  symplectic_fused});
 #ifdef WB_BENCH_HAS_MIDPOINT
-  out.push_back({"midpoint", "solutions/midpoint", midpoint_step, midpoint_passes, midpoint_fused});
+  out.push_back(
+      {"midpoint", "solutions/midpoint", midpoint_step, midpoint_passes, midpoint_fused});
   out.push_back(
       {"trapezoid", "solutions/midpoint", trapezoid_step, trapezoid_passes, trapezoid_fused});
 #endif
@@ -658,7 +623,8 @@ void register_all(const std::vector<Method>& all) {
     for (const Method& method : all) {
       const std::string tail = std::string(method.name);
       benchmark::RegisterBenchmark(("scene/" + tail).c_str(), bm_scene, method)->Arg(n);
-      benchmark::RegisterBenchmark(("hand_passes/" + tail).c_str(), bm_hand, method, false)->Arg(n);
+      benchmark::RegisterBenchmark(("hand_passes/" + tail).c_str(), bm_hand, method, false)
+          ->Arg(n);
       benchmark::RegisterBenchmark(("hand_fused/" + tail).c_str(), bm_hand, method, true)->Arg(n);
     }
     benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
@@ -705,7 +671,8 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   if (g_alloc_failure) {
-    std::fprintf(stderr, "FAIL: some step allocated on the heap after its warm-up step (above)\n");
+    std::fprintf(stderr,
+                 "FAIL: some step allocated on the heap after its warm-up step (above)\n");
     return 1;
   }
   return 0;

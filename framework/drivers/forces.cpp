@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   wb::LabInfo info;
   info.lab = WB_LAB;
   info.side = WB_SIDE;
-  info.summary = "Forces lab: particles under the forces you write, stepped with semi-implicit Euler.";
+  info.summary =
+      "Forces lab: particles under the forces you write, stepped with semi-implicit Euler.";
   info.integrators = {{"symplectic-euler", semi_implicit_euler, 1, 1,
                        "semi-implicit Euler, provided: velocities first, then positions"}};
   return wb::run_particle_lab(argc, argv, info);

@@ -9,7 +9,9 @@ int main(int argc, char** argv) {
   wb::LabInfo info;
   info.lab = WB_LAB;
   info.side = WB_SIDE;
-  info.summary = "Midpoint lab: the midpoint and trapezoid methods on particle scenes, with RK4 for reference.";
+  info.summary =
+      "Midpoint lab: the midpoint and trapezoid methods on particle scenes, with RK4 for "
+      "reference.";
   wb::Integrator rk4 = wb::rk4_integrator();
   rk4.description = "classic Runge-Kutta, provided (not a task): the reference on the plots";
   info.integrators = {

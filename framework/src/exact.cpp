@@ -24,8 +24,11 @@ double kepler_eccentric_anomaly(double M, double e) {
   E = std::min(std::max(E, lo), hi);
   for (int it = 0; it < 100; ++it) {
     const double F = E - e * std::sin(E) - m;
-    if (F > 0) hi = E; else lo = E;
-    double next = E - F / (1.0 - e * std::cos(E));  // Newton
+    if (F > 0)
+      hi = E;
+    else
+      lo = E;
+    double next = E - F / (1.0 - e * std::cos(E));          // Newton
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // left the bracket: bisect
     const bool done = std::abs(next - E) <= 4e-16 * (1.0 + std::abs(E));
     E = next;
@@ -36,16 +39,16 @@ double kepler_eccentric_anomaly(double M, double e) {
 
 void kepler_exact(const Vec2& c, double GM, const Vec2& x0, const Vec2& v0, double t, Vec2& x,
                   Vec2& v) {
-  const Vec2 r0 = x0 - c;                        // position relative to the attractor
+  const Vec2 r0 = x0 - c;  // position relative to the attractor
   const double r0n = r0.norm();
   const double eps = 0.5 * v0.squaredNorm() - GM / r0n;  // specific orbital energy (< 0)
-  const double a = -GM / (2.0 * eps);            // semi-major axis
-  const double n = std::sqrt(GM / (a * a * a));  // mean motion (rad/s)
+  const double a = -GM / (2.0 * eps);                    // semi-major axis
+  const double n = std::sqrt(GM / (a * a * a));          // mean motion (rad/s)
   // e cos E0 and e sin E0 from r = a (1 - e cos E) and r.v = sqrt(GM a) e sin E.
   const double ecos0 = 1.0 - r0n / a;
   const double esin0 = r0.dot(v0) / std::sqrt(GM * a);
   const double e = std::hypot(ecos0, esin0);
-  const double E0 = std::atan2(esin0, ecos0);   // 0 for a circle: any start phase works
+  const double E0 = std::atan2(esin0, ecos0);  // 0 for a circle: any start phase works
   // Whole periods change nothing: keep t in [0, P) so that g stays accurate.
   const double period = 2.0 * M_PI / n;
   const double tr = t - std::floor(t / period) * period;

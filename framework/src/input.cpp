@@ -35,8 +35,8 @@ void JsonObject::only_keys(std::initializer_list<const char*> known) const {
     if (!ok) {
       std::string list;
       for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-      throw InputError(file_ + ": " + key_path(it.key()) + ": unknown key, expected one of: " +
-                       list);
+      throw InputError(file_ + ": " + key_path(it.key()) +
+                       ": unknown key, expected one of: " + list);
     }
   }
 }
@@ -166,7 +166,8 @@ json read_json_file(const std::string& file) {
     // e.what() carries the byte position; drop the library's prefix.
     std::string what = e.what();
     auto p = what.find("parse error");
-    throw InputError(file + ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p)));
+    throw InputError(file +
+                     ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p)));
   }
 }
 

@@ -1,10 +1,10 @@
 // Atomic output files and exact number formatting.
 #include "wb/output.h"
 
+#include <unistd.h>
 #include <charconv>
 #include <cstring>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "wb/input.h"
 

@@ -128,7 +128,9 @@ RunResult simulate(const Scene& scene, const ForceList& forces, const RunOptions
 
 namespace {
 
-ordered_json number_or_null(double x) { return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr); }
+ordered_json number_or_null(double x) {
+  return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr);
+}
 
 ordered_json summary_json(const RunResult& r) {
   ordered_json j;  // keys in the documented order
@@ -181,14 +183,16 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
   app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
   auto* o_integrator =
       app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
-  app.add_option("--dt", dt, "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
+  app.add_option("--dt", dt,
+                 "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
   auto* o_steps = app.add_option("--steps", steps, "Take exactly N steps");
   auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);
   auto* o_out = app.add_option("--out", out, "Write a CSV trace t,id,x,y,vx,vy");
-  auto* o_stats = app.add_option("--stats", stats,
-                                 "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
-  auto* o_every = app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
+  auto* o_stats = app.add_option(
+      "--stats", stats, "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
+  auto* o_every =
+      app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
   app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
   // Sweep mode (integration labs): docs/sweep.md.
   SweepOptions sweep;
@@ -229,13 +233,17 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
       append_number(s, x);
       return s;
     };
-    if (dt && !(std::isfinite(*dt) && *dt > 0)) throw flag_error("--dt", num(*dt), "a finite number > 0");
+    if (dt && !(std::isfinite(*dt) && *dt > 0))
+      throw flag_error("--dt", num(*dt), "a finite number > 0");
     if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
       throw flag_error("--t-end", num(*t_end), "a finite number >= 0");
     }
-    if (steps && *steps < 0) throw flag_error("--steps", std::to_string(*steps), "a whole number >= 0");
-    if (every && *every < 1) throw flag_error("--every", std::to_string(*every), "a whole number >= 1");
-    if (seed_in && *seed_in < 0) throw flag_error("--seed", std::to_string(*seed_in), "a whole number >= 0");
+    if (steps && *steps < 0)
+      throw flag_error("--steps", std::to_string(*steps), "a whole number >= 0");
+    if (every && *every < 1)
+      throw flag_error("--every", std::to_string(*every), "a whole number >= 1");
+    if (seed_in && *seed_in < 0)
+      throw flag_error("--seed", std::to_string(*seed_in), "a whole number >= 0");
 
     std::optional<std::uint64_t> seed;
     if (seed_in) seed = std::uint64_t(*seed_in);
@@ -282,7 +290,8 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
       }
       opt.steps = long(n);
     } else {
-      throw InputError(scene.file + ": t_end: missing, expected a number >= 0 (or pass --steps or --t-end)");
+      throw InputError(scene.file +
+                       ": t_end: missing, expected a number >= 0 (or pass --steps or --t-end)");
     }
     opt.every = every.value_or(1);
     opt.out = out;

@@ -72,8 +72,8 @@ Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
   s.doc = read_json_file(file);
   JsonObject top(file, s.doc, "");
   for (auto it = s.doc.begin(); it != s.doc.end(); ++it) {
-    static const char* base[] = {"name", "dt", "t_end", "integrator", "particles",
-                                 "emitters", "forces", "description"};
+    static const char* base[] = {"name",      "dt",       "t_end",  "integrator",
+                                 "particles", "emitters", "forces", "description"};
     bool ok = false;
     for (const char* k : base) ok = ok || it.key() == k;
     for (const auto& k : extra_keys) ok = ok || it.key() == k;

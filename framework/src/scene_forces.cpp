@@ -148,7 +148,9 @@ class Vortex : public Force {
 };
 
 Eigen::Index particle_index(const JsonObject& o, const char* key, std::int64_t n) {
-  if (n == 0) o.fail(key, o.has(key) ? &o.raw().at(key) : nullptr, "a particle index, but the scene has no particles");
+  if (n == 0)
+    o.fail(key, o.has(key) ? &o.raw().at(key) : nullptr,
+           "a particle index, but the scene has no particles");
   return Eigen::Index(o.integer(key, 0, n - 1));
 }
 
@@ -239,14 +241,17 @@ ForceList build_forces(const Scene& scene) {
 }
 
 ParticleDynamics::ParticleDynamics(const ForceList& forces, const VecX& m)
-    : forces_(forces), m_(m), inv_m_(m.transpose().array().inverse()), f_(Mat2X::Zero(2, m.size())) {}
+    : forces_(forces),
+      m_(m),
+      inv_m_(m.transpose().array().inverse()),
+      f_(Mat2X::Zero(2, m.size())) {}
 
 void ParticleDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
   accumulate_forces(forces_, x, v, m_, f_);
   if (f_.cols() != x.cols()) {
     throw std::runtime_error("accumulate_forces left f with " + std::to_string(f_.cols()) +
-                             " columns, expected one per particle (" +
-                             std::to_string(x.cols()) + "): see TODO(F6)");
+                             " columns, expected one per particle (" + std::to_string(x.cols()) +
+                             "): see TODO(F6)");
   }
   a.array() = f_.array().rowwise() * inv_m_;
 }

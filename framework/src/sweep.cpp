@@ -57,19 +57,21 @@ ExactSolution read_exact(const Scene& scene) {
   require(forces.size() == 1, "exactly one force, a \"" + one_force + "\", for \"" + kind +
                                   "\" (it has " + std::to_string(forces.size()) + ")");
   JsonObject f = top.element("forces", 0);
-  require(f.string("type") == one_force,
-          "exactly one force, a \"" + one_force + "\", for \"" + kind + "\" (forces[0] has type \"" +
-              f.string("type") + "\")");
+  require(f.string("type") == one_force, "exactly one force, a \"" + one_force + "\", for \"" +
+                                             kind + "\" (forces[0] has type \"" +
+                                             f.string("type") + "\")");
   ex.x0 = scene.x.col(0);
   ex.v0 = scene.v.col(0);
   const double m = scene.m[0];
 
   if (kind == "oscillator") {
     ex.kind = ExactSolution::kOscillator;
-    require(f.has("anchor"), "a spring to an \"anchor\" for \"oscillator\" (forces[0] joins two particles)");
+    require(f.has("anchor"),
+            "a spring to an \"anchor\" for \"oscillator\" (forces[0] joins two particles)");
     ex.center = f.vec2("anchor");
     const double rest = f.number_or("rest", (ex.x0 - ex.center).norm(), Range{0.0});
-    require(rest == 0.0, "a spring of \"rest\": 0 for \"oscillator\" (rest is " + num(rest) + ")");
+    require(rest == 0.0,
+            "a spring of \"rest\": 0 for \"oscillator\" (rest is " + num(rest) + ")");
     require(f.number_or("damping", 0.0, Range{0.0}) == 0.0,
             "an undamped spring for \"oscillator\" (forces[0].damping is not 0)");
     const double k = f.number("k", Range{0.0});
@@ -155,7 +157,8 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
     }
   }
   if (!(opt.repeats >= 1)) {
-    throw InputError("--repeats: got " + std::to_string(opt.repeats) + ", expected a whole number >= 1");
+    throw InputError("--repeats: got " + std::to_string(opt.repeats) +
+                     ", expected a whole number >= 1");
   }
   const double T = opt.t_end ? *opt.t_end : scene.t_end.value_or(-1.0);
   if (!(T > 0.0 && std::isfinite(T))) {
@@ -167,7 +170,8 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
   std::vector<double> dts = opt.dts;
   if (dts.empty()) {
     if (!opt.dt && !scene.dt) {
-      throw InputError(scene.file + ": dt: missing, expected a number > 0 (or pass --dt or --dts)");
+      throw InputError(scene.file +
+                       ": dt: missing, expected a number > 0 (or pass --dt or --dts)");
     }
     dts = default_dt_ladder(opt.dt ? *opt.dt : *scene.dt);
   }
@@ -178,8 +182,8 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
     }
     const double n = std::round(T / dt);
     if (!(n >= 1.0 && n <= 1e12)) {
-      throw InputError("--dts: " + num(dt) + " gives round(T/dt) = " + num(n) + " steps for T = " +
-                       num(T) + ", expected 1 to 1e12");
+      throw InputError("--dts: " + num(dt) + " gives round(T/dt) = " + num(n) +
+                       " steps for T = " + num(T) + ", expected 1 to 1e12");
     }
     steps.push_back(long(n));
   }
@@ -268,7 +272,8 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
   }
 
   // The CSV, written atomically.
-  std::string out = "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status\n";
+  std::string out =
+      "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status\n";
   SweepResult result;
   for (const Row& row : rows) {
     out += csv_field(scene.name) + ',' + csv_field(row.integrator->name) + ',';

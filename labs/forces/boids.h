@@ -4,15 +4,16 @@
 
 struct BoidRule {
   double weight = 0.0;  // strength (1/s^2 for separation/cohesion, 1/s for alignment)
-  double radius = 0.0;  // neighbour radius (m): j is a neighbour of i when 0 < |x_j - x_i| < radius
+  double radius =
+      0.0;  // neighbour radius (m): j is a neighbour of i when 0 < |x_j - x_i| < radius
 };
 
 struct BoidsParams {
-  BoidRule separation;      // steer away from close neighbours
-  BoidRule alignment;       // match the neighbours' mean velocity
-  BoidRule cohesion;        // steer towards the neighbours' centre
-  double goal_weight = 0;   // strength of the pull to the goal (m/s^2)
-  wb::Vec2 goal{0, 0};      // where the flock heads (m); unused when goal_weight == 0
+  BoidRule separation;     // steer away from close neighbours
+  BoidRule alignment;      // match the neighbours' mean velocity
+  BoidRule cohesion;       // steer towards the neighbours' centre
+  double goal_weight = 0;  // strength of the pull to the goal (m/s^2)
+  wb::Vec2 goal{0, 0};     // where the flock heads (m); unused when goal_weight == 0
 };
 
 // Adds the boids steering force f_i += m_i s_i, with s_i the sum of four terms.

@@ -1,4 +1,5 @@
-// TODO(F8) vortex field: drag towards a swirling flow. Handout: handouts/forces.md#f8. Tests: [F8].
+// TODO(F8) vortex field: drag towards a swirling flow. Handout: handouts/forces.md#f8. Tests:
+// [F8].
 #pragma once
 #include "wb/types.h"
 

@@ -29,5 +29,4 @@
 // Outputs:
 //   x    2 x n positions (m), column i is particle i: advanced in place
 //   v    2 x n velocities (m/s): advanced in place
-void midpoint_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Mat2X& v,
-                   wb::Scratch& s);
+void midpoint_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Mat2X& v, wb::Scratch& s);

@@ -34,8 +34,8 @@ inline std::string str(const wb::Vec2& v) {
 // (and the law it comes from) for the failure message.
 inline void require_near(const wb::Vec2& got, const wb::Vec2& expected, double abs_tol,
                          const std::string& what, double rel_tol = 0.0) {
-  INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got)
-            << "\n  tolerance " << abs_tol << " + " << rel_tol << " * |value|");
+  INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got) << "\n  tolerance "
+            << abs_tol << " + " << rel_tol << " * |value|");
   REQUIRE(near(got.x(), expected.x(), abs_tol, rel_tol));
   REQUIRE(near(got.y(), expected.y(), abs_tol, rel_tol));
 }

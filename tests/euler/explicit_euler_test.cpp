@@ -39,8 +39,8 @@ TEST_CASE("E1 one step: positions move with the old velocities", "[euler][E1][8p
   require_near(r.x, Mat2X(x0 + h * v0), kStepTol,
                "explicit Euler position x1 = x0 + h v0 (the velocity at the START of the step)",
                kStepTol);
-  require_near(r.v, Mat2X(v0 + h * a0), kStepTol,
-               "explicit Euler velocity v1 = v0 + h a(x0, v0)", kStepTol);
+  require_near(r.v, Mat2X(v0 + h * a0), kStepTol, "explicit Euler velocity v1 = v0 + h a(x0, v0)",
+               kStepTol);
 }
 
 TEST_CASE("E1 harmonic oscillator: energy grows by exactly 1 + (h w)^2 per step",
@@ -95,8 +95,7 @@ TEST_CASE("E1 free fall: x_n = x0 + v0 t + g t^2/2 - g h t/2", "[euler][E1][7pts
   }
 }
 
-TEST_CASE("E1 viscous damping: velocities decay by 1 - h b/m per step",
-          "[euler][E1][6pts]") {
+TEST_CASE("E1 viscous damping: velocities decay by 1 - h b/m per step", "[euler][E1][6pts]") {
   // a_i = -(b / m_i) v_i: v_n = r_i^n v0 with r_i = 1 - h b / m_i (distinct masses),
   // and x_n = x0 + h v0 (1 + r + ... + r^(n-1)) = x0 + h v0 (1 - r^n) / (1 - r).
   const double b = 0.3, h = 0.1;

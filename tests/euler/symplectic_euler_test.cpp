@@ -88,8 +88,9 @@ TEST_CASE("E2 harmonic oscillator: modified energy conserved and energy bounded 
   }
 }
 
-TEST_CASE("E2 harmonic oscillator: each step turns the phase by theta with cos theta = 1 - (h w)^2/2",
-          "[euler][E2][4pts]") {
+TEST_CASE(
+    "E2 harmonic oscillator: each step turns the phase by theta with cos theta = 1 - (h w)^2/2",
+    "[euler][E2][4pts]") {
   // The step matrix M = [1 - (hw)^2, h; -h w^2, 1] has det 1 and trace
   // 2 - (hw)^2 = 2 cos theta. By Cayley-Hamilton x_{n+1} = 2 cos theta x_n - x_{n-1},
   // so x_n = x0 cos(n theta) + (x1 - x0 cos theta) / sin theta sin(n theta)
@@ -183,9 +184,8 @@ TEST_CASE("E2 viscous damping: velocities decay by 1 - h b/m per step", "[euler]
     INFO("particle " << i << " of mass " << m[i]);
     require_near(Vec2(r.v.col(i)), Vec2(rn * v0.col(i)), 1e-12,
                  "semi-implicit Euler damping v_n = (1 - h b/m)^n v0", 1e-12);
-    require_near(Vec2(r.x.col(i)),
-                 Vec2(x0.col(i) + h * ri * (1.0 - rn) / (1.0 - ri) * v0.col(i)), 1e-12,
-                 "semi-implicit Euler damping x_n = x0 + h v0 r (1 - r^n)/(1 - r)", 1e-12);
+    require_near(Vec2(r.x.col(i)), Vec2(x0.col(i) + h * ri * (1.0 - rn) / (1.0 - ri) * v0.col(i)),
+                 1e-12, "semi-implicit Euler damping x_n = x0 + h v0 r (1 - r^n)/(1 - r)", 1e-12);
   }
 }
 
@@ -280,7 +280,9 @@ TEST_CASE("E2 long run: 10^6 steps conserve the modified energy", "[euler][E2][2
   const double w = 2.0, hw = 0.01, h = hw / w, m = 1.0, k = w * w;
   const long N = 1000000;
   Run r(oscillator(w), cols({{1.0, 0.0}}), cols({{0.0, 0.5}}));
-  auto Q = [&] { return oscillator_energy(r.x, r.v, m, k) - 0.5 * h * k * r.x.col(0).dot(r.v.col(0)); };
+  auto Q = [&] {
+    return oscillator_energy(r.x, r.v, m, k) - 0.5 * h * k * r.x.col(0).dot(r.v.col(0));
+  };
   const double Q0 = Q();
   double Emin = oscillator_energy(r.x, r.v, m, k), Emax = Emin;
   for (long n = 0; n < N; ++n) {

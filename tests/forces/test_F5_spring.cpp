@@ -98,10 +98,9 @@ TEST_CASE("F5 spring: the damper acts only along the spring", "[forces][F5][4pts
                        "only the component of v_i - v_j along the spring is damped", kTol);
 
   // Spring and damper together, rest = 4: tension 7 * 1 + 2 * 1.5 = 10, f_i = -10 u.
-  wbtest::require_near(spring_force(xi, xj, vj + 1.5 * u + 2.0 * perp, vj, k, 4.0, kd),
-                       Vec2(-6, -8), kTol,
-                       "spring and damper add along u: -(k (L - rest) + kd (v_i - v_j) . u) u",
-                       kTol);
+  wbtest::require_near(
+      spring_force(xi, xj, vj + 1.5 * u + 2.0 * perp, vj, k, 4.0, kd), Vec2(-6, -8), kTol,
+      "spring and damper add along u: -(k (L - rest) + kd (v_i - v_j) . u) u", kTol);
 }
 
 TEST_CASE("F5 spring: anchored form and equal and opposite forces between particles",

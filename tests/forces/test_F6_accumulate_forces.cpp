@@ -22,8 +22,8 @@ constexpr double kTol = 1e-12;
 void check_size(const Mat2X& x, const Mat2X& f, const char* term) {
   if (f.cols() != x.cols()) {
     throw std::logic_error(std::string("accumulate_forces passed f with ") +
-                           std::to_string(f.cols()) + " columns to the " + term + " term, but there are " +
-                           std::to_string(x.cols()) +
+                           std::to_string(f.cols()) + " columns to the " + term +
+                           " term, but there are " + std::to_string(x.cols()) +
                            " particles: make f 2 x n (and zero) before calling the terms");
   }
 }

@@ -92,10 +92,11 @@ TEST_CASE("F7 boids: two close boids push apart with w_s m d / r^2", "[forces][F
 TEST_CASE("F7 boids: alignment steers to the neighbours' mean velocity", "[forces][F7][4pts]") {
   // Four boids, all within the alignment radius of each other, w_a = 0.5,
   // m = (1, 2, 0.5, 4). v = (1, 0), (0, 2), (-1, 1), (2, -1).
-  //   i = 0: mean of v_1 v_2 v_3 = (1/3, 2/3), minus v_0 = (-2/3, 2/3),  f = 1 * 0.5 * that = (-1/3, 1/3)
-  //   i = 1: mean of v_0 v_2 v_3 = (2/3, 0),   minus v_1 = (2/3, -2),    f = 2 * 0.5 * that = (2/3, -2)
-  //   i = 2: mean of v_0 v_1 v_3 = (1, 1/3),   minus v_2 = (2, -2/3),    f = 0.5 * 0.5 * that = (0.5, -1/6)
-  //   i = 3: mean of v_0 v_1 v_2 = (0, 1),     minus v_3 = (-2, 2),      f = 4 * 0.5 * that = (-4, 4)
+  //   i = 0: mean of v_1 v_2 v_3 = (1/3, 2/3), minus v_0 = (-2/3, 2/3),  f = 1 * 0.5 * that =
+  //   (-1/3, 1/3) i = 1: mean of v_0 v_2 v_3 = (2/3, 0),   minus v_1 = (2/3, -2),    f = 2 * 0.5
+  //   * that = (2/3, -2) i = 2: mean of v_0 v_1 v_3 = (1, 1/3),   minus v_2 = (2, -2/3),    f =
+  //   0.5 * 0.5 * that = (0.5, -1/6) i = 3: mean of v_0 v_1 v_2 = (0, 1),     minus v_3 = (-2,
+  //   2),      f = 4 * 0.5 * that = (-4, 4)
   // (The mean is over the others: including the boid itself would give 3/4 of these.)
   BoidsParams p;
   p.alignment = {0.5, 2.0};
@@ -106,17 +107,18 @@ TEST_CASE("F7 boids: alignment steers to the neighbours' mean velocity", "[force
   add_boids(x, v, m, p, f);
   const Mat2X expected =
       cols({Vec2(-1.0 / 3, 1.0 / 3), Vec2(2.0 / 3, -2), Vec2(0.5, -1.0 / 6), Vec2(-4, 4)});
-  wbtest::require_near(f, expected, kTol,
-                       "alignment: w_a m_i (mean of the neighbours' v_j - v_i), neighbours j != i",
-                       kTol);
+  wbtest::require_near(
+      f, expected, kTol,
+      "alignment: w_a m_i (mean of the neighbours' v_j - v_i), neighbours j != i", kTol);
 }
 
 TEST_CASE("F7 boids: cohesion steers to the neighbours' centre", "[forces][F7][3pts]") {
   // Three boids within the cohesion radius, w_c = 0.3, m = (2, 1, 0.5).
   // x = (0.2, 0.1), (1.4, 0.7), (0.5, 1.6).
-  //   i = 0: mean of x_1 x_2 = (0.95, 1.15), minus x_0 = (0.75, 1.05),  f = 2 * 0.3 * that   = (0.45, 0.63)
-  //   i = 1: mean of x_0 x_2 = (0.35, 0.85), minus x_1 = (-1.05, 0.15), f = 1 * 0.3 * that   = (-0.315, 0.045)
-  //   i = 2: mean of x_0 x_1 = (0.8, 0.4),   minus x_2 = (0.3, -1.2),   f = 0.5 * 0.3 * that = (0.045, -0.18)
+  //   i = 0: mean of x_1 x_2 = (0.95, 1.15), minus x_0 = (0.75, 1.05),  f = 2 * 0.3 * that   =
+  //   (0.45, 0.63) i = 1: mean of x_0 x_2 = (0.35, 0.85), minus x_1 = (-1.05, 0.15), f = 1 * 0.3
+  //   * that   = (-0.315, 0.045) i = 2: mean of x_0 x_1 = (0.8, 0.4),   minus x_2 = (0.3, -1.2),
+  //   f = 0.5 * 0.3 * that = (0.045, -0.18)
   BoidsParams p;
   p.cohesion = {0.3, 3.0};
   const Mat2X x = cols({Vec2(0.2, 0.1), Vec2(1.4, 0.7), Vec2(0.5, 1.6)});
@@ -145,8 +147,7 @@ TEST_CASE("F7 boids: each rule sees only the neighbours inside its own radius",
   p.cohesion = {0.3, 2.0};
   const Mat2X x =
       cols({Vec2(0, 0), Vec2(0.3, 0.4), Vec2(0.8, -0.6), Vec2(-0.9, 1.2), Vec2(10, 10)});
-  const Mat2X v =
-      cols({Vec2(1, 0), Vec2(0, 2), Vec2(-1, 1), Vec2(2, -1), Vec2(3, 3)});
+  const Mat2X v = cols({Vec2(1, 0), Vec2(0, 2), Vec2(-1, 1), Vec2(2, -1), Vec2(3, 3)});
   const VecX m = masses({1.0, 2.0, 0.5, 4.0, 1.5});
   Mat2X f = Mat2X::Zero(2, 5);
   add_boids(x, v, m, p, f);
@@ -170,8 +171,7 @@ TEST_CASE("F7 boids: each rule sees only the neighbours inside its own radius",
                        kTol);
 }
 
-TEST_CASE("F7 boids: coincident boids and a boid at its goal give no NaN",
-          "[forces][F7][2pts]") {
+TEST_CASE("F7 boids: coincident boids and a boid at its goal give no NaN", "[forces][F7][2pts]") {
   // Boids 0 and 1 both at (1, 1); boid 2 at (1.3, 1.4), 0.5 away, and on the goal.
   // Every rule has radius 1; w_s = 0.2, w_a = 0.5, w_c = 0.3, w_g = 0.5; m = (1, 2, 0.5);
   // v = (1, 0), (0, 1), (-1, -1). The coincident pair are not neighbours
@@ -181,8 +181,9 @@ TEST_CASE("F7 boids: coincident boids and a boid at its goal give no NaN",
   //   s_0 = ... + (-1, -0.5) = (-0.85, -0.3),  f_0 = 1 * s_0
   //   s_1 = ... + (-0.5, -1) = (-0.35, -0.8),  f_1 = 2 * s_1 = (-0.7, -1.6)
   // Boid 2 sees both, at (1, 1), and sits on its goal (no goal term):
-  //   sep 2 (0.3, 0.4) / 0.25 * 0.2 = (0.48, 0.64), align 0.5 ((0.5, 0.5) - (-1, -1)) = (0.75, 0.75),
-  //   coh 0.3 ((1, 1) - (1.3, 1.4)) = (-0.09, -0.12): s_2 = (1.14, 1.27), f_2 = 0.5 s_2 = (0.57, 0.635)
+  //   sep 2 (0.3, 0.4) / 0.25 * 0.2 = (0.48, 0.64), align 0.5 ((0.5, 0.5) - (-1, -1)) = (0.75,
+  //   0.75), coh 0.3 ((1, 1) - (1.3, 1.4)) = (-0.09, -0.12): s_2 = (1.14, 1.27), f_2 = 0.5 s_2 =
+  //   (0.57, 0.635)
   BoidsParams p;
   p.separation = {0.2, 1.0};
   p.alignment = {0.5, 1.0};
@@ -202,8 +203,9 @@ TEST_CASE("F7 boids: coincident boids and a boid at its goal give no NaN",
                        kTol);
 }
 
-TEST_CASE("F7 boids: a flock with only alignment converges to its mean velocity at the predicted rate",
-          "[forces][F7][2pts]") {
+TEST_CASE(
+    "F7 boids: a flock with only alignment converges to its mean velocity at the predicted rate",
+    "[forces][F7][2pts]") {
   // When every boid is a neighbour of every other (n boids, huge radius), the
   // acceleration is a_i = s_i = w_a (mean_{j != i} v_j - v_i) = w_a n/(n-1) (vbar - v_i),
   // whatever the masses. With semi-implicit Euler (v += h a; x += h v) the mean

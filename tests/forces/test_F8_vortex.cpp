@@ -64,9 +64,10 @@ TEST_CASE("F8 vortex: the flow is continuous at the core radius and zero at the 
   const Vec2 u_in = vortex_flow(p.center + (p.core * (1 - 1e-9)) * unit, p);
   const Vec2 u_out = vortex_flow(p.center + (p.core * (1 + 1e-9)) * unit, p);
   wbtest::require_near(u_in, on_core, tol, "just inside the core: u = omega R perp(unit)");
-  wbtest::require_near(u_out, on_core, tol,
-                       "just outside the core: u = omega R^2 perp(d) / r^2 -> omega R perp(unit), "
-                       "the same as inside (a Rankine vortex has no jump)");
+  wbtest::require_near(
+      u_out, on_core, tol,
+      "just outside the core: u = omega R^2 perp(d) / r^2 -> omega R perp(unit), "
+      "the same as inside (a Rankine vortex has no jump)");
 
   // The axis itself does not move.
   const Vec2 u0 = vortex_flow(p.center, p);
@@ -111,7 +112,8 @@ TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise"
       if (d.norm() < 1e-3) continue;
       const double turn = wb::cross(d, vortex_flow(pts.col(i), p));  // > 0: counter-clockwise
       CAPTURE(omega, i, turn);
-      INFO("the flow must turn in the sense of omega: cross(x - center, u) has the sign of omega");
+      INFO(
+          "the flow must turn in the sense of omega: cross(x - center, u) has the sign of omega");
       REQUIRE(turn * omega > 0);
     }
   }

@@ -10,8 +10,8 @@
 #pragma once
 #include <cmath>
 #include <functional>
-#include <sstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -73,7 +73,8 @@ inline double kepler_error(StepFn step, int N) {
   wb::Scratch s = nan_scratch(1);
   const double h = kOrderT / N;
   for (int k = 0; k < N; ++k) step(dyn, h, x, v, s);
-  const wb::Vec2 xe(std::cos(kOrderT), std::sin(kOrderT)), ve(-std::sin(kOrderT), std::cos(kOrderT));
+  const wb::Vec2 xe(std::cos(kOrderT), std::sin(kOrderT)),
+      ve(-std::sin(kOrderT), std::cos(kOrderT));
   const double ex = (wb::Vec2(x.col(0)) - xe).norm(), ev = (wb::Vec2(v.col(0)) - ve).norm();
   return std::sqrt(ex * ex + ev * ev);  // NaN stays NaN and fails below
 }
@@ -83,8 +84,8 @@ inline void check_second_order(StepFn step, const std::string& method) {
   for (int N : kOrderSteps) e.push_back(kepler_error(step, N));
   for (std::size_t k = 0; k + 1 < e.size(); ++k) {
     const double p = std::log2(e[k] / e[k + 1]);
-    INFO(method << " on the circular Kepler orbit, T = " << kOrderT << ": error "
-                << e[k] << " with " << kOrderSteps[k] << " steps, " << e[k + 1] << " with "
+    INFO(method << " on the circular Kepler orbit, T = " << kOrderT << ": error " << e[k]
+                << " with " << kOrderSteps[k] << " steps, " << e[k + 1] << " with "
                 << kOrderSteps[k + 1] << " steps\n  measured order log2(ratio) = " << p
                 << ", expected 2 +- " << kOrderWindow
                 << " (a second-order method: halving h divides the error by 4).\n"
@@ -105,7 +106,8 @@ constexpr double kRoundTol = 1e-13;
 
 // Per particle i and coordinate: a = -k_i x - c_i v (mass 1), so the state
 // (x, v) of each coordinate obeys X' = A X with A = [[0, 1], [-k_i, -c_i]].
-inline wb::LambdaDynamics linear_dynamics(const std::vector<double>& k, const std::vector<double>& c) {
+inline wb::LambdaDynamics linear_dynamics(const std::vector<double>& k,
+                                          const std::vector<double>& c) {
   return wb::LambdaDynamics([k, c](const Mat2X& x, const Mat2X& v, Mat2X& a) {
     for (Eigen::Index i = 0; i < x.cols(); ++i) a.col(i) = -k[i] * x.col(i) - c[i] * v.col(i);
   });
@@ -113,8 +115,8 @@ inline wb::LambdaDynamics linear_dynamics(const std::vector<double>& k, const st
 
 // The exact one-step result of a second-order Runge-Kutta method on X' = A X:
 // M X with M = I + hA + (hA)^2/2 (both methods, see the handout).
-inline void linear_step_expected(double k, double c, double h, const wb::Vec2& x, const wb::Vec2& v,
-                                 wb::Vec2& x1, wb::Vec2& v1) {
+inline void linear_step_expected(double k, double c, double h, const wb::Vec2& x,
+                                 const wb::Vec2& v, wb::Vec2& x1, wb::Vec2& v1) {
   Eigen::Matrix2d A;
   A << 0.0, 1.0, -k, -c;
   const Eigen::Matrix2d M = Eigen::Matrix2d::Identity() + h * A + 0.5 * h * h * A * A;
@@ -128,9 +130,9 @@ inline void linear_step_expected(double k, double c, double h, const wb::Vec2& x
 // The undamped oscillator: E_{n+1} / E_n = 1 + (h w)^4 / 4 at every step, and
 // a damped one: one step equals M X. Several particles at once, each with its
 // own constants, so that a step that mixes columns is caught too.
-inline void check_linear_step(StepFn step, const std::string& method, const std::vector<double>& k,
-                              const std::vector<double>& c, double h, const Mat2X& x0,
-                              const Mat2X& v0) {
+inline void check_linear_step(StepFn step, const std::string& method,
+                              const std::vector<double>& k, const std::vector<double>& c,
+                              double h, const Mat2X& x0, const Mat2X& v0) {
   wb::LambdaDynamics dyn = linear_dynamics(k, c);
   Mat2X x = x0, v = v0;
   wb::Scratch s = nan_scratch(x.cols());
@@ -163,8 +165,8 @@ inline void check_energy_factor(StepFn step, const std::string& method) {
       const double e0 = E();
       step(dyn, h, x, v, s);
       wbtest::require_near(E() / e0, factor, 0.0,
-                           method + " on the oscillator a = -w^2 x, h w = " + num(z) +
-                               ", step " + std::to_string(n + 1) +
+                           method + " on the oscillator a = -w^2 x, h w = " + num(z) + ", step " +
+                               std::to_string(n + 1) +
                                ": energy ratio E_n+1 / E_n must be exactly 1 + (h w)^4 / 4",
                            kRoundTol);
     }
@@ -236,7 +238,8 @@ inline void check_two_evaluations(StepFn step, const std::string& method) {
   for (int n = 1; n <= 3; ++n) {
     const long before = dyn.evals();
     step(dyn, 0.01, x, v, s);
-    INFO(method << ", step " << n << ": expected exactly 2 calls to dyn.acceleration per step, got "
+    INFO(method << ", step " << n
+                << ": expected exactly 2 calls to dyn.acceleration per step, got "
                 << dyn.evals() - before
                 << " (one at the start, one at the intermediate state; no more, no fewer)");
     REQUIRE(dyn.evals() - before == 2);

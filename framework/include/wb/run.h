@@ -15,11 +15,11 @@
 namespace wb {
 
 struct LabInfo {
-  std::string lab;                       // "forces"
-  std::string side;                      // "student" or "solution"
-  std::string summary;                   // one line for --help
-  std::vector<Integrator> integrators;   // the first is the default
-  bool sweep = false;                    // offers --sweep (integration labs)
+  std::string lab;                      // "forces"
+  std::string side;                     // "student" or "solution"
+  std::string summary;                  // one line for --help
+  std::vector<Integrator> integrators;  // the first is the default
+  bool sweep = false;                   // offers --sweep (integration labs)
 };
 
 // What one simulation produced: the summary line's fields.

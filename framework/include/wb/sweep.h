@@ -16,9 +16,9 @@ const std::vector<std::string>& sweep_scene_keys();
 // A scene's closed-form motion, from its "exact" key (docs/scenes.md).
 struct ExactSolution {
   enum Kind { kNone, kOscillator, kKepler } kind = kNone;
-  Vec2 center = Vec2::Zero();  // the spring's anchor or the attractor's centre (m)
-  double w = 0;                // oscillator: sqrt(k/m) (rad/s)
-  double GM = 0;               // kepler: attractor strength (m^3/s^2)
+  Vec2 center = Vec2::Zero();                 // the spring's anchor or the attractor's centre (m)
+  double w = 0;                               // oscillator: sqrt(k/m) (rad/s)
+  double GM = 0;                              // kepler: attractor strength (m^3/s^2)
   Vec2 x0 = Vec2::Zero(), v0 = Vec2::Zero();  // the particle's initial state
   // The particle's position and velocity at time t.
   void at(double t, Vec2& x, Vec2& v) const;
