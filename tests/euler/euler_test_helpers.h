@@ -2,7 +2,9 @@
 // Nothing here uses the forces lab: every acceleration is written in the test.
 #pragma once
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "test_helpers.h"
@@ -68,6 +70,62 @@ inline Mat2X cols(std::initializer_list<Vec2> list) {
   Eigen::Index i = 0;
   for (const Vec2& c : list) m.col(i++) = c;
   return m;
+}
+
+// Checks that `step` makes exactly one force evaluation per step, at the state
+// (x_n, v_n) the step started from; `method` names it in failure messages.
+inline void check_one_evaluation_at_start(wb::StepFn step, const std::string& method) {
+  Run r(oscillator(3.0), cols({{1.0, 0.5}, {-2.0, 0.0}}), cols({{0.0, 1.0}, {0.5, 0.5}}));
+  r.record = true;
+  for (int n = 0; n < 25; ++n) {
+    const Mat2X xn = r.x, vn = r.v;
+    const std::size_t before = r.seen_x.size();
+    r.step(step, 0.05);
+    INFO(method << ", step " << n + 1);
+    {
+      INFO("force evaluations in this step: expected 1, got " << r.seen_x.size() - before);
+      REQUIRE(r.seen_x.size() == before + 1);
+    }
+    wbtest::require_near(r.seen_x.back(), xn, 0.0, "the evaluation must see the positions x_n");
+    wbtest::require_near(r.seen_v.back(), vn, 0.0, "the evaluation must see the velocities v_n");
+  }
+  INFO("Dynamics::evals() after 25 steps");
+  REQUIRE(r.dyn.evals() == 25);
+}
+
+// Six particles, particle i an oscillator with its own w_i. Per coordinate a
+// step is the linear map (x, v) -> M(h, w_i) (x, v), so after N steps each
+// column must equal M^N (x0, v0) of its own particle: a step that mixes
+// columns, or skips some, fails. `M` is written out in `matrix_text`.
+inline void check_independent_particles(wb::StepFn step,
+                                        const std::function<wb::Mat2(double h, double w)>& M,
+                                        const std::string& matrix_text) {
+  const Eigen::Index n = 6;
+  const double h = 0.02;
+  Eigen::VectorXd w(n);
+  w << 1.0, 2.0, 3.5, 5.0, 8.0, 13.0;
+  auto accel = [&](const Mat2X& x, const Mat2X&, Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) a.col(i) = -(w[i] * w[i]) * x.col(i);
+  };
+  Mat2X x0(2, n), v0(2, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x0.col(i) = Vec2(1.0 + 0.5 * double(i), -0.25 * double(i));
+    v0.col(i) = Vec2(0.1 * double(i), 2.0 - 0.3 * double(i));
+  }
+  const int N = 100;
+  Run r(accel, x0, v0);
+  for (int k = 0; k < N; ++k) r.step(step, h);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    wb::Mat2 P = wb::Mat2::Identity();
+    for (int k = 0; k < N; ++k) P = M(h, w[i]) * P;
+    for (int d = 0; d < 2; ++d) {
+      const Vec2 e = P * Vec2(x0(d, i), v0(d, i));
+      INFO("particle " << i << " (w = " << w[i] << "), coordinate " << d
+                       << ": every column must be stepped with its own state only");
+      wbtest::require_near(Vec2(r.x(d, i), r.v(d, i)), e, 1e-12,
+                           "(x, v) after 100 steps = M^100 (x0, v0), M = " + matrix_text, 1e-10);
+    }
+  }
 }
 
 }  // namespace eulertest

@@ -191,57 +191,18 @@ TEST_CASE("E2 viscous damping: velocities decay by 1 - h b/m per step", "[euler]
 
 TEST_CASE("E2 one force evaluation per step at the start of the step", "[euler][E2][4pts]") {
   // Semi-implicit Euler needs a(x_n, v_n) only: one call per step, at the old state.
-  Run r(oscillator(3.0), cols({{1.0, 0.5}, {-2.0, 0.0}}), cols({{0.0, 1.0}, {0.5, 0.5}}));
-  r.record = true;
-  for (int n = 0; n < 25; ++n) {
-    const Mat2X xn = r.x, vn = r.v;
-    const std::size_t before = r.seen_x.size();
-    r.step(symplectic_euler_step, 0.05);
-    INFO("step " << n + 1);
-    {
-      INFO("force evaluations in this step: expected 1, got " << r.seen_x.size() - before);
-      REQUIRE(r.seen_x.size() == before + 1);
-    }
-    require_near(r.seen_x.back(), xn, 0.0, "the evaluation must see the positions x_n");
-    require_near(r.seen_v.back(), vn, 0.0, "the evaluation must see the velocities v_n");
-  }
-  INFO("Dynamics::evals() after 25 steps");
-  REQUIRE(r.dyn.evals() == 25);
+  check_one_evaluation_at_start(symplectic_euler_step, "semi-implicit Euler");
 }
 
 TEST_CASE("E2 several particles step independently", "[euler][E2][3pts]") {
-  // Particle i is an oscillator with its own w_i. Per coordinate the step is
-  // the linear map (x, v) -> (x + h v', v' = v - h w^2 x): its n-th power is exact.
-  const Eigen::Index n = 6;
-  const double h = 0.02;
-  Eigen::VectorXd w(n);
-  w << 1.0, 2.0, 3.5, 5.0, 8.0, 13.0;
-  auto accel = [&](const Mat2X& x, const Mat2X&, Mat2X& a) {
-    for (Eigen::Index i = 0; i < x.cols(); ++i) a.col(i) = -(w[i] * w[i]) * x.col(i);
-  };
-  Mat2X x0(2, n), v0(2, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    x0.col(i) = Vec2(1.0 + 0.5 * double(i), -0.25 * double(i));
-    v0.col(i) = Vec2(0.1 * double(i), 2.0 - 0.3 * double(i));
-  }
-  const int N = 100;
-  Run r(accel, x0, v0);
-  for (int k = 0; k < N; ++k) r.step(symplectic_euler_step, h);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double hw2 = h * h * w[i] * w[i];
-    wb::Mat2 M;  // (x, v) of one coordinate -> one semi-implicit Euler step later
-    M << 1.0 - hw2, h, -h * w[i] * w[i], 1.0;
-    wb::Mat2 P = wb::Mat2::Identity();
-    for (int k = 0; k < N; ++k) P = M * P;
-    for (int d = 0; d < 2; ++d) {
-      const Vec2 e = P * Vec2(x0(d, i), v0(d, i));
-      INFO("particle " << i << " (w = " << w[i] << "), coordinate " << d
-                       << ": every column must be stepped with its own state only");
-      require_near(Vec2(r.x(d, i), r.v(d, i)), e, 1e-12,
-                   "(x, v) after 100 steps = M^100 (x0, v0), M = [1 - (hw)^2 h, -h w^2 1]",
-                   1e-10);
-    }
-  }
+  check_independent_particles(
+      symplectic_euler_step,
+      [](double h, double w) {
+        wb::Mat2 M;  // (x, v) -> (x + h v', v' = v - h w^2 x)
+        M << 1.0 - h * h * w * w, h, -h * w * w, 1.0;
+        return M;
+      },
+      "[1 - (hw)^2 h, -h w^2 1]");
 }
 
 TEST_CASE("E2 eccentric orbit: angular momentum conserved and energy error does not drift",
