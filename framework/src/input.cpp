@@ -162,6 +162,13 @@ json read_json_file(const std::string& file) {
   buf << in.rdbuf();
   try {
     return json::parse(buf.str());
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double (1e999) is refused by the parser.
+    std::string what = e.what();
+    auto p = what.find("number overflow");
+    throw InputError(
+        file + ": not a usable JSON number: " + (p == std::string::npos ? what : what.substr(p)) +
+        ", expected a finite number");
   } catch (const json::parse_error& e) {
     // e.what() carries the byte position; drop the library's prefix.
     std::string what = e.what();
