@@ -54,11 +54,11 @@ ExactSolution read_exact(const Scene& scene) {
           "exactly one particle for \"" + kind + "\" (it has " + std::to_string(scene.n()) + ")");
   const json& forces = top.array_or_empty("forces");
   const std::string one_force = kind == "oscillator" ? "spring" : "attractor";
-  require(forces.size() == 1, "exactly one force, a \"" + one_force + "\", for \"" + kind +
+  require(forces.size() == 1, "exactly one force, of type \"" + one_force + "\", for \"" + kind +
                                   "\" (it has " + std::to_string(forces.size()) + ")");
   JsonObject f = top.element("forces", 0);
-  require(f.string("type") == one_force, "exactly one force, a \"" + one_force + "\", for \"" +
-                                             kind + "\" (forces[0] has type \"" +
+  require(f.string("type") == one_force, "exactly one force, of type \"" + one_force +
+                                             "\", for \"" + kind + "\" (forces[0] has type \"" +
                                              f.string("type") + "\")");
   ex.x0 = scene.x.col(0);
   ex.v0 = scene.v.col(0);
