@@ -40,9 +40,9 @@
 #include <string>
 #include <vector>
 
+#include "forces_world.h"
 #include "wb/dynamics.h"
 #include "wb/scene.h"
-#include "wb/scene_forces.h"
 #ifdef WB_BENCH_HAS_EULER
 #include "explicit_euler.h"
 #include "symplectic_euler.h"

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
 #include "wb/output.h"
@@ -26,10 +28,38 @@ std::vector<std::string> default_scenes(const std::string& lab) {
   std::vector<std::string> out;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(scenes_dir() + "/" + lab, ec)) {
-    if (e.path().extension() == ".json") out.push_back(e.path().string());
+    if (e.path().extension() == ".json") {
+      out.push_back("scenes/" + lab + "/" + e.path().filename().string());
+    }
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::string num(double x) {
+  std::string s;
+  append_number(s, x);
+  return s;
+}
+
+void check_output_path(const std::string& flag, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  if (path.empty()) throw InputError(flag + ": got an empty path, expected a file name");
+  if (fs::is_directory(p, ec)) {
+    throw InputError(flag + ": got \"" + path + "\", a folder, expected a file name");
+  }
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec)) {
+    throw InputError(flag + ": got \"" + path + "\", expected a file in an existing folder (\"" +
+                     dir.string() + "\" does not exist)");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw InputError(flag + ": got \"" + path +
+                     "\", expected a file in a folder you can write (\"" + dir.string() +
+                     "\" is not writable)");
+  }
 }
 
 const Integrator& find_integrator(const LabInfo& info, const std::string& name,
@@ -72,10 +102,11 @@ void append_stats_row(std::string& buf, long step, double t, const Energy& e, co
 
 }  // namespace
 
-RunResult simulate(const Scene& scene, const ForceList& forces, const RunOptions& opt) {
+RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt) {
   RunResult r;
   Mat2X x = scene.x, v = scene.v;
-  ParticleDynamics dyn(forces, scene.m);
+  const Dynamics& dyn = world.dynamics();
+  dyn.reset_evals();
   Scratch scratch;
   scratch.resize(x.cols());
 
@@ -95,18 +126,25 @@ RunResult simulate(const Scene& scene, const ForceList& forces, const RunOptions
       if (tbuf.size() > (1u << 20)) trace->write(tbuf), tbuf.clear();
     }
     if (stats) {
-      append_stats_row(sbuf, step, t, energy(forces, x, v, scene.m), momentum(v, scene.m),
-                       dyn.evals());
+      append_stats_row(sbuf, step, t, world.energy(x, v), momentum(v, scene.m), dyn.evals());
     }
   };
 
-  r.energy0 = energy(forces, x, v, scene.m);
+  r.energy0 = world.energy(x, v);
   r.momentum0 = momentum(v, scene.m);
   record(0, 0.0);
   const auto start = std::chrono::steady_clock::now();
   long k = 0;
+  bool moved = false;  // did any step change the state?
   while (k < opt.steps) {
-    opt.integrator->step(dyn, opt.dt, x, v, scratch);
+    if (!moved) {
+      const Mat2X x_before = x, v_before = v;
+      opt.integrator->step(dyn, opt.dt, x, v, scratch);
+      moved = x != x_before || v != v_before;
+    } else {
+      opt.integrator->step(dyn, opt.dt, x, v, scratch);
+    }
+    world.after_step(opt.dt, x, v);
     ++k;
     const double t = double(k) * opt.dt;  // not accumulated: no drift in t
     r.diverged = !(x.allFinite() && v.allFinite());
@@ -117,7 +155,18 @@ RunResult simulate(const Scene& scene, const ForceList& forces, const RunOptions
   r.steps = k;
   r.t = double(k) * opt.dt;
   r.force_evals = dyn.evals();
-  r.energy = energy(forces, x, v, scene.m);
+  r.energy = world.energy(x, v);
+  // A stub looks like a perfect run (energy conserved exactly): say so.
+  if (k > 0 && opt.integrator->evals_per_step > 0 && r.force_evals == 0) {
+    r.warnings.push_back("the integrator \"" + opt.integrator->name +
+                         "\" evaluated no forces in " + std::to_string(k) +
+                         " steps: is its step function written yet?");
+  }
+  if (k > 0 && !moved && scene.n() > 0) {
+    r.warnings.push_back("the state never changed in " + std::to_string(k) +
+                         " steps (no step moved a particle or changed a velocity): is the "
+                         "step, or a force, still a stub?");
+  }
   r.momentum = momentum(v, scene.m);
   if (trace) trace->write(tbuf), trace->commit();
   if (stats) stats->write(sbuf), stats->commit();
@@ -143,6 +192,7 @@ ordered_json summary_json(const RunResult& r) {
   j["energy"] = number_or_null(r.energy.total());
   j["momentum0"] = {number_or_null(r.momentum0.x()), number_or_null(r.momentum0.y())};
   j["momentum"] = {number_or_null(r.momentum.x()), number_or_null(r.momentum.y())};
+  if (!r.warnings.empty()) j["warnings"] = r.warnings;
   return j;
 }
 
@@ -154,11 +204,11 @@ std::string help_footer(const LabInfo& info) {
          std::to_string(it.evals_per_step) + " force evaluation" +
          (it.evals_per_step == 1 ? "" : "s") + " per step)\n";
   }
-  s += "  default: " + info.integrators.front().name + "\n\nForce types (scene \"forces\"):\n  ";
-  for (const auto& t : force_types()) s += t + (t == force_types().back() ? "\n" : ", ");
+  s += "  default: " + info.integrators.front().name + "\n";
+  for (const auto& section : info.help_sections) s += "\n" + section;
   s += "\nDefault scenes:\n";
   auto scenes = default_scenes(info.lab);
-  if (scenes.empty()) s += "  (none found under " + scenes_dir() + "/" + info.lab + ")\n";
+  if (scenes.empty()) s += "  (none found under scenes/" + info.lab + ")\n";
   for (const auto& f : scenes) s += "  " + f + "\n";
   if (info.sweep) {
     s += "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
@@ -228,11 +278,6 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
                          const std::string& expected) {
       return InputError(flag + ": got " + got + ", expected " + expected);
     };
-    auto num = [](double x) {
-      std::string s;
-      append_number(s, x);
-      return s;
-    };
     if (dt && !(std::isfinite(*dt) && *dt > 0))
       throw flag_error("--dt", num(*dt), "a finite number > 0");
     if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
@@ -247,14 +292,19 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
 
     std::optional<std::uint64_t> seed;
     if (seed_in) seed = std::uint64_t(*seed_in);
-    Scene scene = load_scene(scene_file, seed,
-                             info.sweep ? sweep_scene_keys() : std::vector<std::string>{});
-    ForceList forces = build_forces(scene);
+    if (!out.empty()) check_output_path("--out", out);
+    if (!stats.empty()) check_output_path("--stats", stats);
+    if (!sweep.csv.empty()) check_output_path("--sweep", sweep.csv);
+    std::vector<std::string> keys = info.scene_keys;
+    if (info.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
+    Scene scene = load_scene(scene_file, seed, keys);
+    if (!info.make_world) throw std::logic_error("LabInfo.make_world is not set");
+    std::unique_ptr<World> world = info.make_world(scene);
     if (info.sweep) read_exact(scene);  // checks the "exact" key in every mode
     if (!sweep.csv.empty()) {
       sweep.dt = dt;
       sweep.t_end = t_end;
-      SweepResult sr = run_sweep(info, scene, forces, sweep);
+      SweepResult sr = run_sweep(info, scene, *world, sweep);
       ordered_json j;
       j["status"] = "ok";
       j["sweep"] = sweep.csv;
@@ -297,7 +347,8 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     opt.out = out;
     opt.stats = stats;
 
-    RunResult r = simulate(scene, forces, opt);
+    RunResult r = simulate(scene, *world, opt);
+    for (const auto& w : r.warnings) std::cerr << exe << ": warning: " << w << "\n";
     std::cout << summary_json(r).dump() << std::endl;
     return 0;
   } catch (const InputError& e) {

@@ -14,16 +14,6 @@
 
 namespace wb {
 
-namespace {
-
-std::string num(double x) {
-  std::string s;
-  append_number(s, x);
-  return s;
-}
-
-}  // namespace
-
 const std::vector<std::string>& sweep_scene_keys() {
   static const std::vector<std::string> keys = {"exact"};
   return keys;
@@ -131,13 +121,14 @@ struct Row {
 };
 
 // Positions at time steps * h of an RK4 run, or non-finite if it diverged.
-Mat2X rk4_positions(const Scene& scene, const ForceList& forces, double h, long steps) {
-  ParticleDynamics dyn(forces, scene.m);
+Mat2X rk4_positions(const Scene& scene, const World& world, double h, long steps) {
+  const Dynamics& dyn = world.dynamics();
   Mat2X x = scene.x, v = scene.v;
   Scratch s;
   s.resize(x.cols());
   for (long k = 0; k < steps; ++k) {
     rk4_step(dyn, h, x, v, s);
+    world.after_step(h, x, v);
     if (!(x.allFinite() && v.allFinite())) break;
   }
   return x;
@@ -145,7 +136,7 @@ Mat2X rk4_positions(const Scene& scene, const ForceList& forces, double h, long 
 
 }  // namespace
 
-SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& forces,
+SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& world,
                       const SweepOptions& opt) {
   // Which integrators, which step sizes, to what time.
   std::vector<const Integrator*> integrators;
@@ -209,7 +200,7 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
     if (opt.progress) {
       std::cerr << "sweep: reference rk4 to t = " << t << " in " << n << " steps\n";
     }
-    Mat2X x = rk4_positions(scene, forces, t / double(n), n);
+    Mat2X x = rk4_positions(scene, world, t / double(n), n);
     if (!x.allFinite()) {
       std::cerr << "sweep: warning: the rk4 reference diverged at h = " << t / double(n)
                 << ": errors against it are written as nan\n";
@@ -219,7 +210,7 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
 
   std::vector<Row> rows;
   const std::size_t total = integrators.size() * dts.size();
-  const Energy e0 = energy(forces, scene.x, scene.v, scene.m);
+  const Energy e0 = world.energy(scene.x, scene.v);
   const double scale = energy_scale(e0);
   Scratch s;
   s.resize(scene.n());
@@ -233,17 +224,18 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
         std::cerr << "sweep: " << integ->name << " dt=" << num(row.dt) << " (" << rows.size() + 1
                   << "/" << total << ")\n";
       }
-      ParticleDynamics dyn(forces, scene.m);
+      const Dynamics& dyn = world.dynamics();
 
       // Untimed run: divergence and the largest energy error over the run.
       Mat2X x = scene.x, v = scene.v;
       for (long k = 0; k < row.steps; ++k) {
         integ->step(dyn, row.dt, x, v, s);
+        world.after_step(row.dt, x, v);
         if (!(x.allFinite() && v.allFinite())) {
           row.diverged = true;
           break;
         }
-        const double de = std::abs(energy(forces, x, v, scene.m).total() - e0.total()) / scale;
+        const double de = std::abs(world.energy(x, v).total() - e0.total()) / scale;
         row.energy_error = std::max(row.energy_error, de);
       }
       if (row.diverged) {
@@ -261,7 +253,10 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& 
         v = scene.v;
         dyn.reset_evals();
         const auto start = std::chrono::steady_clock::now();
-        for (long k = 0; k < row.steps; ++k) integ->step(dyn, row.dt, x, v, s);
+        for (long k = 0; k < row.steps; ++k) {
+          integ->step(dyn, row.dt, x, v, s);
+          world.after_step(row.dt, x, v);
+        }
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         row.wall_s = std::min(row.wall_s, wall);

@@ -10,16 +10,19 @@
 
 #include "wb/dynamics.h"
 #include "wb/scene.h"
-#include "wb/scene_forces.h"
+#include "wb/world.h"
 
 namespace wb {
 
 struct LabInfo {
-  std::string lab;                      // "forces"
-  std::string side;                     // "student" or "solution"
-  std::string summary;                  // one line for --help
-  std::vector<Integrator> integrators;  // the first is the default
-  bool sweep = false;                   // offers --sweep (integration labs)
+  std::string lab;                         // "forces"
+  std::string side;                        // "student" or "solution"
+  std::string summary;                     // one line for --help
+  std::vector<Integrator> integrators;     // the first is the default
+  bool sweep = false;                      // offers --sweep (integration labs)
+  WorldFactory make_world;                 // the lab's glue: a scene's physics
+  std::vector<std::string> scene_keys;     // top-level scene keys the glue reads
+  std::vector<std::string> help_sections;  // extra --help paragraphs (force types, keys)
 };
 
 // What one simulation produced: the summary line's fields.
@@ -32,6 +35,9 @@ struct RunResult {
   Energy energy0, energy;
   Vec2 momentum0 = Vec2::Zero(), momentum = Vec2::Zero();
   Mat2X x, v;  // final state
+  // Plain-language warnings that the run did nothing a student may take for
+  // success (a step that left the state unchanged, no force evaluated).
+  std::vector<std::string> warnings;
 };
 
 struct RunOptions {
@@ -44,7 +50,11 @@ struct RunOptions {
 };
 
 // Runs one scene from its initial state. Throws InputError for bad input.
-RunResult simulate(const Scene& scene, const ForceList& forces, const RunOptions& opt);
+RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt);
+
+// Checks before a run that an output path can be written (not a directory,
+// its folder exists); throws InputError naming `flag`.
+void check_output_path(const std::string& flag, const std::string& path);
 
 // The integrator called `name`, or InputError naming `where` and the known names.
 const Integrator& find_integrator(const LabInfo& info, const std::string& name,
@@ -54,8 +64,12 @@ const Integrator& find_integrator(const LabInfo& info, const std::string& name,
 // the exit status (0 ok or diverged, 2 bad input, 1 internal error).
 int run_particle_lab(int argc, char** argv, const LabInfo& info);
 
-// The default scenes shipped for a lab (files under scenes/<lab>/), sorted.
+// The default scenes shipped for a lab (files under scenes/<lab>/), sorted,
+// as paths relative to the repository (scenes/<lab>/NAME.json).
 std::vector<std::string> default_scenes(const std::string& lab);
 std::string scenes_dir();
+
+// A number as the summary and messages print it (17 significant digits).
+std::string num(double x);
 
 }  // namespace wb

@@ -52,7 +52,7 @@ struct SweepResult {
 // Runs the sweep and writes the CSV
 //   scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status
 // Throws InputError for bad options or scene keys.
-SweepResult run_sweep(const LabInfo& info, const Scene& scene, const ForceList& forces,
+SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& world,
                       const SweepOptions& opt);
 
 }  // namespace wb

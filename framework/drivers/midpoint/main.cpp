@@ -1,5 +1,6 @@
 // The midpoint lab executable: scenes stepped with the student's two
 // second-order methods, and the provided RK4 as the reference.
+#include "forces_world.h"
 #include "midpoint.h"
 #include "trapezoid.h"
 #include "wb/rk4.h"
@@ -21,5 +22,6 @@ int main(int argc, char** argv) {
        "trapezoid method (TODO M2): the average of X + h f(X) and X + h f(X + h f(X))"},
       rk4};
   info.sweep = true;
+  wb::use_forces(info);
   return wb::run_particle_lab(argc, argv, info);
 }

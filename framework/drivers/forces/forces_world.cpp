@@ -1,5 +1,5 @@
 // Scene force terms: JSON -> Force objects that call the forces lab's functions.
-#include "wb/scene_forces.h"
+#include "forces_world.h"
 
 #include <cmath>
 
@@ -89,40 +89,6 @@ class Damping : public Force {
   double b_;
 };
 
-struct SpringDef {
-  Eigen::Index i, j;  // j < 0: anchored
-  Vec2 anchor;
-  double k, rest, kd;
-};
-
-// Every "spring" entry of a scene, as one term.
-class Springs : public Force {
- public:
-  std::vector<SpringDef> springs;
-  void add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const override {
-    for (const SpringDef& s : springs) {
-      if (s.j < 0) {
-        f.col(s.i) +=
-            spring_force(x.col(s.i), s.anchor, v.col(s.i), Vec2::Zero(), s.k, s.rest, s.kd);
-      } else {
-        Vec2 fi = spring_force(x.col(s.i), x.col(s.j), v.col(s.i), v.col(s.j), s.k, s.rest, s.kd);
-        f.col(s.i) += fi;
-        f.col(s.j) -= fi;
-      }
-    }
-  }
-  double potential(const Mat2X& x, const VecX&) const override {
-    double V = 0;
-    for (const SpringDef& s : springs) {
-      Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
-      double stretch = (x.col(s.i) - xj).norm() - s.rest;
-      V += 0.5 * s.k * stretch * stretch;
-    }
-    return V;
-  }
-  std::string type() const override { return "spring"; }
-};
-
 class Boids : public Force {
  public:
   explicit Boids(const BoidsParams& p) : p_(p) {}
@@ -165,6 +131,29 @@ BoidRule boid_rule(const JsonObject& o, const char* key) {
 }
 
 }  // namespace
+
+void Springs::add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const {
+  for (const SpringDef& s : springs) {
+    if (s.j < 0) {
+      f.col(s.i) +=
+          spring_force(x.col(s.i), s.anchor, v.col(s.i), Vec2::Zero(), s.k, s.rest, s.kd);
+    } else {
+      Vec2 fi = spring_force(x.col(s.i), x.col(s.j), v.col(s.i), v.col(s.j), s.k, s.rest, s.kd);
+      f.col(s.i) += fi;
+      f.col(s.j) -= fi;
+    }
+  }
+}
+
+double Springs::potential(const Mat2X& x, const VecX&) const {
+  double V = 0;
+  for (const SpringDef& s : springs) {
+    Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
+    double stretch = (x.col(s.i) - xj).norm() - s.rest;
+    V += 0.5 * s.k * stretch * stretch;
+  }
+  return V;
+}
 
 const std::vector<std::string>& force_types() {
   static const std::vector<std::string> types = {"gravity", "newton", "attractor", "damping",
@@ -263,6 +252,20 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
   return e;
 }
 
-Vec2 momentum(const Mat2X& v, const VecX& m) { return v * m; }
+ForceWorld::ForceWorld(const Scene& scene)
+    : m_(scene.m), forces_(build_forces(scene)), dyn_(forces_, m_) {}
+
+Energy ForceWorld::energy(const Mat2X& x, const Mat2X& v) const {
+  return wb::energy(forces_, x, v, m_);
+}
+
+void use_forces(LabInfo& info) {
+  info.make_world = [](const Scene& scene) -> std::unique_ptr<World> {
+    return std::make_unique<ForceWorld>(scene);
+  };
+  std::string types;
+  for (const auto& t : force_types()) types += (types.empty() ? "" : ", ") + t;
+  info.help_sections.push_back("Force types (scene \"forces\"):\n  " + types + "\n");
+}
 
 }  // namespace wb

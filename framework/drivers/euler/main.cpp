@@ -1,5 +1,6 @@
 // The euler lab executable: scenes stepped with the student's two Euler steps.
 #include "explicit_euler.h"
+#include "forces_world.h"
 #include "symplectic_euler.h"
 #include "wb/run.h"
 
@@ -14,5 +15,6 @@ int main(int argc, char** argv) {
       {"symplectic-euler", symplectic_euler_step, 1, 1,
        "semi-implicit Euler (TODO E2): velocities first, positions with the new ones"}};
   info.sweep = true;
+  wb::use_forces(info);
   return wb::run_particle_lab(argc, argv, info);
 }

@@ -1,4 +1,5 @@
 // The forces lab executable: scenes stepped with the provided semi-implicit Euler.
+#include "forces_world.h"
 #include "wb/run.h"
 
 namespace {
@@ -21,5 +22,6 @@ int main(int argc, char** argv) {
       "Forces lab: particles under the forces you write, stepped with semi-implicit Euler.";
   info.integrators = {{"symplectic-euler", semi_implicit_euler, 1, 1,
                        "semi-implicit Euler, provided: velocities first, then positions"}};
+  wb::use_forces(info);
   return wb::run_particle_lab(argc, argv, info);
 }

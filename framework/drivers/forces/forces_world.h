@@ -1,0 +1,78 @@
+// The forces lab's glue: a scene's "forces" list -> Force objects that call
+// the forces lab's functions (of the side the executable is built from), and
+// the World every particle lab that runs forces steps with. The euler,
+// midpoint and later particle labs reuse it (WB lab dependency "forces").
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "wb/force.h"
+#include "wb/run.h"
+#include "wb/world.h"
+
+namespace wb {
+
+using ForceList = std::vector<std::unique_ptr<Force>>;
+
+// The force types a scene may name, for --help and error messages.
+const std::vector<std::string>& force_types();
+
+// Builds only what the scene declares; throws InputError on bad entries.
+ForceList build_forces(const Scene& scene);
+
+// One "spring" entry of a scene. All of a scene's springs form one Springs term.
+struct SpringDef {
+  Eigen::Index i, j;   // particle indices; j < 0: anchored to `anchor`
+  Vec2 anchor;         // fixed end (m) when j < 0
+  double k, rest, kd;  // stiffness (N/m), rest length (m), damping (N s/m)
+};
+
+// Every spring of a scene, as one force term (type "spring"); other labs'
+// glue finds it in a ForceList to read the network.
+class Springs : public Force {
+ public:
+  std::vector<SpringDef> springs;
+  void add(const Mat2X& x, const Mat2X& v, const VecX& m, Mat2X& f) const override;
+  double potential(const Mat2X& x, const VecX& m) const override;
+  std::string type() const override { return "spring"; }
+};
+
+// a = (sum of the forces) / m, through the student's accumulate_forces (F6).
+class ParticleDynamics : public Dynamics {
+ public:
+  ParticleDynamics(const ForceList& forces, const VecX& m);
+  const Mat2X& last_forces() const { return f_; }
+
+ protected:
+  void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const override;
+
+ private:
+  const ForceList& forces_;
+  VecX m_;
+  Eigen::Array<double, 1, Eigen::Dynamic> inv_m_;
+  mutable Mat2X f_;
+};
+
+Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m);
+
+// A particle scene's World: its forces, summed by accumulate_forces.
+class ForceWorld : public World {
+ public:
+  explicit ForceWorld(const Scene& scene);
+  const Dynamics& dynamics() const override { return dyn_; }
+  Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  const ForceList& forces() const { return forces_; }
+  const VecX& masses() const { return m_; }
+
+ private:
+  VecX m_;
+  ForceList forces_;
+  ParticleDynamics dyn_;
+};
+
+// Makes a lab run its scenes with the forces lab: sets info.make_world and
+// adds the force types to --help.
+void use_forces(LabInfo& info);
+
+}  // namespace wb

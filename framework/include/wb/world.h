@@ -1,0 +1,37 @@
+// What a lab's glue builds from a scene for the run contract: the
+// accelerations an integrator sees, the energy the summary reports, and an
+// optional phase after every step (collisions). The core knows no lab: each
+// lab's glue (framework/drivers/<lab>/) makes its own World.
+#pragma once
+#include <functional>
+#include <memory>
+
+#include "wb/dynamics.h"
+#include "wb/scene.h"
+
+namespace wb {
+
+struct Energy {
+  double kinetic = 0, potential = 0;
+  double total() const { return kinetic + potential; }
+};
+
+// Total linear momentum sum m_i v_i (kg m/s).
+inline Vec2 momentum(const Mat2X& v, const VecX& m) { return v * m; }
+
+class World {
+ public:
+  virtual ~World() = default;
+  // The accelerations a(x, v) that integrators step with.
+  virtual const Dynamics& dynamics() const = 0;
+  // Kinetic and potential energy at (x, v).
+  virtual Energy energy(const Mat2X& x, const Mat2X& v) const = 0;
+  // Called after every integrator step of size h, before the state is
+  // recorded (collision detection and response). The default does nothing.
+  virtual void after_step(double /*h*/, Mat2X& /*x*/, Mat2X& /*v*/) const {}
+};
+
+// Builds a scene's World; throws InputError for bad scene entries.
+using WorldFactory = std::function<std::unique_ptr<World>(const Scene&)>;
+
+}  // namespace wb
