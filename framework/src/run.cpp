@@ -298,6 +298,7 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     std::vector<std::string> keys = info.scene_keys;
     if (info.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
     Scene scene = load_scene(scene_file, seed, keys);
+    if (info.expand_scene) info.expand_scene(scene);
     if (!info.make_world) throw std::logic_error("LabInfo.make_world is not set");
     std::unique_ptr<World> world = info.make_world(scene);
     if (info.sweep) read_exact(scene);  // checks the "exact" key in every mode
