@@ -15,12 +15,15 @@
 namespace wb {
 
 struct LabInfo {
-  std::string lab;                         // "forces"
-  std::string side;                        // "student" or "solution"
-  std::string summary;                     // one line for --help
-  std::vector<Integrator> integrators;     // the first is the default
-  bool sweep = false;                      // offers --sweep (integration labs)
-  WorldFactory make_world;                 // the lab's glue: a scene's physics
+  std::string lab;                      // "forces"
+  std::string side;                     // "student" or "solution"
+  std::string summary;                  // one line for --help
+  std::vector<Integrator> integrators;  // the first is the default
+  bool sweep = false;                   // offers --sweep (integration labs)
+  WorldFactory make_world;              // the lab's glue: a scene's physics
+  // Optional: adds what a lab's scene generators declare (a rope's beads, a
+  // cloth's grid) to a loaded scene, before make_world; throws InputError.
+  std::function<void(Scene&)> expand_scene;
   std::vector<std::string> scene_keys;     // top-level scene keys the glue reads
   std::vector<std::string> help_sections;  // extra --help paragraphs (force types, keys)
 };
