@@ -105,11 +105,32 @@ def build_parser():
     s.add_argument("--targets", default="1e-2,1e-4,1e-6",
                    help="comma-separated target errors in m (default 1e-2,1e-4,1e-6)")
     s.add_argument("--md", metavar="FILE", help="also write the table to FILE")
+
+    # Subcommands of the lab plug-ins (tools/wbplot/labs/<lab>.py: add_commands(sub)
+    # registers them, run(args) returns True for a command it handled).
+    for mod in _lab_plugins():
+        if hasattr(mod, "add_commands"):
+            mod.add_commands(sub)
     return p
+
+
+def _lab_plugins():
+    """The modules tools/wbplot/labs/<lab>.py, in name order."""
+    import importlib
+    import os
+    here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "labs")
+    mods = []
+    for name in sorted(os.listdir(here)) if os.path.isdir(here) else []:
+        if name.endswith(".py") and not name.startswith("_"):
+            mods.append(importlib.import_module(f"{__package__}.labs.{name[:-3]}"))
+    return mods
 
 
 def run(args):
     from . import runs, stability, sweep
+    for mod in _lab_plugins():
+        if hasattr(mod, "run") and mod.run(args):
+            return
     if args.command == "trace":
         ids = parse_list(args.ids, "--ids", int) if args.ids else None
         runs.plot_trace(args.trace, args.out, ids=ids, title=args.title)
@@ -145,8 +166,7 @@ def main(argv=None):
     try:
         args = parser.parse_args(argv)
         if args.command is None:
-            raise InputError("missing COMMAND, expected one of trace, stats, energy, "
-                             "phase, sweep, stability, cheapest (see tools/plot --help)")
+            raise InputError("missing COMMAND (see tools/plot --help for the list)")
         run(args)
     except InputError as e:
         print(f"tools/plot: error: {e}", file=sys.stderr)

@@ -8,4 +8,8 @@ ctx.scene_path, ctx.exe (the solution executable), ctx.out_dir, ctx.integrators
 [(name, order, description)], ctx.run(argv_tail, what) -> summary dict or None,
 ctx.plot(args) -> bool (tools/plot in-process), ctx.figure(path, caption, plot_args),
 ctx.table(title, markdown), ctx.path(name) -> a file in the lab's report folder.
+
+It may also add tools/plot subcommands (so that a student plots their own run):
+    def add_commands(sub): ...   # sub.add_parser("bodies", ...) on tools/plot's subparsers
+    def run(args) -> bool: ...   # True when args.command is one of its own
 """
