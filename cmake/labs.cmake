@@ -15,12 +15,44 @@
 #   <lab>_glue        static library of the glue (compiled once, side-free)
 #   <lab>[-solution]  the executable
 #   <lab>[-solution]-tests  the graded tests; each test file compiles once
-#                     (<lab>_tests_obj) and links against either side
+#                     (<lab>_tests_obj) and links against either side. They
+#                     link the lab's glue and the run contract only with
+#                     TESTS_USE_GLUE, so that the grader's scratch build of a
+#                     lab compiles little more than the lab and its tests.
+
+# Precompiled headers: Eigen and nlohmann-json (and Catch for the tests) are
+# parsed once per build instead of once per file. Targets reuse one PCH each
+# (wb_pch, wb_tests_pch); GCC ignores a PCH it cannot use, so this only ever
+# saves time. WB_PCH=OFF turns it off.
+function(wb_use_pch target)
+  if(NOT WB_PCH)
+    return()
+  endif()
+  if(ARGN STREQUAL "TESTS")
+    set(pch wb_tests_pch)
+    if(NOT TARGET ${pch})
+      add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
+      target_link_libraries(${pch} PRIVATE Eigen3::Eigen Catch2::Catch2)
+      target_precompile_headers(${pch} PRIVATE <catch2/catch.hpp> <Eigen/Core> <cmath> <vector>
+                                               <string> <sstream>)
+    endif()
+  else()
+    set(pch wb_pch)
+    if(NOT TARGET ${pch})
+      add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
+      target_link_libraries(${pch} PRIVATE Eigen3::Eigen nlohmann_json::nlohmann_json)
+      target_precompile_headers(${pch} PRIVATE <Eigen/Core> <nlohmann/json.hpp> <cmath> <vector>
+                                               <string> <memory> <functional>)
+    endif()
+  endif()
+  target_precompile_headers(${target} REUSE_FROM ${pch})
+endfunction()
 
 function(wb_lab lab)
-  cmake_parse_arguments(A "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(A "TESTS_USE_GLUE" "" "DEPS" ${ARGN})
   set_property(GLOBAL APPEND PROPERTY WB_REGISTERED_LABS ${lab})
   set_property(GLOBAL PROPERTY WB_LAB_DEPS_${lab} ${A_DEPS})
+  set_property(GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab} ${A_TESTS_USE_GLUE})
 endfunction()
 
 function(wb_lab_deps lab out)
@@ -92,6 +124,9 @@ function(wb_lab_glue lab out)
     endif()
     target_include_directories(${target} ${scope} ${glue_dir} ${CMAKE_SOURCE_DIR}/labs/${lab})
     target_link_libraries(${target} ${scope} wb_run)
+    if(glue)
+      wb_use_pch(${target})
+    endif()
     wb_lab_deps(${lab} deps)
     foreach(dep IN LISTS deps)
       wb_lab_glue(${dep} dep_glue)
@@ -106,10 +141,21 @@ function(wb_add_lab lab side)
   wb_lab_glue(${lab} glue)
   wb_suffix(${side} suffix)
   set(exe ${lab}${suffix})
-  add_executable(${exe} ${CMAKE_SOURCE_DIR}/framework/drivers/${lab}/main.cpp)
+  # main.cpp compiles once; the side's name comes from a one-line object
+  # (framework/src/side.cpp) compiled per side.
+  if(NOT TARGET ${lab}_main)
+    add_library(${lab}_main OBJECT ${CMAKE_SOURCE_DIR}/framework/drivers/${lab}/main.cpp)
+    target_link_libraries(${lab}_main PRIVATE ${glue} wb_core)
+    target_compile_definitions(${lab}_main PRIVATE WB_LAB="${lab}" WB_SIDE=wb_build_side\(\))
+    wb_use_pch(${lab}_main)
+  endif()
+  if(NOT TARGET wb_side_${side})
+    add_library(wb_side_${side} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/side.cpp)
+    target_compile_definitions(wb_side_${side} PRIVATE WB_BUILD_SIDE="${side}")
+  endif()
+  add_executable(${exe} $<TARGET_OBJECTS:${lab}_main> $<TARGET_OBJECTS:wb_side_${side}>)
   # Glue first, then the side's student functions it calls.
   target_link_libraries(${exe} PRIVATE ${glue} ${lab}_${side} wb_run wb_core)
-  target_compile_definitions(${exe} PRIVATE WB_LAB="${lab}" WB_SIDE="${side}")
 
   if(NOT WB_TESTS)
     return()
@@ -124,6 +170,7 @@ function(wb_add_lab lab side)
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
                                                         ${CMAKE_SOURCE_DIR}/tests/${lab})
     target_link_libraries(${lab}_tests_obj PRIVATE ${glue} wb_core Catch2::Catch2)
+    wb_use_pch(${lab}_tests_obj TESTS)
     # The lab's headers (and its dependencies'), without linking a side.
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/labs/${lab})
     wb_lab_deps(${lab} deps)
@@ -133,8 +180,11 @@ function(wb_add_lab lab side)
   endif()
   set(tests ${lab}${suffix}-tests)
   add_executable(${tests} $<TARGET_OBJECTS:${lab}_tests_obj>)
-  target_link_libraries(${tests} PRIVATE ${glue} ${lab}_${side} wb_run wb_core
-                                         Catch2::Catch2WithMain)
+  get_property(use_glue GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab})
+  if(use_glue)
+    target_link_libraries(${tests} PRIVATE ${glue} ${lab}_${side} wb_run)
+  endif()
+  target_link_libraries(${tests} PRIVATE ${lab}_${side} wb_core Catch2::Catch2WithMain)
   catch_discover_tests(${tests}
     TEST_PREFIX "${side}/"
     EXTRA_ARGS -w NoTests

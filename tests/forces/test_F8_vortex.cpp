@@ -81,24 +81,28 @@ TEST_CASE("F8 vortex: the flow is continuous at the core radius and zero at the 
 TEST_CASE("F8 vortex: drag c (u - v) towards the flow is zero for a particle moving with it",
           "[forces][F8][3pts]") {
   const VortexParams p = vortex();  // c = 1.5
-  // Particle 0 at (1.6, -0.2) moves with the flow, v = u = (-1.6, 1.2): no force.
-  // Particle 1 at (4, 3) at rest: f = 1.5 (-1.28, 0.96) = (-1.92, 1.44).
-  // Particle 2 at (0.1, -2.2), v = (1, 1): f = 1.5 ((2.4, -1.8) - (1, 1)) = (2.1, -4.2).
-  // Particle 3 on the axis at rest: u = 0, v = 0, no force.
+  // The first and the last particle feel a non-zero drag, so that a loop
+  // that skips either end leaves a column wrong.
+  // Particle 0 at (4, 3) at rest: f = 1.5 (-1.28, 0.96) = (-1.92, 1.44).
+  // Particle 1 at (1.6, -0.2) moves with the flow, v = u = (-1.6, 1.2): no force.
+  // Particle 2 on the axis at rest: u = 0, v = 0, no force.
+  // Particle 3 at (0.1, -2.2), v = (1, 1): f = 1.5 ((2.4, -1.8) - (1, 1)) = (2.1, -4.2).
   Mat2X x(2, 4), v(2, 4), f(2, 4);
-  x << 1.6, 4.0, 0.1, 1.0,  //
-      -0.2, 3.0, -2.2, -1.0;
-  v << -1.6, 0.0, 1.0, 0.0,  //
-      1.2, 0.0, 1.0, 0.0;
-  f << 1.0, 2.0, 3.0, 4.0,  // forces already there: add to them
-      -1.0, 0.0, 0.5, 0.25;
+  x << 4.0, 1.6, 1.0, 0.1,  //
+      3.0, -0.2, -1.0, -2.2;
+  v << 0.0, -1.6, 0.0, 1.0,  //
+      0.0, 1.2, 0.0, 1.0;
+  f << 2.0, 1.0, 4.0, 3.0,  // forces already there: add to them
+      0.0, -1.0, 0.25, 0.5;
   add_vortex(x, v, p, f);
   wbtest::require_finite(f, "vortex drag with a particle on the axis");
   Mat2X expected(2, 4);
-  expected << 1.0, 2.0 - 1.92, 3.0 + 2.1, 4.0,  //
-      -1.0, 1.44, 0.5 - 4.2, 0.25;
+  expected << 2.0 - 1.92, 1.0, 4.0, 3.0 + 2.1,  //
+      1.44, -1.0, 0.25, 0.5 - 4.2;
   wbtest::require_near(f, expected, kTol,
-                       "drag towards the flow: f_i += c (u(x_i) - v_i), added to f", kTol);
+                       "drag towards the flow: f_i += c (u(x_i) - v_i) for EVERY particle i "
+                       "(first and last included), added to f",
+                       kTol);
 }
 
 TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise",

@@ -12,6 +12,10 @@
 #include "wb/scene.h"
 #include "wb/world.h"
 
+// The side this executable was linked for: "student" or "solution"
+// (framework/src/side.cpp); a driver's WB_SIDE expands to a call of it.
+const char* wb_build_side();
+
 namespace wb {
 
 struct LabInfo {
