@@ -1,6 +1,6 @@
 # How a lab is built. A lab is registered with one line in CMakeLists.txt,
 #   wb_lab(<lab> [DEPS <lab>...])
-# and is made of these folders (docs/grading.md, "Adding a lab"):
+# and is made of these folders:
 #   labs/<lab>/*.h, *.cpp        the student's files (the .cpp are the skeletons)
 #   solutions/<lab>/*.cpp        the same .cpp files, completed (instructors only)
 #   framework/drivers/<lab>/     main.cpp (the executable) and the lab's glue:
