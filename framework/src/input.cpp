@@ -2,12 +2,115 @@
 #include "wb/input.h"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
+#include <vector>
 
 namespace wb {
 
 static const json kEmptyArray = json::array();
+
+namespace {
+
+// Length of the valid UTF-8 sequence at s[i] (1 to 4), or 0 if none starts there.
+std::size_t utf8_length(const std::string& s, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = b(i);
+  if (c < 0x80) return 1;
+  std::size_t n;
+  unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) {
+    n = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    n = 3;
+    if (c == 0xE0) lo = 0xA0;  // no overlong forms
+    if (c == 0xED) hi = 0x9F;  // no surrogates
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    n = 4;
+    if (c == 0xF0) lo = 0x90;
+    if (c == 0xF4) hi = 0x8F;  // at most U+10FFFF
+  } else {
+    return 0;
+  }
+  if (i + n > s.size()) return 0;
+  if (b(i + 1) < lo || b(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k) {
+    if (b(i + k) < 0x80 || b(i + k) > 0xBF) return 0;
+  }
+  return n;
+}
+
+void append_hex_byte(std::string& out, unsigned char c) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "\\x%02X", static_cast<unsigned>(c));
+  out += buf;
+}
+
+// The escaped text (no length limit): every character printable on one line.
+std::string escape_one_line(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const std::size_t n = utf8_length(s, i);
+    if (n == 0) {
+      append_hex_byte(out, c);  // not UTF-8
+      ++i;
+    } else if (n == 1) {
+      if (c == '\n') {
+        out += "\\n";
+      } else if (c == '\r') {
+        out += "\\r";
+      } else if (c == '\t') {
+        out += "\\t";
+      } else if (c < 0x20 || c == 0x7F) {
+        append_hex_byte(out, c);
+      } else {
+        out += static_cast<char>(c);
+      }
+      ++i;
+    } else {
+      const unsigned char c1 = static_cast<unsigned char>(s[i + 1]);
+      const unsigned char c2 = n > 2 ? static_cast<unsigned char>(s[i + 2]) : 0;
+      if (c == 0xC2 && c1 < 0xA0) {  // C1 controls U+0080..U+009F (NEL among them)
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04X", static_cast<unsigned>(c1));
+        out += buf;
+      } else if (c == 0xE2 && c1 == 0x80 && (c2 == 0xA8 || c2 == 0xA9)) {
+        out += c2 == 0xA8 ? "\\u2028" : "\\u2029";  // line and paragraph separators
+      } else {
+        out.append(s, i, n);
+      }
+      i += n;
+    }
+  }
+  return out;
+}
+
+// The longest prefix of valid UTF-8 `s` of at most `max` bytes that ends on a
+// character boundary.
+std::size_t utf8_cut(const std::string& s, std::size_t max) {
+  if (max >= s.size()) return s.size();
+  std::size_t k = max;
+  while (k > 0 && (static_cast<unsigned char>(s[k]) & 0xC0) == 0x80) --k;
+  return k;
+}
+
+}  // namespace
+
+std::string one_line(const std::string& s, std::size_t max_bytes) {
+  std::string e = escape_one_line(s);
+  if (e.size() <= max_bytes) return e;
+  const std::string mid = " ... ";
+  const std::size_t keep = max_bytes > mid.size() ? (max_bytes - mid.size()) / 2 : 0;
+  const std::size_t head = utf8_cut(e, keep);
+  std::size_t tail = e.size() - keep;  // move right to a character boundary
+  while (tail < e.size() && (static_cast<unsigned char>(e[tail]) & 0xC0) == 0x80) ++tail;
+  return e.substr(0, head) + mid + e.substr(tail);
+}
 
 JsonObject::JsonObject(std::string file, const json& j, std::string path)
     : file_(std::move(file)), j_(j), path_(std::move(path)) {
@@ -105,12 +208,32 @@ std::int64_t JsonObject::integer(const char* key, std::int64_t min, std::int64_t
       "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
   if (!j_.contains(key)) fail(key, nullptr, expected);
   const json& v = j_.at(key);
-  if (!v.is_number()) fail(key, &v, expected);
-  double d = v.get<double>();
-  if (!std::isfinite(d) || d != std::floor(d) || d < double(min) || d > double(max)) {
-    fail(key, &v, expected);
+  // Whole numbers written as such are read exactly (no trip through a double,
+  // which rounds above 2^53); a number written with a fraction or an exponent
+  // is accepted only where a double holds every whole number (|x| <= 2^53).
+  constexpr double kExactDouble = 9007199254740992.0;  // 2^53
+  if (v.is_number_unsigned()) {
+    const std::uint64_t u = v.get<std::uint64_t>();
+    if (max < 0 || u > static_cast<std::uint64_t>(max) ||
+        (min > 0 && u < static_cast<std::uint64_t>(min))) {
+      fail(key, &v, expected);
+    }
+    return static_cast<std::int64_t>(u);
   }
-  return static_cast<std::int64_t>(d);
+  if (v.is_number_integer()) {
+    const std::int64_t i = v.get<std::int64_t>();
+    if (i < min || i > max) fail(key, &v, expected);
+    return i;
+  }
+  if (!v.is_number()) fail(key, &v, expected);
+  const double d = v.get<double>();
+  if (!std::isfinite(d) || d != std::floor(d)) fail(key, &v, expected);
+  if (std::abs(d) > kExactDouble) {
+    fail(key, &v, expected + " (beyond 2^53, write it without a fraction or an exponent)");
+  }
+  const auto i = static_cast<std::int64_t>(d);  // exact: |d| <= 2^53
+  if (i < min || i > max) fail(key, &v, expected);
+  return i;
 }
 
 std::int64_t JsonObject::integer_or(const char* key, std::int64_t def, std::int64_t min,
@@ -142,40 +265,203 @@ const json& JsonObject::array_or_empty(const char* key) const {
 JsonObject JsonObject::element(const char* key, std::size_t i) const {
   const json& a = array_or_empty(key);
   std::string p = key_path(key) + "[" + std::to_string(i) + "]";
-  if (!a.at(i).is_object()) {
-    throw InputError(file_ + ": " + p + ": got " + describe(a.at(i)) +
-                     ", expected a JSON object");
+  if (i >= a.size()) {
+    throw InputError(file_ + ": " + p + ": missing, expected " + key + " to have at least " +
+                     std::to_string(i + 1) + " entries");
   }
-  return JsonObject(file_, a.at(i), p);
+  if (!a[i].is_object()) {
+    throw InputError(file_ + ": " + p + ": got " + describe(a[i]) + ", expected a JSON object");
+  }
+  return JsonObject(file_, a[i], p);
 }
 
+namespace {
+
+constexpr std::size_t kDescribeBytes = 60;
+constexpr int kDescribeDepth = 3;
+
+// A JSON string, quoted, at most about kDescribeBytes of it.
+void render_string(const std::string& s, std::string& out) {
+  const std::size_t n = utf8_cut(s, kDescribeBytes);
+  std::string body;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s[i] == '"' || s[i] == '\\') body += '\\';
+    body += s[i];
+  }
+  out += '"' + escape_one_line(body) + (n < s.size() ? "..." : "") + '"';
+}
+
+// Renders `v` until `out` is longer than kDescribeBytes: a huge or deep value
+// costs no more than a small one.
+void render(const json& v, std::string& out, int depth) {
+  if (v.is_object() || v.is_array()) {
+    const bool obj = v.is_object();
+    if (v.empty()) {
+      out += obj ? "{}" : "[]";
+      return;
+    }
+    if (depth >= kDescribeDepth) {
+      out += obj ? "{...}" : "[...]";
+      return;
+    }
+    out += obj ? '{' : '[';
+    bool first = true;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      if (out.size() > kDescribeBytes) {
+        out += "...";
+        return;
+      }
+      if (!first) out += ',';
+      first = false;
+      if (obj) {
+        render_string(it.key(), out);
+        out += ':';
+      }
+      render(it.value(), out, depth + 1);
+    }
+    out += obj ? '}' : ']';
+  } else if (v.is_string()) {
+    render_string(v.get_ref<const std::string&>(), out);
+  } else {
+    out += v.dump();  // a number, true, false or null: short
+  }
+}
+
+// Follows the parser through the document: the JSON path of the value being
+// read, the keys seen in each open object, the depth.
+class PathTracker {
+ public:
+  explicit PathTracker(const std::string& file) : file_(file) {}
+
+  bool event(json::parse_event_t ev, const json& parsed) {
+    switch (ev) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        if (stack_.size() >= std::size_t(kMaxJsonDepth)) {
+          throw InputError(file_ + ": " + path() + ": nested deeper than " +
+                           std::to_string(kMaxJsonDepth) +
+                           " arrays and objects, expected at most " +
+                           std::to_string(kMaxJsonDepth) + " levels");
+        }
+        stack_.push_back(Frame{ev == json::parse_event_t::array_start, 0, {}, false, {}});
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = stack_.back();
+        f.key = parsed.get<std::string>();
+        f.has_key = true;
+        if (!f.keys.insert(f.key).second) {
+          throw InputError(file_ + ": " + path() +
+                           ": key given twice in one object, expected each key at most once");
+        }
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack_.pop_back();
+        value_done();
+        break;
+      case json::parse_event_t::value:
+        value_done();
+        break;
+    }
+    return true;
+  }
+
+  // Where the parser is: "forces[2].k", or "(top level)".
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : stack_) {
+      if (f.array) {
+        p += "[" + std::to_string(f.index) + "]";
+      } else if (f.has_key) {
+        p += (p.empty() ? "" : ".") + f.key;
+      }
+    }
+    return p.empty() ? "(top level)" : p;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;  // array: elements read so far
+    std::string key;    // object: the key being read
+    bool has_key;
+    std::unordered_set<std::string> keys;  // object: keys read so far
+  };
+  void value_done() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+  const std::string& file_;
+  std::vector<Frame> stack_;
+};
+
+// The library's message without its "[json.exception...]" prefix.
+std::string library_message(const std::string& what, const char* from) {
+  const auto p = what.find(from);
+  return p == std::string::npos ? what : what.substr(p);
+}
+
+}  // namespace
+
 std::string describe(const json& value) {
-  std::string s = value.dump();
-  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  std::string s;
+  render(value, s, 0);
+  if (s.size() > kDescribeBytes) s = s.substr(0, utf8_cut(s, kDescribeBytes - 3)) + "...";
   return s;
 }
 
-json read_json_file(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot open the file for reading");
-  std::stringstream buf;
-  buf << in.rdbuf();
+json parse_json(const std::string& text, const std::string& file) {
+  PathTracker where(file);
+  json::parser_callback_t cb = [&where](int, json::parse_event_t ev, json& parsed) {
+    return where.event(ev, parsed);
+  };
   try {
-    return json::parse(buf.str());
+    return json::parse(text, cb);
   } catch (const json::out_of_range& e) {
     // A number too large for a double (1e999) is refused by the parser.
-    std::string what = e.what();
-    auto p = what.find("number overflow");
-    throw InputError(
-        file + ": not a usable JSON number: " + (p == std::string::npos ? what : what.substr(p)) +
-        ", expected a finite number");
-  } catch (const json::parse_error& e) {
-    // e.what() carries the byte position; drop the library's prefix.
-    std::string what = e.what();
-    auto p = what.find("parse error");
-    throw InputError(file +
-                     ": not valid JSON: " + (p == std::string::npos ? what : what.substr(p)));
+    const std::string what = e.what();
+    const std::string marker = "number overflow parsing '";
+    const auto p = what.find(marker);
+    std::string got = "a number";
+    if (p != std::string::npos) {
+      const std::size_t b = p + marker.size(), q = what.find('\'', b);
+      got = what.substr(b, q == std::string::npos ? std::string::npos : q - b);
+    }
+    throw InputError(file + ": " + where.path() + ": got " + got +
+                     ", a number too large for a double, expected a finite number");
+  } catch (const json::exception& e) {
+    // e.what() carries the line and column; drop the library's prefix.
+    throw InputError(file + ": not valid JSON at " + where.path() + ": " +
+                     library_message(e.what(), "parse error"));
   }
+}
+
+json read_json_file(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  if (fs::is_directory(st)) throw InputError(file + ": a folder, expected a JSON file");
+  if (fs::exists(st) && !fs::is_regular_file(st)) {
+    throw InputError(file + ": not a regular file (a device, a pipe or a socket), expected a " +
+                     "JSON file");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file + ": cannot open the file for reading");
+  // Read at most one byte past the limit: a file that grows while it is read
+  // (or that reports no size) still costs bounded time and memory.
+  std::string text;
+  char buf[1 << 16];
+  while (text.size() <= kMaxJsonFileBytes) {
+    in.read(buf, sizeof buf);
+    if (in.gcount() <= 0) break;
+    text.append(buf, std::size_t(in.gcount()));
+  }
+  if (text.size() > kMaxJsonFileBytes) {
+    throw InputError(file + ": larger than " + std::to_string(kMaxJsonFileBytes) +
+                     " bytes, expected a JSON file of at most 16 MiB");
+  }
+  if (in.bad()) throw InputError(file + ": cannot read the file");
+  return parse_json(text, file);
 }
 
 }  // namespace wb

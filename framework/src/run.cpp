@@ -102,6 +102,41 @@ void append_stats_row(std::string& buf, long step, double t, const Energy& e, co
 
 }  // namespace
 
+std::int64_t parse_whole(const std::string& flag, const std::string& text, std::int64_t min,
+                         std::int64_t max) {
+  // Decimal digits only: no sign, no base prefix (010 is ten), no exponent,
+  // no silent clamping of a value that does not fit.
+  const std::string expected =
+      "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
+  bool digits = !text.empty() && text.size() <= 19;
+  std::int64_t value = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') {
+      digits = false;
+      break;
+    }
+    value = value * 10 + (c - '0');  // at most 19 digits: no overflow
+  }
+  if (!digits || value < min || value > max) {
+    throw InputError(flag + ": got \"" + text + "\", expected " + expected + " (decimal digits)");
+  }
+  return value;
+}
+
+void check_initial_state(const Scene& scene, const World& world) {
+  const Energy e = world.energy(scene.x, scene.v);
+  const Vec2 p = momentum(scene.v, scene.m);
+  if (std::isfinite(e.kinetic) && std::isfinite(e.potential) && std::isfinite(e.total()) &&
+      p.allFinite()) {
+    return;
+  }
+  throw InputError(scene.file + ": initial state: kinetic energy " + num(e.kinetic) +
+                   ", potential energy " + num(e.potential) + ", momentum [" + num(p.x()) + ", " +
+                   num(p.y()) +
+                   "], expected finite values (a position, velocity, mass or force constant "
+                   "is so large that they overflow)");
+}
+
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt) {
   RunResult r;
   Mat2X x = scene.x, v = scene.v;
@@ -229,20 +264,21 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
   CLI::App app(info.summary, exe);
   std::string scene_file, integrator, out, stats;
   std::optional<double> dt, t_end;
-  std::optional<long> steps, every, seed_in;
+  // Whole numbers are read as text and parsed strictly (parse_whole).
+  std::optional<std::string> steps_in, every_in, seed_in, repeats_in;
   app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
   auto* o_integrator =
       app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
   app.add_option("--dt", dt,
                  "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
-  auto* o_steps = app.add_option("--steps", steps, "Take exactly N steps");
+  auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
   auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);
   auto* o_out = app.add_option("--out", out, "Write a CSV trace t,id,x,y,vx,vy");
   auto* o_stats = app.add_option(
       "--stats", stats, "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
   auto* o_every =
-      app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
+      app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
   app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
   // Sweep mode (integration labs): docs/sweep.md.
   SweepOptions sweep;
@@ -258,7 +294,7 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     app.add_option("--dts", sweep.dts, "Sweep: these step sizes (comma-separated)")
         ->delimiter(',')
         ->needs(o_sweep);
-    app.add_option("--repeats", sweep.repeats,
+    app.add_option("--repeats", repeats_in,
                    "Sweep: wall_s is the fastest of R timed step loops (default 3)")
         ->needs(o_sweep);
     for (CLI::Option* o : {o_integrator, o_steps, o_out, o_stats, o_every}) o_sweep->excludes(o);
@@ -269,7 +305,7 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << exe << ": error: " << e.what() << " (see " << exe << " --help)\n";
+    std::cerr << exe << ": error: " << one_line(e.what()) << " (see " << exe << " --help)\n";
     return 2;
   }
 
@@ -283,24 +319,25 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
       throw flag_error("--t-end", num(*t_end), "a finite number >= 0");
     }
-    if (steps && *steps < 0)
-      throw flag_error("--steps", std::to_string(*steps), "a whole number >= 0");
-    if (every && *every < 1)
-      throw flag_error("--every", std::to_string(*every), "a whole number >= 1");
-    if (seed_in && *seed_in < 0)
-      throw flag_error("--seed", std::to_string(*seed_in), "a whole number >= 0");
-
+    std::optional<long> steps, every;
+    if (steps_in) steps = long(parse_whole("--steps", *steps_in, 0, kMaxSteps));
+    if (every_in) every = long(parse_whole("--every", *every_in, 1, INT64_MAX));
     std::optional<std::uint64_t> seed;
-    if (seed_in) seed = std::uint64_t(*seed_in);
+    if (seed_in) seed = std::uint64_t(parse_whole("--seed", *seed_in, 0, INT64_MAX));
+    if (repeats_in) sweep.repeats = int(parse_whole("--repeats", *repeats_in, 1, 1000));
     if (!out.empty()) check_output_path("--out", out);
     if (!stats.empty()) check_output_path("--stats", stats);
     if (!sweep.csv.empty()) check_output_path("--sweep", sweep.csv);
     std::vector<std::string> keys = info.scene_keys;
     if (info.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
     Scene scene = load_scene(scene_file, seed, keys);
-    if (info.expand_scene) info.expand_scene(scene);
+    if (info.expand_scene) {
+      info.expand_scene(scene);
+      check_particles(scene, "the scene's generators");
+    }
     if (!info.make_world) throw std::logic_error("LabInfo.make_world is not set");
     std::unique_ptr<World> world = info.make_world(scene);
+    check_initial_state(scene, *world);
     if (info.sweep) read_exact(scene);  // checks the "exact" key in every mode
     if (!sweep.csv.empty()) {
       sweep.dt = dt;
@@ -334,10 +371,12 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     if (steps) {
       opt.steps = *steps;
     } else if (T >= 0) {
-      double n = std::round(T / opt.dt);
-      if (!(n <= 1e12)) {
-        throw InputError("--t-end/--dt: " + num(T) + "/" + num(opt.dt) +
-                         " steps, expected at most 1e12");
+      const double n = std::round(T / opt.dt);
+      if (!(n <= double(kMaxSteps))) {
+        throw InputError(std::string(t_end ? "--t-end" : scene.file + ": t_end") + " / " +
+                         (dt ? "--dt" : "dt") + ": got " + num(T) + " / " + num(opt.dt) +
+                         ", which is " + num(n) + " steps, expected at most " +
+                         std::to_string(kMaxSteps) + " steps");
       }
       opt.steps = long(n);
     } else {
@@ -348,6 +387,12 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     opt.out = out;
     opt.stats = stats;
 
+    const double work = double(opt.steps) * double(scene.n());
+    if (work > kLongRunParticleSteps) {
+      std::cerr << exe << ": warning: " << opt.steps << " steps of " << scene.n()
+                << " particles (" << num(work)
+                << " particle-steps): this run may take minutes or more\n";
+    }
     RunResult r = simulate(scene, *world, opt);
     for (const auto& w : r.warnings) std::cerr << exe << ": warning: " << w << "\n";
     std::cout << summary_json(r).dump() << std::endl;

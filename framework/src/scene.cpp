@@ -5,71 +5,124 @@
 #include <filesystem>
 #include <random>
 
+#include "wb/output.h"
+
 namespace wb {
 
 namespace {
 
-struct Builder {
-  std::vector<Vec2> x, v;
-  std::vector<double> m, r;
-  void add(const Vec2& xi, const Vec2& vi, double mi, double ri) {
-    x.push_back(xi);
-    v.push_back(vi);
-    m.push_back(mi);
-    r.push_back(ri);
-  }
-};
-
 const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
 const Range kNonNegative{0.0};
-constexpr std::int64_t kMaxParticles = 50'000'000;
 
-void read_particles(const JsonObject& top, Builder& b) {
+// A mass m > 0 whose inverse is finite (1/5e-324 overflows).
+double read_mass(const JsonObject& o) {
+  const double m = o.number("m", kPositive);
+  if (!std::isfinite(1.0 / m)) {
+    o.fail("m", &o.raw().at("m"), "a mass whose inverse 1/m is finite (m >= 5.6e-309)");
+  }
+  return m;
+}
+
+// Kinetic energy 1/2 m |v|^2 and momentum m |v| both finite.
+bool finite_motion(double m, double speed2) {
+  return std::isfinite(0.5 * m * speed2) && std::isfinite(m * std::sqrt(speed2));
+}
+
+std::string motion_text(double m) {
+  std::string s =
+      "a velocity whose kinetic energy 1/2 m |v|^2 and momentum m |v| are finite "
+      "for m = ";
+  append_number(s, m);
+  return s;
+}
+
+// How many particles the scene declares, checked against kMaxParticles before
+// any is built.
+Eigen::Index count_particles(const JsonObject& top) {
+  std::int64_t n = std::int64_t(top.array_or_empty("particles").size());
+  const auto too_many = [&](const std::string& where, const std::string& got) {
+    throw InputError(top.file() + ": " + where + ": got " + got + ", expected at most " +
+                     std::to_string(kMaxParticles) + " particles in a scene (docs/scenes.md)");
+  };
+  if (n > kMaxParticles) too_many("particles", std::to_string(n) + " particles");
+  const json& list = top.array_or_empty("emitters");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    JsonObject e = top.element("emitters", k);
+    const std::int64_t count = e.integer("count", 0, kMaxParticles);
+    if (count > kMaxParticles - n) {
+      too_many(e.key_path("count"), std::to_string(count) + ", which makes " +
+                                        std::to_string(n + count) + " particles");
+    }
+    n += count;
+  }
+  return Eigen::Index(n);
+}
+
+void read_particles(const JsonObject& top, Scene& s, Eigen::Index& next) {
   const json& list = top.array_or_empty("particles");
   for (std::size_t i = 0; i < list.size(); ++i) {
     JsonObject p = top.element("particles", i);
     p.only_keys({"x", "v", "m", "radius"});
-    b.add(p.vec2("x"), p.vec2_or("v", Vec2::Zero()), p.number("m", kPositive),
-          p.number_or("radius", 0.0, kNonNegative));
+    const Vec2 x = p.vec2("x"), v = p.vec2_or("v", Vec2::Zero());
+    const double m = read_mass(p);
+    if (!finite_motion(m, v.squaredNorm())) p.fail("v", &p.raw().at("v"), motion_text(m));
+    s.x.col(next) = x;
+    s.v.col(next) = v;
+    s.m[next] = m;
+    s.radius[next] = p.number_or("radius", 0.0, kNonNegative);
+    ++next;
   }
 }
 
-void read_emitters(const JsonObject& top, std::optional<std::uint64_t> seed, Builder& b) {
+void read_emitters(const JsonObject& top, std::optional<std::uint64_t> seed, Scene& s,
+                   Eigen::Index& next) {
   const json& list = top.array_or_empty("emitters");
   for (std::size_t k = 0; k < list.size(); ++k) {
     JsonObject e = top.element("emitters", k);
     e.only_keys({"count", "seed", "min", "max", "speed", "m", "radius"});
-    std::int64_t count = e.integer("count", 0, kMaxParticles);
-    std::uint64_t s = seed ? *seed + k : std::uint64_t(e.integer_or("seed", 0, 0, INT64_MAX));
-    Vec2 lo = e.vec2("min"), hi = e.vec2("max");
+    const std::int64_t count = e.integer("count", 0, kMaxParticles);
+    const std::uint64_t sd =
+        seed ? *seed + k : std::uint64_t(e.integer_or("seed", 0, 0, INT64_MAX));
+    const Vec2 lo = e.vec2("min"), hi = e.vec2("max");
     for (int d = 0; d < 2; ++d) {
       if (!(hi[d] >= lo[d])) {
         e.fail("max", &e.raw().at("max"), "max >= min in each coordinate");
       }
     }
-    double speed = e.number_or("speed", 0.0, kNonNegative);
-    double m = e.number("m", kPositive);
-    double r = e.number_or("radius", 0.0, kNonNegative);
+    // Every position lo + (hi - lo) u, u in [0, 1), lies in the box when the
+    // box's size is finite.
+    const Vec2 size = hi - lo;
+    if (!size.allFinite()) {
+      e.fail("max", &e.raw().at("max"),
+             "a box whose size max - min is finite in each coordinate (it overflows)");
+    }
+    const double speed = e.number_or("speed", 0.0, kNonNegative);
+    const double m = read_mass(e);
+    if (!finite_motion(m, speed * speed)) e.fail("speed", &e.raw().at("speed"), motion_text(m));
+    const double r = e.number_or("radius", 0.0, kNonNegative);
     // mt19937_64's sequence is fixed by the standard; the mapping to doubles
     // is ours, so the same seed gives the same particles everywhere.
-    std::mt19937_64 rng(s);
+    std::mt19937_64 rng(sd);
     for (std::int64_t i = 0; i < count; ++i) {
       Vec2 u(unit_double(rng()), unit_double(rng()));
       double angle = 2.0 * M_PI * unit_double(rng());
+      s.x.col(next) = lo + size.cwiseProduct(u);
       // + 0.0 turns a -0 (speed 0 times a negative cosine) into 0 in the trace.
-      b.add(lo + (hi - lo).cwiseProduct(u),
-            speed * Vec2(std::cos(angle), std::sin(angle)) + Vec2::Zero(), m, r);
+      s.v.col(next) = speed * Vec2(std::cos(angle), std::sin(angle)) + Vec2::Zero();
+      s.m[next] = m;
+      s.radius[next] = r;
+      ++next;
     }
   }
 }
 
 }  // namespace
 
-Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
-                 const std::vector<std::string>& extra_keys) {
+Scene scene_from_json(const std::string& file, json doc, std::optional<std::uint64_t> seed,
+                      const std::vector<std::string>& extra_keys) {
   Scene s;
   s.file = file;
-  s.doc = read_json_file(file);
+  s.doc = std::move(doc);
   JsonObject top(file, s.doc, "");
   for (auto it = s.doc.begin(); it != s.doc.end(); ++it) {
     static const char* base[] = {"name",      "dt",       "t_end",  "integrator",
@@ -91,25 +144,44 @@ Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
   if (top.has("integrator")) s.integrator = top.string("integrator");
   top.array_or_empty("forces");  // type-checked here, read by the lab
 
-  Builder b;
-  read_particles(top, b);
-  read_emitters(top, seed, b);
-  if (b.x.size() > std::size_t(kMaxParticles)) {
-    throw InputError(file + ": particles + emitters: " + std::to_string(b.x.size()) +
-                     " particles, expected at most " + std::to_string(kMaxParticles));
-  }
-  const Eigen::Index n = Eigen::Index(b.x.size());
+  const Eigen::Index n = count_particles(top);
   s.x.resize(2, n);
   s.v.resize(2, n);
   s.m.resize(n);
   s.radius.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    s.x.col(i) = b.x[i];
-    s.v.col(i) = b.v[i];
-    s.m[i] = b.m[i];
-    s.radius[i] = b.r[i];
-  }
+  Eigen::Index next = 0;
+  read_particles(top, s, next);
+  read_emitters(top, seed, s, next);
   return s;
+}
+
+Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
+                 const std::vector<std::string>& extra_keys) {
+  return scene_from_json(file, read_json_file(file), seed, extra_keys);
+}
+
+void check_particles(const Scene& s, const std::string& what) {
+  for (Eigen::Index i = 0; i < s.n(); ++i) {
+    const double m = s.m[i];
+    std::string problem;
+    if (!s.x.col(i).allFinite()) {
+      problem = "a non-finite position";
+    } else if (!s.v.col(i).allFinite()) {
+      problem = "a non-finite velocity";
+    } else if (!(m > 0.0 && std::isfinite(m) && std::isfinite(1.0 / m))) {
+      problem = "mass ";
+      append_number(problem, m);
+      problem += ", not > 0 with a finite inverse";
+    } else if (!finite_motion(m, s.v.col(i).squaredNorm())) {
+      problem = "a kinetic energy or momentum that overflows";
+    } else if (!(s.radius[i] >= 0.0 && std::isfinite(s.radius[i]))) {
+      problem = "a radius that is not a finite number >= 0";
+    }
+    if (!problem.empty()) {
+      throw InputError(s.file + ": particle " + std::to_string(i) + " (made by " + what +
+                       ") has " + problem + ", expected a finite state");
+    }
+  }
 }
 
 }  // namespace wb

@@ -27,6 +27,23 @@ void ExactSolution::at(double t, Vec2& x, Vec2& v) const {
   }
 }
 
+namespace {
+
+// The closed form evaluated where sweeps evaluate it (t = 0, a quarter of the
+// scene's time, t_end) must be finite: otherwise every error would be nan.
+template <class Require>
+void require_finite_motion(const ExactSolution& ex, const Scene& scene, const Require& require) {
+  const double T = scene.t_end.value_or(0.0);
+  for (double t : {0.0, 0.25 * T, T}) {
+    Vec2 x, v;
+    ex.at(t, x, v);
+    require(x.allFinite() && v.allFinite(),
+            "a closed-form motion that stays finite (at t = " + num(t) + " it is not)");
+  }
+}
+
+}  // namespace
+
 ExactSolution read_exact(const Scene& scene) {
   ExactSolution ex;
   JsonObject top(scene.file, scene.doc, "");
@@ -67,6 +84,9 @@ ExactSolution read_exact(const Scene& scene) {
     const double k = f.number("k", Range{0.0});
     require(k > 0.0, "a spring of k > 0 for \"oscillator\"");
     ex.w = std::sqrt(k / m);
+    require(std::isfinite(ex.w) && std::isfinite(1.0 / ex.w),
+            "w = sqrt(k/m) finite and > 0 for \"oscillator\" (it is " + num(ex.w) + ")");
+    require_finite_motion(ex, scene, require);
     return ex;
   }
 
@@ -80,6 +100,19 @@ ExactSolution read_exact(const Scene& scene) {
           "a bound orbit for \"kepler\" (1/2 |v|^2 - GM/r must be < 0: circular or elliptic)");
   require(cross(r0, ex.v0) != 0.0,
           "an orbit with angular momentum for \"kepler\" (the velocity is radial)");
+  // The closed form's constants (kepler_exact): semi-major axis a, mean
+  // motion n, period, sqrt(GM a) must not overflow or vanish.
+  const double eps = 0.5 * ex.v0.squaredNorm() - ex.GM / r0.norm();
+  const double a = -ex.GM / (2.0 * eps);
+  const double n = std::sqrt(ex.GM / (a * a * a));
+  const double period = 2.0 * M_PI / n;
+  const double sqrt_gma = std::sqrt(ex.GM * a);
+  const bool ok = std::isfinite(eps) && eps < 0.0 && std::isfinite(a) && a > 0.0 &&
+                  std::isfinite(n) && n > 0.0 && std::isfinite(period) && period > 0.0 &&
+                  std::isfinite(sqrt_gma) && sqrt_gma > 0.0;
+  require(ok, "an orbit whose closed form is finite for \"kepler\" (semi-major axis " + num(a) +
+                  ", mean motion " + num(n) + ": the numbers overflow)");
+  require_finite_motion(ex, scene, require);
   return ex;
 }
 
@@ -172,11 +205,26 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
       throw InputError("--dts: got " + num(dt) + ", expected step sizes > 0");
     }
     const double n = std::round(T / dt);
-    if (!(n >= 1.0 && n <= 1e12)) {
+    if (!(n >= 1.0 && n <= double(kMaxSteps))) {
       throw InputError("--dts: " + num(dt) + " gives round(T/dt) = " + num(n) +
-                       " steps for T = " + num(T) + ", expected 1 to 1e12");
+                       " steps for T = " + num(T) + ", expected 1 to " +
+                       std::to_string(kMaxSteps));
     }
     steps.push_back(long(n));
+  }
+  const ExactSolution exact = read_exact(scene);
+  const double h_ref = *std::min_element(dts.begin(), dts.end()) / kReferenceRefinement;
+  if (exact.kind == ExactSolution::kNone) {
+    for (std::size_t d = 0; d < dts.size(); ++d) {
+      const double n = std::round(double(steps[d]) * dts[d] / h_ref);
+      if (!(n <= double(kMaxSteps))) {
+        throw InputError("--dts: the rk4 reference at the smallest dt / " +
+                         num(kReferenceRefinement) + " = " + num(h_ref) + " takes " + num(n) +
+                         " steps to t = " + num(double(steps[d]) * dts[d]) +
+                         ", expected at most " + std::to_string(kMaxSteps) +
+                         " (use a larger smallest step, a shorter t_end or an \"exact\" scene)");
+      }
+    }
   }
 
   // Opened now, so that an unwritable path fails before the runs.
@@ -184,9 +232,7 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
 
   // The reference: the exact motion, or RK4 at the smallest dt / 16 (cached
   // per end time: a dt that does not divide T ends at round(T/dt) dt).
-  const ExactSolution exact = read_exact(scene);
   const std::string reference = exact.kind == ExactSolution::kNone ? "rk4" : "exact";
-  const double h_ref = *std::min_element(dts.begin(), dts.end()) / kReferenceRefinement;
   std::map<double, Mat2X> rk4_cache;
   auto reference_positions = [&](double t) -> Mat2X {
     if (exact.kind != ExactSolution::kNone) {

@@ -2,6 +2,7 @@
 #include "forces_world.h"
 
 #include <cmath>
+#include <iostream>
 
 #include "accumulate_forces.h"
 #include "attractor.h"
@@ -18,6 +19,8 @@ namespace {
 
 const Range kNonNegative{0.0};
 const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
+// Above this many particles an all-pairs force warns that each step is slow.
+constexpr Eigen::Index kQuadraticWarnParticles = 5000;
 
 class UniformGravity : public Force {
  public:
@@ -169,6 +172,13 @@ ForceList build_forces(const Scene& scene) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     JsonObject o = top.element("forces", k);
     std::string type = o.string("type");
+    if ((type == "newton" || type == "boids") && scene.n() > kQuadraticWarnParticles) {
+      const double n = double(scene.n());
+      std::cerr << "warning: " << one_line(scene.file) << ": " << o.path() << " (" << type
+                << ") costs O(n^2): " << n * (n - 1) / 2
+                << " particle pairs per force evaluation for " << scene.n()
+                << " particles; expect slow steps\n";
+    }
     if (type == "gravity") {
       o.only_keys({"type", "g"});
       out.push_back(std::make_unique<UniformGravity>(o.vec2("g")));
@@ -196,7 +206,13 @@ ForceList build_forces(const Scene& scene) {
       s.anchor = o.vec2_or("anchor", Vec2::Zero());
       s.k = o.number("k", kNonNegative);
       Vec2 xj = s.j < 0 ? s.anchor : Vec2(scene.x.col(s.j));
-      s.rest = o.number_or("rest", (scene.x.col(s.i) - xj).norm(), kNonNegative);
+      const double initial = (scene.x.col(s.i) - xj).norm();
+      if (!o.has("rest") && !std::isfinite(initial)) {
+        o.fail("rest", nullptr,
+               "a rest length: its default, the initial distance, overflows (the ends are too "
+               "far apart)");
+      }
+      s.rest = o.number_or("rest", initial, kNonNegative);
       s.kd = o.number_or("damping", 0.0, kNonNegative);
       if (!springs) {
         out.push_back(std::make_unique<Springs>());

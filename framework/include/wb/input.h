@@ -1,6 +1,7 @@
 // Reading scene files: every error names the file, the JSON path, the value
 // and what was expected, and is reported by the run contract with exit status 2.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
@@ -16,9 +17,22 @@ namespace wb {
 using json = nlohmann::json;
 using ordered_json = nlohmann::ordered_json;
 
-// Bad input: the message is complete and meant for the user.
+// Limits on a JSON input file (docs/scenes.md, "Limits"): a file larger than
+// this, or nested deeper, is refused before it is parsed any further.
+constexpr std::size_t kMaxJsonFileBytes = std::size_t(16) << 20;  // 16 MiB
+constexpr int kMaxJsonDepth = 64;  // objects and arrays inside each other
+// A message is cut (in its middle, at a character boundary) to this length.
+constexpr std::size_t kMaxMessageBytes = 1000;
+
+// `s` as one line of valid UTF-8, at most `max_bytes` long: control characters
+// and Unicode line breaks are escaped (\n, \t, \xNN, \u2028), bytes that are
+// not UTF-8 become \xNN, and a long text keeps its head and tail around " ... ".
+std::string one_line(const std::string& s, std::size_t max_bytes = kMaxMessageBytes);
+
+// Bad input: the message is complete and meant for the user. It is stored as
+// one_line(message): one line of valid UTF-8, whatever the file or key held.
 struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 // Reads typed values from one JSON object at a known path in a known file.
@@ -69,10 +83,18 @@ class JsonObject {
   std::string path_;
 };
 
-// A short rendering of a JSON value for error messages.
+// A short rendering of a JSON value for error messages: at most about 60
+// bytes, whatever the value's size or depth (only what is shown is visited).
 std::string describe(const json& value);
 
-// Parses a file as JSON, or throws InputError naming the file and the position.
+// Parses `text` as JSON, or throws InputError naming `file`, the JSON path
+// where parsing stopped and what was expected: not JSON, a number that does
+// not fit a double (1e999), a key given twice in one object, nesting deeper
+// than kMaxJsonDepth.
+json parse_json(const std::string& text, const std::string& file);
+
+// Reads a regular file of at most kMaxJsonFileBytes and parses it as JSON
+// (parse_json), or throws InputError naming the file.
 json read_json_file(const std::string& file);
 
 }  // namespace wb

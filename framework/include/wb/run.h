@@ -56,6 +56,20 @@ struct RunOptions {
   std::string stats;  // energy/momentum CSV, empty for none
 };
 
+// The most steps one run takes (--steps, or round(T/H)); docs/run-contract.md.
+constexpr long kMaxSteps = 100'000'000;
+// Steps times particles above which a run warns on stderr that it will be slow.
+constexpr double kLongRunParticleSteps = 1e10;
+
+// A whole-number flag: decimal digits only, in [min, max], else InputError
+// naming the flag, the text and the range (no base prefixes, no clamping).
+std::int64_t parse_whole(const std::string& flag, const std::string& text, std::int64_t min,
+                         std::int64_t max);
+
+// Refuses a scene whose initial energy or momentum is not finite (finite
+// input that overflows), naming the file and the values.
+void check_initial_state(const Scene& scene, const World& world);
+
 // Runs one scene from its initial state. Throws InputError for bad input.
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt);
 

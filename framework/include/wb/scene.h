@@ -23,10 +23,27 @@ struct Scene {
   std::int64_t n() const { return x.cols(); }
 };
 
+// The most particles a scene may declare (particles plus every emitter's
+// count), checked before any is built: about 100 bytes each in a run.
+constexpr std::int64_t kMaxParticles = 10'000'000;
+
 // Reads and checks a scene. `seed` (from --seed) replaces emitter k's seed by
-// seed + k. `extra_keys` are top-level keys a lab adds (read by the lab).
+// seed + k (mod 2^64). `extra_keys` are top-level keys a lab adds (read by the
+// lab). Finite input that would make a non-finite state is refused: a mass
+// whose inverse overflows, a kinetic energy or momentum that overflows, an
+// emitter box whose size overflows.
 Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
                  const std::vector<std::string>& extra_keys = {});
+
+// load_scene on a parsed document (`file` names it in messages).
+Scene scene_from_json(const std::string& file, json doc, std::optional<std::uint64_t> seed,
+                      const std::vector<std::string>& extra_keys = {});
+
+// Checks every particle's state as load_scene does (finite x and v, m > 0
+// with a finite 1/m, finite kinetic energy and momentum, radius >= 0), e.g.
+// after a lab's scene generators added particles; InputError names the
+// particle and `what` made it.
+void check_particles(const Scene& scene, const std::string& what);
 
 // A deterministic uniform double in [0, 1) from a 64-bit draw.
 inline double unit_double(std::uint64_t r) { return double(r >> 11) * 0x1.0p-53; }

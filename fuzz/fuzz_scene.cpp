@@ -1,0 +1,129 @@
+// libFuzzer target: any bytes as a scene file, through everything a run does
+// before its first step (issue 11; fuzz/README.md).
+//   JSON parsing (depth, duplicate keys, number overflow) -> load_scene's
+//   checks -> the forces glue (build_forces) -> the initial-state check ->
+//   the sweep's "exact" reader and its closed form.
+// A finding is a crash, a sanitizer report, an exception other than
+// InputError, an InputError message that is not one line of valid UTF-8, or
+// a scene accepted with a non-finite state or a non-finite closed form.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "forces_world.h"
+#include "wb/input.h"
+#include "wb/run.h"
+#include "wb/scene.h"
+#include "wb/sweep.h"
+
+namespace {
+
+// Particles above which an input is skipped: the all-pairs forces would make
+// one input take seconds (the limits themselves are tested in tests/badinput).
+constexpr double kFuzzMaxParticles = 2000;
+
+[[noreturn]] void finding(const char* what, const std::string& detail) {
+  std::fprintf(stderr, "fuzz_scene: %s: %s\n", what, detail.c_str());
+  std::abort();
+}
+
+// An independent check of UTF-8 (not the one the library uses).
+bool valid_utf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const unsigned c = static_cast<unsigned char>(s[i]);
+    std::size_t n = c < 0x80           ? 1
+                    : (c >> 5) == 0x6  ? 2
+                    : (c >> 4) == 0xE  ? 3
+                    : (c >> 3) == 0x1E ? 4
+                                       : 0;
+    if (n == 0 || i + n > s.size()) return false;
+    std::uint32_t cp = n == 1 ? c : n == 2 ? (c & 0x1F) : n == 3 ? (c & 0x0F) : (c & 0x07);
+    for (std::size_t k = 1; k < n; ++k) {
+      const unsigned d = static_cast<unsigned char>(s[i + k]);
+      if ((d >> 6) != 0x2) return false;
+      cp = (cp << 6) | (d & 0x3F);
+    }
+    const std::uint32_t min_cp[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < min_cp[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += n;
+  }
+  return true;
+}
+
+// One line, valid UTF-8, bounded: what every message must be.
+void check_message(const std::string& m, std::size_t max_bytes) {
+  if (m.size() > max_bytes) finding("message too long", std::to_string(m.size()) + " bytes");
+  if (!valid_utf8(m)) finding("message is not valid UTF-8", m);
+  for (unsigned char c : m) {
+    if (c < 0x20 || c == 0x7F) finding("message holds a control character", m);
+  }
+  if (m.find("\xC2\x85") != std::string::npos || m.find("\xE2\x80\xA8") != std::string::npos ||
+      m.find("\xE2\x80\xA9") != std::string::npos) {
+    finding("message holds a Unicode line break", m);
+  }
+}
+
+// The particles the scene's emitters would make, if it is cheap to tell.
+double declared_particles(const wb::json& doc) {
+  double n = 0;
+  if (!doc.is_object()) return 0;
+  auto p = doc.find("particles");
+  if (p != doc.end() && p->is_array()) n += double(p->size());
+  auto e = doc.find("emitters");
+  if (e == doc.end() || !e->is_array()) return n;
+  for (const auto& em : *e) {
+    if (!em.is_object()) continue;
+    auto c = em.find("count");
+    if (c != em.end() && c->is_number()) {
+      const double k = c->get<double>();
+      if (k > 0 && k <= double(wb::kMaxParticles)) n += k;
+    }
+  }
+  return n;
+}
+
+void check_scene(const wb::Scene& s) {
+  for (Eigen::Index i = 0; i < s.n(); ++i) {
+    if (!s.x.col(i).allFinite() || !s.v.col(i).allFinite() || !(s.m[i] > 0) ||
+        !std::isfinite(1.0 / s.m[i]) || !(s.radius[i] >= 0) || !std::isfinite(s.radius[i])) {
+      finding("accepted a non-finite particle", std::to_string(i));
+    }
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  check_message(wb::one_line(text), wb::kMaxMessageBytes);
+  try {
+    wb::json doc = wb::parse_json(text, "fuzz.json");
+    check_message(wb::describe(doc), 80);
+    const double total = declared_particles(doc);
+    if (total > kFuzzMaxParticles && total <= double(wb::kMaxParticles)) return 0;
+    wb::Scene scene =
+        wb::scene_from_json("fuzz.json", std::move(doc), std::nullopt, wb::sweep_scene_keys());
+    check_scene(scene);
+    wb::check_particles(scene, "the fuzzer");
+    wb::ForceWorld world(scene);
+    wb::check_initial_state(scene, world);
+    const wb::ExactSolution exact = wb::read_exact(scene);
+    if (exact.kind != wb::ExactSolution::kNone) {
+      const double T = scene.t_end.value_or(1.0);
+      for (double t : {0.0, 0.1 * T, 0.5 * T, T}) {
+        wb::Vec2 x, v;
+        exact.at(t, x, v);
+        if (!x.allFinite() || !v.allFinite()) {
+          finding("accepted an exact motion that is not finite", "t = " + std::to_string(t));
+        }
+      }
+    }
+  } catch (const wb::InputError& e) {
+    check_message(e.what(), wb::kMaxMessageBytes);
+  }
+  return 0;
+}
