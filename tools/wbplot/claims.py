@@ -161,11 +161,12 @@ def _reduce(values, how, steps=None):
 class Data:
     """The files of the report's runs, in `root` (build/report or tools/claims' own)."""
 
-    def __init__(self, root, scenes_root):
+    def __init__(self, root, scenes_root, report_root=None):
         self.root, self.scenes_root = root, scenes_root
+        self.report_root = report_root or root  # files only tools/report makes (csv)
 
-    def file(self, lab, name):
-        p = os.path.join(self.root, lab, name)
+    def file(self, lab, name, report=False):
+        p = os.path.join(self.report_root if report else self.root, lab, name)
         if not os.path.exists(p):
             raise InputError(f"{p}: not found (the run behind the claim did not happen)")
         return p
@@ -302,7 +303,7 @@ def measure(claim, data):
         if len(args) < 3:
             raise InputError(f"{claim.where}: csv takes LAB/FILE COLUMN REDUCER [COL=VALUE...]")
         lab, _, fname = args[0].partition("/")
-        rows = read_csv(data.file(lab, fname), [args[1]])
+        rows = read_csv(data.file(lab, fname, report=True), [args[1]])
         for cond in args[3:]:
             col, _, val = cond.partition("=")
             rows = [r for r in rows if r.get(col, "").strip() == val]

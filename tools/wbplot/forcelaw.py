@@ -66,7 +66,6 @@ def plot_forcelaw(scene, out, trace=None, title=None):
             ax.set_ylabel("swirl (tangential) speed (m/s)")
             ax.set_title("vortex: swirl speed against radius")
         elif kind == "spring":
-            parts = doc.get("particles", []) or []
             pts, laws = [], {}
             for f in mine:
                 k, rest = _num(f, "k"), _num(f, "rest", 0.0)
@@ -95,7 +94,6 @@ def plot_forcelaw(scene, out, trace=None, title=None):
             ax.set_xlabel("stretch L - rest (m)")
             ax.set_ylabel("spring force along the spring (N), + pushes apart")
             ax.set_title("spring: force against stretch (damper left out)")
-            del parts
         else:
             f = mine[0]
             cx, cy = (float(c) for c in f.get("center", [0, 0]))

@@ -352,13 +352,24 @@ def plot_stats(path, out, title=None, growth=None):
                            gridspec_kw={"height_ratios": heights})
     ax = axes[0]
     div = _diverged_at(s)
+    curves = []
     for key, label, style in (("energy", "total E", "-"), ("kinetic", "kinetic K", "--"),
                               ("potential", "potential U", ":")):
         t, y = _finite_pairs(s["t"], s[key])
         if blew:
             t, y = _finite_pairs(t, _lg([abs(b) for b in y]))
             label = "|" + label.split()[-1] + "|"
-        ax.plot(t, y, style, label=label)
+        curves.append((t, y, label, style))
+    ys = [v for _, y, _, _ in curves for v in y]
+    span = (max(ys) - min(ys)) if ys else 0.0
+    for k, (t, y, label, style) in enumerate(curves):
+        same = [c[2] for c in curves[:k] if _coincides((c[0], c[1]), (t, y), span)]
+        kw = {}
+        if same:
+            every = max(1, len(t) // 12)
+            kw = dict(marker="o", mfc="white", ms=4, markevery=(k * every // 3 % every, every))
+            label += f" (coincides with {same[0]})"
+        ax.plot(t, y, style, label=label, **kw)
     if blew:
         _pow10_axis(ax)
         ax.set_ylabel("|energy| (J), log scale")
@@ -394,7 +405,8 @@ def plot_stats(path, out, title=None, growth=None):
                      ha="center", va="center")
         ax2.set_ylabel("|E - E0| / |E0|" if kind == "relative" else "|E - E0| (J)")
         if kind == "absolute":
-            ax2.set_title("E0 is 0 to rounding: absolute error, not relative", fontsize=8.5)
+            ax2.set_title("E0 is 0 (or rounding noise): absolute error, not relative",
+                          fontsize=8.5)
     axm = axes[-1]
     if blew:
         # Momentum of a run that blew up spans hundreds of decades too: its size |p|.
