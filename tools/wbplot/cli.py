@@ -220,7 +220,7 @@ def main(argv=None):
     except InputError as e:
         print(f"tools/plot: error: {e}", file=sys.stderr)
         return 2
-    except (ValueError, ArithmeticError, KeyError, IndexError) as e:
+    except (ValueError, ArithmeticError, KeyError, IndexError, TypeError) as e:
         # Data the figure cannot be drawn from: one line, never a traceback.
         print(f"tools/plot: error: {getattr(args, 'command', '')}: cannot draw this data "
               f"({type(e).__name__}: {e})", file=sys.stderr)
