@@ -36,6 +36,21 @@ def build_parser():
     s.add_argument("trace", metavar="TRACE.csv")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--ids", help="comma-separated particle ids to draw (default: all, at most 300)")
+    s.add_argument("--exact", metavar="SCENE.json",
+                   help="also draw the scene's closed-form motion, dashed (free fall under "
+                        "uniform gravity, \"exact\": \"oscillator\" or \"kepler\")")
+    s.add_argument("--title")
+
+    s = sub.add_parser("paths", help="several runs' trajectories overlaid, over the exact motion",
+                       description="Trajectories of several runs (trace CSVs, e.g. one per "
+                                   "integrator) on the same axes; with --exact, over the "
+                                   "scene's closed-form motion (dashed), the view fitted to it "
+                                   "and each run's final distance from it in the legend.")
+    s.add_argument("traces", nargs="+", metavar="TRACE.csv")
+    s.add_argument("--labels", help="comma-separated, one per file (default: file names)")
+    s.add_argument("--exact", metavar="SCENE.json", help="the scene, for its closed form")
+    s.add_argument("--ids", help="comma-separated particle ids (default: at most 10)")
+    s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--title")
 
     s = sub.add_parser("stats", help="energy and momentum against time from a stats CSV",
@@ -44,6 +59,8 @@ def build_parser():
                                    "against time from a stats CSV.")
     s.add_argument("stats", metavar="STATS.csv")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
+    s.add_argument("--growth", type=_positive_float, metavar="F",
+                   help="predicted energy factor per step, drawn when the run blew up")
     s.add_argument("--title")
 
     s = sub.add_parser("energy", help="total energy of several runs on the same axes",
@@ -53,7 +70,11 @@ def build_parser():
     s.add_argument("--labels", help="comma-separated, one per file (default: file names)")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--relative", action="store_true",
-                   help="plot |E - E0| / |E0| on a log scale instead of E")
+                   help="plot |E - E0| / |E0| on a log scale instead of E (|E - E0| in J "
+                        "when E0 is 0 to rounding)")
+    s.add_argument("--growth", metavar="LABEL=F,...",
+                   help="predicted energy factor per step of some runs, drawn beside the "
+                        "measured growth when a run blew up")
     s.add_argument("--title")
 
     s = sub.add_parser("phase", help="phase portrait of one particle, several traces overlaid",
@@ -63,6 +84,17 @@ def build_parser():
     s.add_argument("--labels", help="comma-separated, one per file (default: file names)")
     s.add_argument("--id", type=int, default=0, help="particle id (default 0)")
     s.add_argument("--axis", choices=["x", "y"], default="x", help="x (default) or y")
+    s.add_argument("-o", "--out", required=True, metavar="FIG.png")
+    s.add_argument("--title")
+
+    s = sub.add_parser("forcelaw", help="the scene's force laws, with where a run's particles sit",
+                       description="From a scene JSON: the vortex's swirl speed against "
+                                   "radius, each spring's force against its stretch, the "
+                                   "attractor's pull against distance (one panel each the "
+                                   "scene has); with --trace, the particles at the last "
+                                   "written step of that run on top.")
+    s.add_argument("scene", metavar="SCENE.json")
+    s.add_argument("--trace", metavar="TRACE.csv", help="a run of the scene (its last rows)")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--title")
 
@@ -133,16 +165,32 @@ def run(args):
             return
     if args.command == "trace":
         ids = parse_list(args.ids, "--ids", int) if args.ids else None
-        runs.plot_trace(args.trace, args.out, ids=ids, title=args.title)
+        runs.plot_trace(args.trace, args.out, ids=ids, title=args.title, exact=args.exact)
+    elif args.command == "paths":
+        ids = parse_list(args.ids, "--ids", int) if args.ids else None
+        labels = parse_list(args.labels, "--labels") if args.labels else None
+        runs.plot_paths(args.traces, labels, args.out, scene=args.exact, ids=ids,
+                        title=args.title)
     elif args.command == "stats":
-        runs.plot_stats(args.stats, args.out, title=args.title)
+        runs.plot_stats(args.stats, args.out, title=args.title, growth=args.growth)
     elif args.command == "energy":
         labels = parse_list(args.labels, "--labels") if args.labels else None
-        runs.plot_energy(args.stats, labels, args.out, relative=args.relative, title=args.title)
+        growth = {}
+        for item in parse_list(args.growth, "--growth") if args.growth else []:
+            name, _, f = item.partition("=")
+            try:
+                growth[name] = _positive_float(f)
+            except ValueError:
+                raise InputError(f"--growth: item '{item}': expected LABEL=F with F > 0") from None
+        runs.plot_energy(args.stats, labels, args.out, relative=args.relative, title=args.title,
+                         growth=growth)
     elif args.command == "phase":
         labels = parse_list(args.labels, "--labels") if args.labels else None
         runs.plot_phase(args.traces, labels, args.out, pid=args.id, axis=args.axis,
                         title=args.title)
+    elif args.command == "forcelaw":
+        from . import forcelaw
+        forcelaw.plot_forcelaw(args.scene, args.out, trace=args.trace, title=args.title)
     elif args.command == "sweep":
         for f in sweep.plot_sweep(args.sweep, args.out, scene=args.scene, scale=args.scale):
             print(f)
@@ -163,6 +211,7 @@ def run(args):
 
 def main(argv=None):
     parser = build_parser()
+    args = None
     try:
         args = parser.parse_args(argv)
         if args.command is None:
@@ -170,5 +219,10 @@ def main(argv=None):
         run(args)
     except InputError as e:
         print(f"tools/plot: error: {e}", file=sys.stderr)
+        return 2
+    except (ValueError, ArithmeticError, KeyError, IndexError, TypeError) as e:
+        # Data the figure cannot be drawn from: one line, never a traceback.
+        print(f"tools/plot: error: {getattr(args, 'command', '')}: cannot draw this data "
+              f"({type(e).__name__}: {e})", file=sys.stderr)
         return 2
     return 0

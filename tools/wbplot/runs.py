@@ -1,4 +1,5 @@
 """Figures of single runs: trajectories, energy and momentum, phase portraits."""
+import math
 import os
 
 import matplotlib
@@ -49,7 +50,108 @@ def _finite_xy(d, a="x", b="y"):
     return [p for p, _ in pts], [q for _, q in pts]
 
 
-def plot_trace(path, out, ids=None, title=None):
+def read_scene(path):
+    """A scene JSON file (for --exact)."""
+    import json
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = json.load(f)
+    except OSError as e:
+        raise InputError(f"--exact: {path}: cannot read ({e.strerror})") from None
+    except json.JSONDecodeError as e:
+        raise InputError(f"--exact: {path}: not JSON ({e.msg}, line {e.lineno})") from None
+    if not isinstance(doc, dict):
+        raise InputError(f"--exact: {path}: expected a JSON object (a scene)")
+    return doc
+
+
+def exact_paths(scene, ids, t_end, samples=1500):
+    """{id: (xs, ys)} of the scene's closed-form motion from 0 to t_end, or ({}, None)."""
+    from .exact import motion
+    kind, at = motion(read_scene(scene))
+    if at is None:
+        return {}, None
+    n = len(read_scene(scene).get("particles", []))
+    out = {}
+    for pid in ids:
+        if 0 <= pid < n:
+            pts = [at(pid, t_end * k / samples) for k in range(samples + 1)]
+            out[pid] = ([p for p, _ in pts], [q for _, q in pts])
+    return out, kind
+
+
+def _draw_exact(ax, paths, kind):
+    for k, (xs, ys) in enumerate(paths.values()):
+        ax.plot(xs, ys, color="black", lw=1.0, ls=(0, (5, 3)), alpha=0.8, zorder=5,
+                label=f"exact ({kind})" if k == 0 else None)
+
+
+def _view_of(ax, paths, pad=0.25):
+    """Limits the view to the exact paths (plus a margin); runs that leave it left the exact
+    motion far behind."""
+    xs = [x for p in paths.values() for x in p[0]]
+    ys = [y for p in paths.values() for y in p[1]]
+    if not xs:
+        return
+    w = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
+    ax.set_xlim(min(xs) - pad * w, max(xs) + pad * w)
+    ax.set_ylim(min(ys) - pad * w, max(ys) + pad * w)
+
+
+def plot_paths(paths, labels, out, scene=None, ids=None, title=None):
+    """Several runs' trajectories (e.g. one per integrator) on the same axes, over the
+    scene's closed-form motion when it has one."""
+    if labels is None:
+        labels = [os.path.splitext(os.path.basename(p))[0] for p in paths]
+    if len(labels) != len(paths):
+        raise InputError(f"--labels: {len(labels)} labels for {len(paths)} files, expected "
+                         "one label per file")
+    runs = [read_trace(p) for p in paths]
+    if ids is None:
+        ids = choose_ids(runs[0].keys(), 10)
+    fig, ax = new_figure(figsize=(6.6, 5.8))
+    t_end = max(max((t for t in d["t"] if finite(t)), default=0.0)
+                for r in runs for d in r.values())
+    ex, kind = exact_paths(scene, ids, t_end) if scene else ({}, None)
+    styles = ["-", (0, (4, 2)), (0, (1, 1.5)), "-."]
+    far = []
+    for k, (data, label) in enumerate(zip(runs, labels)):
+        color, marker = integrator_style(label, labels)
+        for j, pid in enumerate(ids):
+            if pid not in data:
+                raise InputError(f"--ids: particle {pid} is not in {paths[k]}")
+            xs, ys = _finite_xy(data[pid])
+            ax.plot(xs, ys, color=color, ls=styles[k % len(styles)], lw=1.3,
+                    label=label if j == 0 else None)
+            if xs:
+                ax.plot([xs[-1]], [ys[-1]], "o", color=color, ms=5, zorder=6)
+        if ex:
+            # How far the run ends from the exact motion (largest over the particles).
+            from .exact import motion
+            _, at = motion(read_scene(scene))
+            off = [math.hypot(data[p]["x"][-1] - at(p, data[p]["t"][-1])[0],
+                              data[p]["y"][-1] - at(p, data[p]["t"][-1])[1]) for p in ids
+                   if p in ex]
+            far.append((label, max(off) if off else math.nan))
+    if ex:
+        _draw_exact(ax, ex, kind)
+        _view_of(ax, ex)
+        for label, d in far:
+            ax.plot([], [], ls="", label=f"{label}: ends {d:.3g} m from exact")
+    starts = [(runs[0][p]["x"][0], runs[0][p]["y"][0]) for p in ids]
+    ax.scatter([a for a, _ in starts], [b for _, b in starts], s=40, facecolors="white",
+               edgecolors="black", zorder=7, label="start")
+    ax.set_aspect("equal", adjustable="box" if ex else "datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(title or "Trajectories by run")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.11), ncol=2, fontsize=7.5,
+              frameon=False)
+    fig.tight_layout()
+    save_figure(fig, out)
+
+
+def plot_trace(path, out, ids=None, title=None, exact=None):
     data = read_trace(path)
     if ids is None:
         ids = choose_ids(data.keys())
@@ -85,6 +187,11 @@ def plot_trace(path, out, ids=None, title=None):
                    edgecolors="black", linewidths=0.8, zorder=3)
         ax.scatter([p for p, _ in ends], [q for _, q in ends], s=size, color="black", zorder=4)
     clipped = _clip_runaway(ax, data, ids) if diverged else False
+    if exact:
+        t_end = max(max((t for t in d["t"] if finite(t)), default=0.0) for d in data.values())
+        ex, kind = exact_paths(exact, ids, t_end)
+        if ex:
+            _draw_exact(ax, ex, kind)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
@@ -93,7 +200,7 @@ def plot_trace(path, out, ids=None, title=None):
     ax.set_title(title or f"Trajectories, t = 0 to {t_end:g} s{note}")
     handles = [Line2D([], [], ls="", marker="o", mfc="white", mec="black", label="start"),
                Line2D([], [], ls="", marker="o", color="black", label="end")]
-    if not many:
+    if not many or exact:
         handles = ax.get_legend_handles_labels()[0] + handles
     if diverged:
         handles.append(Line2D([], [], ls="", label=f"{diverged} diverged (non-finite)"))
@@ -136,26 +243,88 @@ def read_stats(path):
     return {c: column(path, rows, c) for c in STATS_COLUMNS}
 
 
-def drift_series(s):
-    """(t, |E - E0| / |E0|) or None when E0 is 0 or not finite (no relative drift)."""
+ROUNDING_E0 = 1e-9  # |E0| below this times the run's largest |K| + |U| is rounding noise
+
+
+def energy_scale(s):
+    """(scale, kind) for the energy error of a run: (|E0|, "relative") when E0 means
+    something, else (1, "absolute") (|E - E0| in J) when E0 is 0 or rounding noise around 0
+    (a cancellation, or potentials that are 0 at the start: below ROUNDING_E0 times the
+    |K| + |U| of the first two rows)."""
     e0 = s["energy"][0]
-    scale = max(abs(e0), 0.0)
-    # E0 counts as 0 when it is a cancellation of much larger initial kinetic and
-    # potential energies; judged at the start, since a run that blew up has huge
-    # energies later that say nothing about E0.
-    typical = max([abs(v) for v in (s["kinetic"][0], s["potential"][0]) if finite(v)], default=0.0)
-    if not finite(e0) or scale == 0.0 or scale < 1e-12 * typical:
+    # The size of K and U at the first two rows (not later: a run that blew up would make
+    # any E0 look like noise).
+    typical = max([abs(k) + abs(u) for k, u in zip(s["kinetic"][:2], s["potential"][:2])
+                   if finite(k) and finite(u)], default=0.0)
+    if not finite(e0) or e0 == 0.0 or abs(e0) < ROUNDING_E0 * typical:
+        return 1.0, "absolute"
+    return abs(e0), "relative"
+
+
+def drift_series(s):
+    """(t, |E - E0| / scale, kind) over the finite rows; kind "relative" or "absolute"."""
+    scale, kind = energy_scale(s)
+    e0 = s["energy"][0]
+    if not finite(e0):
         return None
     t = [ti for ti, e in zip(s["t"], s["energy"]) if finite(e)]
     d = [abs(e - e0) / scale for e in s["energy"] if finite(e)]
-    return t, d
+    return t, d, kind
 
 
 def _diverged_at(s):
-    for t, e in zip(s["t"], s["energy"]):
+    """(t, step) of the first row whose energy is not finite, or None."""
+    for t, st, e in zip(s["t"], s["step"], s["energy"]):
         if not finite(e):
-            return t
+            return t, st
     return None
+
+
+def _start_scale(s):
+    """The energy scale of the start: the median |K| + |U| over the first tenth of the rows
+    (E0 alone may be 0, or rounding noise, when the potentials are 0 at the start; the
+    largest over the run says nothing when the run blew up)."""
+    ku = [abs(k) + abs(u) for k, u in zip(s["kinetic"], s["potential"]) if finite(k) and finite(u)]
+    head = sorted(ku[:max(2, len(ku) // 10)])
+    return head[len(head) // 2] if head else 0.0
+
+
+def _blew_up(s):
+    """True when the run diverged or its energy grew past CLIP_ENERGY times its start."""
+    if _diverged_at(s) is not None:
+        return True
+    first = max(abs(s["energy"][0]) if finite(s["energy"][0]) else 0.0, _start_scale(s))
+    peak = max([abs(v) for v in s["energy"] if finite(v)], default=0.0)
+    return first > 0 and peak > CLIP_ENERGY * first
+
+
+def measured_growth(s):
+    """Per-step factor of |E| from the first row to the last finite one (geometric mean)."""
+    pts = [(st, abs(e)) for st, e in zip(s["step"], s["energy"]) if finite(e)]
+    if len(pts) < 2 or pts[0][1] == 0 or pts[-1][0] <= pts[0][0]:
+        return None
+    return (pts[-1][1] / pts[0][1]) ** (1.0 / (pts[-1][0] - pts[0][0]))
+
+
+def _predicted(e0, f, n):
+    """e0 * f^n, or nan when that overflows."""
+    if e0 <= 0 or f <= 0:
+        return math.nan
+    lg = math.log(e0) + n * math.log(f)
+    return math.exp(lg) if lg < 700 else math.nan
+
+
+def _lg(values):
+    """log10 of the positive finite values (others dropped, as nan). A run that overflowed
+    reaches 1e308, where a matplotlib log axis itself overflows, so blown-up energies are
+    drawn as log10 on a linear axis labelled in powers of ten."""
+    return [math.log10(v) if finite(v) and v > 0 else math.nan for v in values]
+
+
+def _pow10_axis(ax):
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
+    ax.yaxis.set_major_locator(MaxNLocator(nbins=7, integer=True))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"1e{y:.0f}"))
 
 
 def _finite_pairs(t, y):
@@ -163,109 +332,201 @@ def _finite_pairs(t, y):
     return [a for a, _ in pts], [b for _, b in pts]
 
 
-def plot_stats(path, out, title=None):
+def _mark_divergence(ax, div, color="0.25", label=True):
+    t, step = div
+    ax.axvline(t, color=color, ls=":", lw=1.2)
+    if label:
+        ax.text(t, 0.5, f" not finite from step {step:.0f}\n (t = {t:.3g} s)",
+                transform=blended_transform_factory(ax.transData, ax.transAxes),
+                ha="right", va="center", fontsize=8, color=color, rotation=90)
+
+
+def plot_stats(path, out, title=None, growth=None):
     s = read_stats(path)
     drift = drift_series(s)
-    panels = 3 if drift else 2
-    heights = [3, 1.6, 2] if drift else [3, 2]
+    blew = _blew_up(s)
+    show_drift = drift is not None and not blew
+    panels = 3 if show_drift else 2
+    heights = [3, 1.6, 2] if show_drift else [3, 2]
     fig, axes = new_figure(panels, 1, figsize=(6.4, 2.0 + 1.9 * panels), sharex=True,
                            gridspec_kw={"height_ratios": heights})
     ax = axes[0]
+    div = _diverged_at(s)
+    curves = []
     for key, label, style in (("energy", "total E", "-"), ("kinetic", "kinetic K", "--"),
                               ("potential", "potential U", ":")):
         t, y = _finite_pairs(s["t"], s[key])
-        ax.plot(t, y, style, label=label)
-    ax.set_ylabel("energy (J)")
+        if blew:
+            t, y = _finite_pairs(t, _lg([abs(b) for b in y]))
+            label = "|" + label.split()[-1] + "|"
+        curves.append((t, y, label, style))
+    ys = [v for _, y, _, _ in curves for v in y]
+    span = (max(ys) - min(ys)) if ys else 0.0
+    for k, (t, y, label, style) in enumerate(curves):
+        same = [c[2] for c in curves[:k] if _coincides((c[0], c[1]), (t, y), span)]
+        kw = {}
+        if same:
+            every = max(1, len(t) // 12)
+            kw = dict(marker="o", mfc="white", ms=4, markevery=(k * every // 3 % every, every))
+            label += f" (coincides with {same[0]})"
+        ax.plot(t, y, style, label=label, **kw)
+    if blew:
+        _pow10_axis(ax)
+        ax.set_ylabel("|energy| (J), log scale")
+        g = measured_growth(s)
+        if growth and finite(growth):
+            st0, e0 = s["step"][0], abs(s["energy"][0])
+            tp = [t for t, st in zip(s["t"], s["step"]) if finite(t)]
+            pred = [_predicted(e0, growth, st - st0) for st in s["step"]]
+            tp, pred = _finite_pairs(s["t"], _lg(pred))
+            ax.plot(tp, pred, color="0.35", lw=2.5, alpha=0.35,
+                    label=f"predicted ×{growth:.4g} per step")
+        if g:
+            ax.plot([], [], ls="", label=f"measured |E|: ×{g:.4g} per step")
+        if div:
+            _mark_divergence(ax, div)
+    else:
+        ax.set_ylabel("energy (J)")
     ax.legend(loc="best", framealpha=0.85)
-    div = _diverged_at(s)
-    ax.set_title(title or ("Energy and momentum" + (f" (diverged at t = {div:g} s)" if div is not None else "")))
-    if drift:
+    ax.set_title(title or ("Energy and momentum" + (f" (diverged at t = {div[0]:g} s)"
+                                                    if div is not None else "")))
+    if show_drift:
         ax2 = axes[1]
-        t, d = drift
-        tp, dp = zip(*[(a, b) for a, b in zip(t, d) if b > 0]) if any(b > 0 for b in d) else ([], [])
+        t, d, kind = drift
+        tp, dp = zip(*[(a, b) for a, b in zip(t, d) if b > 0]) if any(b > 0 for b in d) \
+            else ([], [])
         if dp:
+            unit = "" if kind == "relative" else " J"
             ax2.semilogy(tp, dp, color="#444444", lw=1.1,
-                         label=f"max {max(d):.2e}, final {d[-1]:.2e}")
+                         label=f"max {max(d):.2e}{unit}, final {d[-1]:.2e}{unit}")
             ax2.legend(loc="lower right", framealpha=0.85)
         else:
             ax2.text(0.5, 0.5, "E = E0 to the last digit", transform=ax2.transAxes,
                      ha="center", va="center")
-        ax2.set_ylabel("|E - E0| / |E0|")
-    else:
-        ax.text(0.99, 0.02, "E0 = 0: no relative energy drift", transform=ax.transAxes,
-                ha="right", va="bottom", fontsize=8.5)
+        ax2.set_ylabel("|E - E0| / |E0|" if kind == "relative" else "|E - E0| (J)")
+        if kind == "absolute":
+            ax2.set_title("E0 is 0 (or rounding noise): absolute error, not relative",
+                          fontsize=8.5)
     axm = axes[-1]
-    for key, label, style in (("px", "px", "-"), ("py", "py", "--")):
-        t, y = _finite_pairs(s["t"], s[key])
-        axm.plot(t, y, style, label=label)
-    axm.set_ylabel("momentum (kg m/s)")
+    if blew:
+        # Momentum of a run that blew up spans hundreds of decades too: its size |p|.
+        t, p = _finite_pairs(s["t"], [math.hypot(a, b) for a, b in zip(s["px"], s["py"])])
+        t, p = _finite_pairs(t, _lg(p))
+        axm.plot(t, p, label="|p|")
+        _pow10_axis(axm)
+        axm.set_ylabel("|momentum| (kg m/s), log")
+    else:
+        for key, label, style in (("px", "px", "-"), ("py", "py", "--")):
+            t, y = _finite_pairs(s["t"], s[key])
+            axm.plot(t, y, style, label=label)
+        axm.set_ylabel("momentum (kg m/s)")
     axm.set_xlabel("time t (s)")
     axm.legend(loc="best", framealpha=0.85)
+    if blew and div:
+        _mark_divergence(axm, div, label=False)
     fig.tight_layout()
     save_figure(fig, out)
 
 
-def plot_energy(paths, labels, out, relative=False, title=None):
+COINCIDE = 2e-3  # curves closer than this fraction of the y range are drawn as coinciding
+
+
+def _coincides(a, b, span):
+    """True when two series (same length, same times) differ by less than COINCIDE * span."""
+    if len(a[0]) != len(b[0]) or not a[0] or span <= 0:
+        return False
+    if any(abs(x - y) > 1e-12 * max(1.0, abs(x)) for x, y in zip(a[0], b[0])):
+        return False
+    return max(abs(x - y) for x, y in zip(a[1], b[1])) <= COINCIDE * span
+
+
+def plot_energy(paths, labels, out, relative=False, title=None, growth=None):
+    """Total energy (or its error) of several runs. A run that blew up switches the figure to
+    |E| on a log scale up to each run's last finite step, the divergence marked, with the
+    predicted per-step growth (growth: {label: factor}) beside the measured one."""
     if labels is None:
         labels = [os.path.splitext(os.path.basename(p))[0] for p in paths]
     if len(labels) != len(paths):
         raise InputError(f"--labels: {len(labels)} labels for {len(paths)} files, expected "
                          "one label per file")
+    growth = growth or {}
+    unknown = [k for k in growth if k not in labels]
+    if unknown:
+        raise InputError(f"--growth: '{unknown[0]}' is not one of the labels "
+                         f"{','.join(labels)}")
+    stats = [read_stats(p) for p in paths]
+    blew = any(_blew_up(s) for s in stats)
     fig, ax = new_figure(figsize=(6.4, 4.4))
-    drawn = 0
-    scale_all, peak, sane_all, marks = [], 0.0, [], []
-    clip = None
-    for path, label in zip(paths, labels):
-        s = read_stats(path)
-        first = [abs(v) for k in ("energy", "kinetic", "potential") for v in s[k][:1] if finite(v)]
-        if first and max(first) > 0:
-            scale_all.append(max(first))
-        peak = max([peak] + [abs(v) for v in s["energy"] if finite(v)])
-        sane_all += [v for v in s["energy"] if finite(v)]
-        color, marker = integrator_style(label, labels)
-        div = _diverged_at(s)
-        suffix = f" (diverged at t = {div:g} s)" if div is not None else ""
+    series, kinds, notes = [], set(), []
+    for s, label in zip(stats, labels):
         if relative:
             dr = drift_series(s)
             if dr is None:
-                ax.plot([], [], color=color, label=f"{label}: E0 = 0, no relative drift")
+                series.append(([], []))
                 continue
-            t, d = dr
-            t, d = zip(*[(a, b) for a, b in zip(t, d) if b > 0]) if any(b > 0 for b in d) else ([], [])
-            ax.plot(t, d, color=color, label=label + suffix)
-        else:
+            t, d, kind = dr
+            kinds.add(kind)
+            pts = _finite_pairs(*zip(*[(a, b) for a, b in zip(t, d) if b > 0])) \
+                if any(b > 0 for b in d) else ([], [])
+            series.append(_finite_pairs(pts[0], _lg(pts[1])) if blew else pts)
+        elif blew:
             t, y = _finite_pairs(s["t"], s["energy"])
-            ax.plot(t, y, color=color, label=label + suffix)
+            series.append(_finite_pairs(t, _lg([abs(b) for b in y])))
+        else:
+            series.append(_finite_pairs(s["t"], s["energy"]))
+    ys = [v for _, y in series for v in y]
+    if relative and not blew:
+        pos = [math.log10(v) for v in ys if v > 0]
+        span = (max(pos) - min(pos)) if pos else 0.0
+        comp = [(t, [math.log10(v) for v in y]) for t, y in series]
+    else:
+        span = (max(ys) - min(ys)) if ys else 0.0
+        comp = series
+    drawn = []
+    for k, ((t, y), s, label) in enumerate(zip(series, stats, labels)):
+        color, marker = integrator_style(label, labels)
+        div = _diverged_at(s)
+        suffix = f" (not finite from step {div[1]:.0f})" if div is not None else ""
+        same = [labels[j] for j in drawn if _coincides(comp[j], comp[k], span)]
+        kw = {}
+        if same:
+            # Drawn on top of an earlier curve: dashed with sparse markers, and said so.
+            every = max(1, len(t) // 12)
+            kw = dict(ls=(0, (4, 3)), marker=marker, markevery=(k * every // 3 % every, every),
+                      ms=5, mfc="white")
+            suffix += f" (coincides with {same[0]})"
+            notes.append(f"{label} = {same[0]}")
+        ax.plot(t, y, color=color, label=label + suffix, **kw)
+        drawn.append(k)
         if div is not None and t:
-            marks.append((t[-1], (d if relative else y)[-1], color))
-        drawn += 1
-    if relative:
+            ax.plot([t[-1]], [y[-1]], marker="x", color=color, ms=8, mew=2)
+            ax.axvline(div[0], color=color, ls=":", lw=1.0)
+        if blew and not relative and label in growth and s["energy"] and finite(s["energy"][0]):
+            f = growth[label]
+            st0, e0 = s["step"][0], abs(s["energy"][0])
+            last = max([st for st, e in zip(s["step"], s["energy"]) if finite(e)])
+            pts = [(tt, _predicted(e0, f, st - st0)) for tt, st in zip(s["t"], s["step"])
+                   if st <= last]
+            pts = [(a, math.log10(b)) for a, b in pts if finite(b) and b > 0]
+            g = measured_growth(s)
+            ax.plot([a for a, _ in pts], [b for _, b in pts], color=color, lw=4, alpha=0.25,
+                    label=f"{label}: predicted ×{f:.4g}/step, measured "
+                          + (f"×{g:.4g}" if g else "n/a"))
+    if blew:
+        _pow10_axis(ax)
+    elif relative:
         ax.set_yscale("log")
-        ax.set_ylabel("relative energy error |E - E0| / |E0|")
-    elif scale_all and peak > CLIP_ENERGY * max(scale_all):
-        # A run that blew up: a full axis would flatten every other curve, so the view
-        # keeps the values within CLIP_ENERGY times the starting energies.
-        lim = CLIP_ENERGY * max(scale_all)
-        sane = [v for v in sane_all if abs(v) <= lim] or [-lim, lim]
-        lo, hi = min(sane), max(sane)
-        pad = 0.08 * (hi - lo) if hi > lo else max(abs(hi), 1.0) * 0.1
-        clip = (lo - pad, hi + pad)
-        ax.set_ylim(*clip)
-        ax.set_ylabel("total energy E (J)")
-        ax.plot([], [], ls="", label="(view clipped: runs that blew up leave the chart)")
+    if relative:
+        ax.set_ylabel("|E - E0| / |E0|" if kinds == {"relative"} else
+                      "|E - E0| (J): E0 is 0 to rounding" if kinds == {"absolute"} else
+                      "|E - E0| / |E0|, or (J) where E0 is 0")
+    elif blew:
+        ax.set_ylabel("|total energy| (J), log scale")
     else:
         ax.set_ylabel("total energy E (J)")
-    # The last finite value of a run that diverged: an x (on the edge when out of view).
-    edge = blended_transform_factory(ax.transData, ax.transAxes)
-    for t_last, v_last, color in marks:
-        if clip and not clip[0] <= v_last <= clip[1]:
-            ax.plot([t_last], [0.98 if v_last > clip[1] else 0.02], marker="x", color=color,
-                    ms=8, mew=2, transform=edge, clip_on=False)
-        else:
-            ax.plot([t_last], [v_last], marker="x", color=color, ms=8, mew=2)
     ax.set_xlabel("time t (s)")
-    ax.set_title(title or ("Relative energy error" if relative else "Total energy") + " by run")
-    ax.legend(loc="best", framealpha=0.85)
+    ax.set_title(title or ("Energy error" if relative else "Total energy") + " by run")
+    ax.legend(loc="best", framealpha=0.85, fontsize=7.5)
     fig.tight_layout()
     save_figure(fig, out)
 
@@ -281,16 +542,29 @@ def plot_phase(paths, labels, out, pid=0, axis="x", title=None):
     v = "v" + axis
     fig, ax = new_figure(figsize=(6.0, 5.4))
     styles = ["-", "-", "--", "-.", ":"]
+    drawn = []
     for k, (path, label) in enumerate(zip(paths, labels)):
         data = read_trace(path)
         if pid not in data:
             raise InputError(f"--id: particle {pid} is not in {path} (ids "
                              f"{min(data)}..{max(data)})")
         xs, vs = _finite_xy(data[pid], axis, v)
-        color, _ = integrator_style(label, labels)
+        color, marker = integrator_style(label, labels)
         diverged = len(xs) < len(data[pid][axis])
-        ax.plot(xs, vs, styles[k % len(styles)], color=color, lw=1.2 if k else 1.0,
-                label=label + (" (diverged)" if diverged else ""))
+        span = max((max(c) - min(c) for c in (xs, vs) if c), default=0.0)
+        same = [lb for lb, (px, pv) in drawn if len(px) == len(xs) and xs and
+                max(max(abs(a - b) for a, b in zip(px, xs)),
+                    max(abs(a - b) for a, b in zip(pv, vs))) <= COINCIDE * span]
+        kw = dict(ls=styles[k % len(styles)], lw=1.2 if k else 1.0)
+        if same:
+            every = max(1, len(xs) // 15)
+            # Markers of each coinciding curve at other places, so none hides another's.
+            kw = dict(ls=(0, (4, 3)), lw=1.2, marker=marker,
+                      markevery=(k * every // 3 % every, every), ms=5, mfc="white")
+        ax.plot(xs, vs, color=color, **kw,
+                label=label + (" (diverged)" if diverged else "")
+                + (f" (coincides with {same[0]})" if same else ""))
+        drawn.append((label, (xs, vs)))
         if xs:
             ax.plot([xs[-1]], [vs[-1]], "o", color=color, ms=5)
     # One start marker: the traces share their initial state.

@@ -262,6 +262,14 @@ def plot_energy_error(runs, scene, out, scale=1.0):
 
 def plot_sweep(path, prefix, scene=None, scale=1.0):
     runs, scene = select_scene(path, read_sweep(path), scene)
+    if not any(finite(r.force_evals) and r.force_evals > 0 for r in runs):
+        raise InputError(f"{path}: nothing to plot: force_evals is 0 in every row (the "
+                         "integrators evaluated no forces: are the step functions still stubs?)")
+    if not any(not r.diverged and finite(r.error) and r.error > 0 for r in runs):
+        raise InputError(f"{path}: nothing to plot: no run has a finite error > 0")
+    if len({r.error for r in runs if not r.diverged}) == 1 and len(runs) > 1:
+        raise InputError(f"{path}: nothing to plot: every run has the same error "
+                         f"{runs[0].error:g} whatever dt (did any step move anything?)")
     outs = [prefix + "-work-precision.png", prefix + "-convergence.png",
             prefix + "-energy-error.png"]
     plot_work_precision(runs, scene, outs[0], scale)
