@@ -186,7 +186,9 @@ def plot_trace(path, out, ids=None, title=None, exact=None):
         ax.scatter([p for p, _ in starts], [q for _, q in starts], s=size, facecolors="white",
                    edgecolors="black", linewidths=0.8, zorder=3)
         ax.scatter([p for p, _ in ends], [q for _, q in ends], s=size, color="black", zorder=4)
-    clipped = _clip_runaway(ax, data, ids) if diverged else False
+    # A run that diverged, or ran a million times its size away (its trace stops at the
+    # last finite state), is clipped to RUNAWAY times the starting size.
+    clipped = _clip_runaway(ax, data, ids, RUNAWAY if diverged else RAN_AWAY)
     if exact:
         t_end = max(max((t for t in d["t"] if finite(t)), default=0.0) for d in data.values())
         ex, kind = exact_paths(exact, ids, t_end)
@@ -205,8 +207,10 @@ def plot_trace(path, out, ids=None, title=None, exact=None):
     if diverged:
         handles.append(Line2D([], [], ls="", label=f"{diverged} diverged (non-finite)"))
     if clipped:
+        far = max(math.hypot(x, y) for i in ids for x, y in zip(*_finite_xy(data[i])))
         handles.append(Line2D([], [], ls="", label=f"view clipped to {RUNAWAY}x the\n"
-                                                   "starting size: the run ran away"))
+                                                   f"starting size: the run ran away\n"
+                                                   f"(to {far:.2g} m from the origin)"))
     ax.legend(handles=handles, loc="best", framealpha=0.85)
     fig.tight_layout()
     save_figure(fig, out)
@@ -216,7 +220,10 @@ CLIP_ENERGY = 1e3  # an energy figure whose values pass this many times the star
 RUNAWAY = 20  # the view of a run that diverged is clipped to this many times its starting size
 
 
-def _clip_runaway(ax, data, ids):
+RAN_AWAY = 1e6  # a finite path farther than this many times its starting size ran away
+
+
+def _clip_runaway(ax, data, ids, threshold=RUNAWAY):
     """For a run that diverged: limits the view to RUNAWAY times the size of the starting
     positions when the paths go farther; True if it did."""
     starts = [(data[i]["x"][0], data[i]["y"][0]) for i in ids
@@ -230,7 +237,7 @@ def _clip_runaway(ax, data, ids):
                + [0.5 * max(abs(p) for p, _ in starts), 0.5 * max(abs(q) for _, q in starts)])
     size = size if size > 0 else 1.0
     reach = max(max(abs(p - cx), abs(q - cy)) for p, q in pts)
-    if reach <= RUNAWAY * size * 1.0001:
+    if reach <= threshold * size * 1.0001:
         return False
     half = RUNAWAY * size
     ax.set_xlim(cx - half, cx + half)
