@@ -72,18 +72,23 @@ def exact_paths(scene, ids, t_end, samples=1500):
     if at is None:
         return {}, None
     n = len(read_scene(scene).get("particles", []))
+    # A closed curve is drawn once: over many turns its dashes would fill a band.
+    span = min(t_end, getattr(at, "period", t_end) * 1.002)
     out = {}
     for pid in ids:
         if 0 <= pid < n:
-            pts = [at(pid, t_end * k / samples) for k in range(samples + 1)]
-            out[pid] = ([p for p, _ in pts], [q for _, q in pts])
+            pts = [at(pid, span * k / samples) for k in range(samples + 1)]
+            end = at(pid, t_end)
+            out[pid] = ([p for p, _ in pts], [q for _, q in pts], end)
     return out, kind
 
 
 def _draw_exact(ax, paths, kind):
-    for k, (xs, ys) in enumerate(paths.values()):
+    for k, (xs, ys, end) in enumerate(paths.values()):
         ax.plot(xs, ys, color="black", lw=1.0, ls=(0, (5, 3)), alpha=0.8, zorder=5,
                 label=f"exact ({kind})" if k == 0 else None)
+        ax.plot([end[0]], [end[1]], ls="", marker="x", color="black", ms=8, mew=1.8,
+                zorder=8, label="exact, at the end" if k == 0 else None)
 
 
 def _view_of(ax, paths, pad=0.25):
@@ -132,12 +137,13 @@ def plot_paths(paths, labels, out, scene=None, ids=None, title=None):
             off = [math.hypot(data[p]["x"][-1] - at(p, data[p]["t"][-1])[0],
                               data[p]["y"][-1] - at(p, data[p]["t"][-1])[1]) for p in ids
                    if p in ex]
-            far.append((label, max(off) if off else math.nan))
+            far.append((label, max(off) if off and all(finite(o) for o in off) else None))
     if ex:
         _draw_exact(ax, ex, kind)
         _view_of(ax, ex)
         for label, d in far:
-            ax.plot([], [], ls="", label=f"{label}: ends {d:.3g} m from exact")
+            ax.plot([], [], ls="", label=f"{label}: ends {d:.3g} m from exact" if d is not None
+                    else f"{label}: diverged (not finite at the end)")
     starts = [(runs[0][p]["x"][0], runs[0][p]["y"][0]) for p in ids]
     ax.scatter([a for a, _ in starts], [b for _, b in starts], s=40, facecolors="white",
                edgecolors="black", zorder=7, label="start")
