@@ -330,3 +330,20 @@ def _float(s):
         return float(s)
     except ValueError:
         return math.nan
+
+
+def check(claims, data, failed_runs=None):
+    """[(claim, measured or None, why)] for every claim; why is '' when it holds."""
+    out = []
+    for c in claims:
+        why = next((f"run failed: {w}" for n, w in (failed_runs or {}).items()
+                    if n in needs(c)), "")
+        got = None
+        if not why:
+            try:
+                got = measure(c, data)
+                why = c.judge(got) or c.prose_problem()
+            except InputError as e:
+                why = str(e)
+        out.append((c, got, why))
+    return out

@@ -54,9 +54,12 @@ def build_parser():
     s.add_argument("--title")
 
     s = sub.add_parser("stats", help="energy and momentum against time from a stats CSV",
-                       description="Energy (total, kinetic, potential), the relative energy "
-                                   "drift |E-E0|/|E0| when E0 is not 0, and momentum (px, py) "
-                                   "against time from a stats CSV.")
+                       description="Energy (total, kinetic, potential), the energy error "
+                                   "|E-E0|/|E0| (|E-E0| in J when E0 is 0 to rounding), and "
+                                   "momentum (px, py) against time from a stats CSV. A run "
+                                   "that blew up is drawn as |E|, |K|, |U|, |p| on a log scale "
+                                   "up to its last finite step, the divergence marked, with "
+                                   "--growth F beside the measured growth per step.")
     s.add_argument("stats", metavar="STATS.csv")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--growth", type=_positive_float, metavar="F",
@@ -65,7 +68,11 @@ def build_parser():
 
     s = sub.add_parser("energy", help="total energy of several runs on the same axes",
                        description="Total energy against time for several runs (stats CSVs), "
-                                   "e.g. each integrator on the same scene.")
+                                   "e.g. each integrator on the same scene. When a run blew up, "
+                                   "|E| on a log scale up to each run's last finite step, the "
+                                   "divergence marked, with the --growth predictions beside "
+                                   "the measured growth. Curves that coincide are drawn dashed "
+                                   "with markers and labelled so.")
     s.add_argument("stats", nargs="+", metavar="STATS.csv")
     s.add_argument("--labels", help="comma-separated, one per file (default: file names)")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")

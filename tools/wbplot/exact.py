@@ -56,6 +56,7 @@ def oscillator(doc):
     def at(i, t):
         c, s = math.cos(w * t), math.sin(w * t)
         return cx + (x - cx) * c + vx / w * s, cy + (y - cy) * c + vy / w * s
+    at.period = 2 * math.pi / w
     return at
 
 
@@ -106,11 +107,13 @@ def kepler(doc):
         f = 1 - a / r0 * (1 - math.cos(d))
         g = t - (d - math.sin(d)) / n
         return cx + f * rx + g * vx, cy + f * ry + g * vy
+    at.period = max(2 * math.pi / o[6] for o in orbits)
     return at
 
 
 def motion(doc):
-    """(kind, at(i, t) -> (x, y)) of the scene's closed-form motion, or (None, None)."""
+    """(kind, at(i, t) -> (x, y)) of the scene's closed-form motion, or (None, None).
+    at.period, when set, is the time after which the motion repeats (closed curves)."""
     for kind, fn in (("parabola", parabola), ("oscillator", oscillator), ("kepler", kepler)):
         at = fn(doc)
         if at is not None:

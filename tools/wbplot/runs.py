@@ -72,18 +72,23 @@ def exact_paths(scene, ids, t_end, samples=1500):
     if at is None:
         return {}, None
     n = len(read_scene(scene).get("particles", []))
+    # A closed curve is drawn once: over many turns its dashes would fill a band.
+    span = min(t_end, getattr(at, "period", t_end) * 1.002)
     out = {}
     for pid in ids:
         if 0 <= pid < n:
-            pts = [at(pid, t_end * k / samples) for k in range(samples + 1)]
-            out[pid] = ([p for p, _ in pts], [q for _, q in pts])
+            pts = [at(pid, span * k / samples) for k in range(samples + 1)]
+            end = at(pid, t_end)
+            out[pid] = ([p for p, _ in pts], [q for _, q in pts], end)
     return out, kind
 
 
 def _draw_exact(ax, paths, kind):
-    for k, (xs, ys) in enumerate(paths.values()):
+    for k, (xs, ys, end) in enumerate(paths.values()):
         ax.plot(xs, ys, color="black", lw=1.0, ls=(0, (5, 3)), alpha=0.8, zorder=5,
                 label=f"exact ({kind})" if k == 0 else None)
+        ax.plot([end[0]], [end[1]], ls="", marker="x", color="black", ms=8, mew=1.8,
+                zorder=8, label="exact, at the end" if k == 0 else None)
 
 
 def _view_of(ax, paths, pad=0.25):
@@ -132,12 +137,13 @@ def plot_paths(paths, labels, out, scene=None, ids=None, title=None):
             off = [math.hypot(data[p]["x"][-1] - at(p, data[p]["t"][-1])[0],
                               data[p]["y"][-1] - at(p, data[p]["t"][-1])[1]) for p in ids
                    if p in ex]
-            far.append((label, max(off) if off else math.nan))
+            far.append((label, max(off) if off and all(finite(o) for o in off) else None))
     if ex:
         _draw_exact(ax, ex, kind)
         _view_of(ax, ex)
         for label, d in far:
-            ax.plot([], [], ls="", label=f"{label}: ends {d:.3g} m from exact")
+            ax.plot([], [], ls="", label=f"{label}: ends {d:.3g} m from exact" if d is not None
+                    else f"{label}: diverged (not finite at the end)")
     starts = [(runs[0][p]["x"][0], runs[0][p]["y"][0]) for p in ids]
     ax.scatter([a for a, _ in starts], [b for _, b in starts], s=40, facecolors="white",
                edgecolors="black", zorder=7, label="start")
@@ -186,7 +192,9 @@ def plot_trace(path, out, ids=None, title=None, exact=None):
         ax.scatter([p for p, _ in starts], [q for _, q in starts], s=size, facecolors="white",
                    edgecolors="black", linewidths=0.8, zorder=3)
         ax.scatter([p for p, _ in ends], [q for _, q in ends], s=size, color="black", zorder=4)
-    clipped = _clip_runaway(ax, data, ids) if diverged else False
+    # A run that diverged, or ran a million times its size away (its trace stops at the
+    # last finite state), is clipped to RUNAWAY times the starting size.
+    clipped = _clip_runaway(ax, data, ids, RUNAWAY if diverged else RAN_AWAY)
     if exact:
         t_end = max(max((t for t in d["t"] if finite(t)), default=0.0) for d in data.values())
         ex, kind = exact_paths(exact, ids, t_end)
@@ -205,8 +213,10 @@ def plot_trace(path, out, ids=None, title=None, exact=None):
     if diverged:
         handles.append(Line2D([], [], ls="", label=f"{diverged} diverged (non-finite)"))
     if clipped:
+        far = max(math.hypot(x, y) for i in ids for x, y in zip(*_finite_xy(data[i])))
         handles.append(Line2D([], [], ls="", label=f"view clipped to {RUNAWAY}x the\n"
-                                                   "starting size: the run ran away"))
+                                                   f"starting size: the run ran away\n"
+                                                   f"(to {far:.2g} m from the origin)"))
     ax.legend(handles=handles, loc="best", framealpha=0.85)
     fig.tight_layout()
     save_figure(fig, out)
@@ -216,7 +226,10 @@ CLIP_ENERGY = 1e3  # an energy figure whose values pass this many times the star
 RUNAWAY = 20  # the view of a run that diverged is clipped to this many times its starting size
 
 
-def _clip_runaway(ax, data, ids):
+RAN_AWAY = 1e6  # a finite path farther than this many times its starting size ran away
+
+
+def _clip_runaway(ax, data, ids, threshold=RUNAWAY):
     """For a run that diverged: limits the view to RUNAWAY times the size of the starting
     positions when the paths go farther; True if it did."""
     starts = [(data[i]["x"][0], data[i]["y"][0]) for i in ids
@@ -230,7 +243,7 @@ def _clip_runaway(ax, data, ids):
                + [0.5 * max(abs(p) for p, _ in starts), 0.5 * max(abs(q) for _, q in starts)])
     size = size if size > 0 else 1.0
     reach = max(max(abs(p - cx), abs(q - cy)) for p, q in pts)
-    if reach <= RUNAWAY * size * 1.0001:
+    if reach <= threshold * size * 1.0001:
         return False
     half = RUNAWAY * size
     ax.set_xlim(cx - half, cx + half)
