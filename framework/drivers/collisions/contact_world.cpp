@@ -1,0 +1,174 @@
+// The collision phase: broad phase, narrow phase, impulses, as the lecture's
+// loop forces -> integration -> collision detection -> collision response.
+#include "contact_world.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "collide_particles.h"
+#include "collide_plane.h"
+#include "friction_impulse.h"
+#include "grid_pairs.h"
+
+namespace wb {
+
+namespace {
+
+const Range kNonNegative{0.0};
+const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
+const Range kUnit{0.0, 1.0};
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+void brute_force_pairs(const Mat2X& x, const VecX& radius, Pairs& pairs) {
+  pairs.clear();
+  const int n = int(x.cols());
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const double reach = radius[i] + radius[j];
+      if (std::abs(x(0, i) - x(0, j)) <= reach && std::abs(x(1, i) - x(1, j)) <= reach) {
+        pairs.emplace_back(i, j);
+      }
+    }
+  }
+}
+
+void narrow_phase(const Mat2X& x, const VecX& radius, const Pairs& candidates, Pairs& contacts) {
+  contacts.clear();
+  const int n = int(x.cols());
+  for (const auto& [i, j] : candidates) {
+    if (i < 0 || j < 0 || i >= n || j >= n || i == j) continue;  // not a pair: ignored
+    const double reach = radius[i] + radius[j];
+    if ((x.col(i) - x.col(j)).squaredNorm() <= reach * reach) contacts.emplace_back(i, j);
+  }
+}
+
+std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings) {
+  JsonObject top(scene.file, scene.doc, "");
+  settings = ContactSettings{};
+  if (top.has("contact")) {
+    JsonObject c = top.object("contact");
+    c.only_keys({"restitution", "friction", "iterations", "ccd", "resting_speed"});
+    settings.restitution = c.number_or("restitution", 1.0, kUnit);
+    settings.friction = c.number_or("friction", 0.0, kNonNegative);
+    settings.iterations = int(c.integer_or("iterations", 1, 1, 1000));
+    settings.ccd = c.boolean_or("ccd", false);
+    settings.rest_speed = c.number_or("resting_speed", 0.0, kNonNegative);
+  }
+  std::vector<PlaneDef> planes;
+  const json& list = top.array_or_empty("planes");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    JsonObject o = top.element("planes", k);
+    o.only_keys({"point", "normal", "restitution", "friction", "thickness"});
+    PlaneDef p;
+    p.point = o.vec2("point");
+    const Vec2 n = o.vec2("normal");
+    if (!(n.norm() > 0) || !std::isfinite(n.norm())) {
+      o.fail("normal", &o.raw()["normal"], "a non-zero vector (it is normalised)");
+    }
+    p.n = n / n.norm();
+    p.restitution = o.number_or("restitution", settings.restitution, kUnit);
+    p.friction = o.number_or("friction", settings.friction, kNonNegative);
+    p.thickness = o.number_or("thickness", std::numeric_limits<double>::infinity(), kPositive);
+    planes.push_back(p);
+  }
+  return planes;
+}
+
+ContactWorld::ContactWorld(const Scene& scene)
+    : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
+  planes_ = read_planes(scene, settings_);
+  any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
+}
+
+// Continuous check (provided): a particle that was in front of a thin wall at
+// the previous step and is now beyond its back face crossed it during the
+// step. It is put back where its path first touched the wall (time of
+// impact, linear in the step) and its normal velocity is reflected with the
+// wall's restitution; the rest of that step's motion is dropped.
+void ContactWorld::continuous_check(Mat2X& x, Mat2X& v) const {
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    for (const PlaneDef& p : planes_) {
+      if (!std::isfinite(p.thickness)) continue;  // a half-space cannot be crossed
+      const double before = (x_prev_.col(i) - p.point).dot(p.n) - r_[i];
+      const double after = (x.col(i) - p.point).dot(p.n) - r_[i];
+      if (!(before >= 0 && after + r_[i] < -p.thickness)) continue;
+      const double toi = before / (before - after);  // fraction of the step, in [0, 1)
+      x.col(i) = x_prev_.col(i) + toi * (x.col(i) - x_prev_.col(i));
+      const double vn = v.col(i).dot(p.n);
+      if (vn < 0) v.col(i) -= (1 + p.restitution) * vn * p.n;
+    }
+  }
+}
+
+void ContactWorld::after_step(double /*h*/, Mat2X& x, Mat2X& v) const {
+  if (!(x.allFinite() && v.allFinite())) return;  // diverged: the run loop reports it
+  const bool timing = timing_;
+  Clock::time_point t0;
+  if (settings_.ccd) continuous_check(x, v);
+
+  // Broad phase (C3), then the exact test.
+  contacts_.clear();
+  if (any_radius_ && x.cols() >= 2) {
+    if (timing) t0 = Clock::now();
+    grid_pairs(x, r_, candidates_);
+    if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
+    narrow_phase(x, r_, candidates_, contacts_);
+    if (timing) times_.narrow += seconds_since(t0);
+  }
+
+  // Response: a fixed number of passes over the contacts, then the planes.
+  if (timing) t0 = Clock::now();
+  const double e = settings_.restitution;
+  for (int it = 0; it < settings_.iterations; ++it) {
+    for (const auto& [i, j] : contacts_) {
+      Vec2 x1 = x.col(i), v1 = v.col(i), x2 = x.col(j), v2 = v.col(j);
+      collide_particles(m_[i], r_[i], m_[j], r_[j], e, x1, v1, x2, v2);
+      x.col(i) = x1, v.col(i) = v1, x.col(j) = x2, v.col(j) = v2;
+    }
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      for (const PlaneDef& p : planes_) {
+        // Beyond a thin wall's back face: no contact (it tunnelled).
+        if ((x.col(i) - p.point).dot(p.n) < -p.thickness) continue;
+        Vec2 xi = x.col(i), vi = v.col(i);
+        const double jn = collide_plane(p.point, p.n, r_[i], m_[i], p.restitution,
+                                        settings_.rest_speed, xi, vi);
+        if (jn > 0 && p.friction > 0) friction_impulse(p.n, jn, p.friction, m_[i], vi);
+        x.col(i) = xi, v.col(i) = vi;
+      }
+    }
+  }
+  if (timing) times_.response += seconds_since(t0);
+  x_prev_ = x;
+}
+
+void use_collisions(LabInfo& info) {
+  use_forces(info);
+  info.scene_keys.push_back("planes");
+  info.scene_keys.push_back("contact");
+  info.make_world = [](const Scene& scene) -> std::unique_ptr<World> {
+    // A scene pays only for what it declares: no planes, no contact block, no collisions.
+    if (!scene.doc.contains("planes") && !scene.doc.contains("contact")) {
+      return std::make_unique<ForceWorld>(scene);
+    }
+    return std::make_unique<ContactWorld>(scene);
+  };
+  info.help_sections.push_back(
+      "Collision keys (docs/scenes.md#collisions):\n"
+      "  planes:  [{\"point\": [x, y], \"normal\": [nx, ny], \"restitution\": e, \"friction\": "
+      "mu,\n"
+      "            \"thickness\": t}]   (normal is normalised; solid side behind it)\n"
+      "  contact: {\"restitution\": e, \"friction\": mu, \"iterations\": k, \"ccd\": bool,\n"
+      "            \"resting_speed\": s}   (defaults 1, 0, 1, false, 0)\n"
+      "  particles and emitters take \"radius\" (default 0). Without planes or contact, no\n"
+      "  collisions are computed.\n");
+}
+
+}  // namespace wb
