@@ -38,19 +38,30 @@ void grid_pairs(const wb::Mat2X& x, const wb::VecX& radius,
   for (std::size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
   std::vector<int> fill(cell_start.begin(), cell_start.end() - 1);
   for (int i = 0; i < n; ++i) order[std::size_t(fill[std::size_t(cy[i] * nx + cx[i])]++)] = i;
-  // Each particle against its own and the neighbouring cells; i < j keeps a pair once.
-  for (int i = 0; i < n; ++i) {
-    for (std::int64_t gy = std::max<std::int64_t>(cy[i] - 1, 0);
-         gy <= std::min(cy[i] + 1, ny - 1); ++gy) {
-      for (std::int64_t gx = std::max<std::int64_t>(cx[i] - 1, 0);
-           gx <= std::min(cx[i] + 1, nx - 1); ++gx) {
-        const std::size_t c = std::size_t(gy * nx + gx);
-        for (int k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-          const int j = order[std::size_t(k)];
-          if (j <= i) continue;
-          const double reach = radius[i] + radius[j];
-          if (std::abs(x(0, i) - x(0, j)) <= reach && std::abs(x(1, i) - x(1, j)) <= reach) {
-            pairs.emplace_back(i, j);
+  // Each cell against itself and four of its neighbours (right, and the three
+  // above), so that every pair of neighbouring cells is visited once.
+  auto emit = [&](int i, int j) {
+    const double reach = radius[i] + radius[j];
+    if (std::abs(x(0, i) - x(0, j)) <= reach && std::abs(x(1, i) - x(1, j)) <= reach) {
+      pairs.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  };
+  const std::int64_t offsets[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+  for (std::int64_t gy = 0; gy < ny; ++gy) {
+    for (std::int64_t gx = 0; gx < nx; ++gx) {
+      const std::size_t c = std::size_t(gy * nx + gx);
+      const int begin = cell_start[c], end = cell_start[c + 1];
+      if (begin == end) continue;
+      for (int a = begin; a < end; ++a) {
+        for (int b = a + 1; b < end; ++b) emit(order[std::size_t(a)], order[std::size_t(b)]);
+      }
+      for (const auto& o : offsets) {
+        const std::int64_t hx = gx + o[0], hy = gy + o[1];
+        if (hx < 0 || hx >= nx || hy >= ny) continue;
+        const std::size_t d = std::size_t(hy * nx + hx);
+        for (int a = begin; a < end; ++a) {
+          for (int b = cell_start[d]; b < cell_start[d + 1]; ++b) {
+            emit(order[std::size_t(a)], order[std::size_t(b)]);
           }
         }
       }

@@ -111,7 +111,7 @@ TEST_CASE(
                "particle 1 moved by 0.05 (1/m1)/(1/m1 + 1/m2)");
 }
 
-TEST_CASE("C2 collide_particles: coincident centres use the fallback normal (0, 1) without NaN",
+TEST_CASE("C2 collide_particles: coincident centres use the fallback normal +y without NaN",
           "[collisions][C2][4pts]") {
   const Vec2 c(0.5, -0.3);
   Vec2 x1 = c, x2 = c;

@@ -93,7 +93,7 @@ TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
   }
 }
 
-TEST_CASE("C3 grid_pairs: zero radii, one large disc among small ones, and far outliers",
+TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far outliers",
           "[collisions][C3][6pts]") {
   {
     // Points (radius 0): only coincident ones pair up; none, one and two particles.

@@ -44,6 +44,7 @@ struct ContactSettings {
   int iterations = 1;      // impulse passes per step
   bool ccd = false;        // continuous check of fast particles against planes
   double rest_speed = 0;   // "resting_speed": slower approaches do not bounce (m/s)
+  bool shock = false;      // "shock_propagation": a last, bottom-up pass for stacks
 };
 
 // Reads "planes" and "contact" (throws InputError naming the key).
@@ -70,15 +71,21 @@ class ContactWorld : public World {
 
  private:
   void continuous_check(Mat2X& x, Mat2X& v) const;
+  void planes_pass(double h, Mat2X& x, Mat2X& v) const;
+  void shock_pass(double h, Mat2X& x, Mat2X& v) const;
+  void pair_response(double h, int i, double mj, int j, double e, Mat2X& x, Mat2X& v) const;
   ForceWorld forces_;
   VecX m_, r_;
+  mutable VecX r_grown_;  // radii plus the contact margin of this step
   std::vector<PlaneDef> planes_;
   ContactSettings settings_;
   bool any_radius_ = false;
+  Vec2 up_ = Vec2::Zero();  // against the scene's uniform gravity (0 without one)
   bool timing_ = false;
   mutable PhaseTimes times_;
   mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
-  mutable Pairs candidates_, contacts_;
+  mutable Pairs candidates_, contacts_, sorted_;
+  mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
 };
 
 // Makes the lab run its scenes with the forces lab's forces, plus collisions
