@@ -245,7 +245,8 @@ void use_collisions(LabInfo& info) {
       "mu,\n"
       "            \"thickness\": t}]   (normal is normalised; solid side behind it)\n"
       "  contact: {\"restitution\": e, \"friction\": mu, \"iterations\": k, \"ccd\": bool,\n"
-      "            \"resting_speed\": s}   (defaults 1, 0, 1, false, 0)\n"
+      "            \"resting_speed\": s, \"shock_propagation\": bool}\n"
+      "           (defaults 1, 0, 1, false, 0, false)\n"
       "  particles and emitters take \"radius\" (default 0). Without planes or contact, no\n"
       "  collisions are computed.\n");
 }
