@@ -1,0 +1,213 @@
+// The collisions lab's broad phase: the solution's grid_pairs (C3) against the
+// provided brute force and Box2D 2.4.1's dynamic AABB tree on the same circles,
+// and one full collision step of the 10^4-disc pile split into its phases.
+// docs/benchmarks.md (## collisions) explains every number.
+//
+//   grid/<n>            grid_pairs on n circles (the student-side algorithm)
+//   brute/<n>           wb::brute_force_pairs, all n (n - 1) / 2 box tests
+//   box2d_build/<n>     a b2DynamicTree built from the n boxes (CreateProxy) and
+//                       queried with each box: what a per-step rebuild costs
+//   box2d_query/<n>     the same queries on a tree built once, outside the
+//                       timing: what an engine whose tree persists pays per step
+//   pile_step           one step of scenes/collisions/pile.json after 300 steps
+//                       of settling (integration + collision phase); counters
+//                       broad, narrow, response: the phase's split (seconds/step)
+//
+// The circles: n centres uniform in a square of side 2.5 sqrt(n) m, radii
+// uniform in [0.4, 0.6] m (evenly spread, similar sizes, about 12 % of the
+// area covered: the grid's good case; Box2D's tree fattens boxes by 0.1 m,
+// small beside these radii). Every pair set is checked against brute force
+// (n <= 10^4) or the grid (n = 10^5) before timing: counts must be equal.
+#include <benchmark/benchmark.h>
+
+#include <box2d/b2_dynamic_tree.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+
+#include "contact_world.h"
+#include "grid_pairs.h"
+#include "wb/scene.h"
+
+namespace {
+
+struct Circles {
+  wb::Mat2X x;
+  wb::VecX r;
+};
+
+Circles make_circles(int n) {
+  std::mt19937_64 gen(12345 + std::uint64_t(n));
+  auto u = [&] { return double(gen() >> 11) * 0x1.0p-53; };
+  const double side = 2.5 * std::sqrt(double(n));
+  Circles c{wb::Mat2X(2, n), wb::VecX(n)};
+  for (int i = 0; i < n; ++i) {
+    c.x(0, i) = side * u();
+    c.x(1, i) = side * u();
+    c.r[i] = 0.4 + 0.2 * u();
+  }
+  return c;
+}
+
+const Circles& circles(int n) {
+  static std::vector<std::pair<int, Circles>> cache;
+  for (const auto& [k, c] : cache) {
+    if (k == n) return c;
+  }
+  cache.emplace_back(n, make_circles(n));
+  return cache.back().second;
+}
+
+b2AABB box_of(const Circles& c, int i) {
+  b2AABB b;
+  b.lowerBound.Set(float(c.x(0, i) - c.r[i]), float(c.x(1, i) - c.r[i]));
+  b.upperBound.Set(float(c.x(0, i) + c.r[i]), float(c.x(1, i) + c.r[i]));
+  return b;
+}
+
+// Box2D's query callback: the tree's candidates (float, fattened boxes) are
+// filtered by the exact double test of wb::brute_force_pairs, j > i, so the
+// pair set is the same as the grid's.
+struct Collector {
+  const Circles* c;
+  const b2DynamicTree* tree;
+  int i;
+  wb::Pairs* pairs;
+  bool QueryCallback(int32 proxy) {
+    const int j = int(reinterpret_cast<std::intptr_t>(tree->GetUserData(proxy)));
+    if (j <= i) return true;
+    const double reach = c->r[i] + c->r[j];
+    if (std::abs(c->x(0, i) - c->x(0, j)) <= reach &&
+        std::abs(c->x(1, i) - c->x(1, j)) <= reach) {
+      pairs->emplace_back(i, j);
+    }
+    return true;
+  }
+};
+
+void box2d_build(const Circles& c, b2DynamicTree& tree) {
+  for (int i = 0; i < int(c.x.cols()); ++i) {
+    tree.CreateProxy(box_of(c, i), reinterpret_cast<void*>(std::intptr_t(i)));
+  }
+}
+
+void box2d_query(const Circles& c, const b2DynamicTree& tree, wb::Pairs& pairs) {
+  pairs.clear();
+  Collector col{&c, &tree, 0, &pairs};
+  for (int i = 0; i < int(c.x.cols()); ++i) {
+    col.i = i;
+    tree.Query(&col, box_of(c, i));
+  }
+}
+
+// The pair count every method must find, checked once per n.
+std::size_t reference_count(int n) {
+  const Circles& c = circles(n);
+  wb::Pairs a;
+  if (n <= 10000) {
+    wb::brute_force_pairs(c.x, c.r, a);
+  } else {
+    grid_pairs(c.x, c.r, a);
+  }
+  return a.size();
+}
+
+void require_count(benchmark::State& state, std::size_t got, int n) {
+  const std::size_t want = reference_count(n);
+  if (got != want) {
+    state.SkipWithError(
+        ("pair count " + std::to_string(got) + ", expected " + std::to_string(want)).c_str());
+  }
+  state.counters["pairs"] = double(got);
+}
+
+void BM_grid(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Circles& c = circles(n);
+  wb::Pairs pairs;
+  grid_pairs(c.x, c.r, pairs);
+  require_count(state, pairs.size(), n);
+  for (auto _ : state) {
+    grid_pairs(c.x, c.r, pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+}
+
+void BM_brute(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Circles& c = circles(n);
+  wb::Pairs pairs;
+  for (auto _ : state) {
+    wb::brute_force_pairs(c.x, c.r, pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  require_count(state, pairs.size(), n);
+}
+
+void BM_box2d_build(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Circles& c = circles(n);
+  wb::Pairs pairs;
+  for (auto _ : state) {
+    b2DynamicTree tree;
+    box2d_build(c, tree);
+    box2d_query(c, tree, pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  require_count(state, pairs.size(), n);
+}
+
+void BM_box2d_query(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Circles& c = circles(n);
+  b2DynamicTree tree;
+  box2d_build(c, tree);
+  wb::Pairs pairs;
+  for (auto _ : state) {
+    box2d_query(c, tree, pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+  require_count(state, pairs.size(), n);
+}
+
+void BM_pile_step(benchmark::State& state) {
+  const std::string file = std::string(WB_BENCH_SCENES) + "/collisions/pile.json";
+  wb::Scene scene = wb::load_scene(file, std::nullopt, {"planes", "contact"});
+  wb::ContactWorld world(scene);
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(x.cols());
+  const double h = *scene.dt;
+  auto step = [&] {
+    world.dynamics().acceleration(x, v, s.a0);
+    v += h * s.a0;
+    x += h * v;
+    world.after_step(h, x, v);
+  };
+  for (int k = 0; k < 300; ++k) step();  // poured, not yet settled: most discs in contact
+  world.set_timing(true);
+  long steps = 0;
+  for (auto _ : state) {
+    step();
+    ++steps;
+  }
+  const wb::PhaseTimes& t = world.times();
+  state.counters["broad_s"] = t.broad / double(steps);
+  state.counters["narrow_s"] = t.narrow / double(steps);
+  state.counters["response_s"] = t.response / double(steps);
+}
+
+}  // namespace
+
+BENCHMARK(BM_grid)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_brute)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_brute)->Arg(100000)->Iterations(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_box2d_build)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_box2d_query)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_pile_step)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+BENCHMARK_MAIN();

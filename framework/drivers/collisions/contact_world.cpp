@@ -1,0 +1,254 @@
+// The collision phase: broad phase, narrow phase, impulses, as the lecture's
+// loop forces -> integration -> collision detection -> collision response.
+#include "contact_world.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "collide_particles.h"
+#include "collide_plane.h"
+#include "friction_impulse.h"
+#include "grid_pairs.h"
+
+namespace wb {
+
+namespace {
+
+const Range kNonNegative{0.0};
+const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
+const Range kUnit{0.0, 1.0};
+
+using Clock = std::chrono::steady_clock;
+
+// Contact skin (m): discs are handed to C1/C2 this much larger, so that a
+// contact a previous pass left exactly touching is still a contact when
+// rounding puts it a hair apart (else its approach would not be stopped).
+constexpr double kSkin = 1e-9;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+void brute_force_pairs(const Mat2X& x, const VecX& radius, Pairs& pairs) {
+  pairs.clear();
+  const int n = int(x.cols());
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const double reach = radius[i] + radius[j];
+      if (std::abs(x(0, i) - x(0, j)) <= reach && std::abs(x(1, i) - x(1, j)) <= reach) {
+        pairs.emplace_back(i, j);
+      }
+    }
+  }
+}
+
+void narrow_phase(const Mat2X& x, const VecX& radius, const Pairs& candidates, Pairs& contacts) {
+  contacts.clear();
+  const int n = int(x.cols());
+  for (const auto& [i, j] : candidates) {
+    if (i < 0 || j < 0 || i >= n || j >= n || i == j) continue;  // not a pair: ignored
+    const double reach = radius[i] + radius[j] + 2 * kSkin;
+    if ((x.col(i) - x.col(j)).squaredNorm() <= reach * reach) contacts.emplace_back(i, j);
+  }
+}
+
+std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings) {
+  JsonObject top(scene.file, scene.doc, "");
+  settings = ContactSettings{};
+  if (top.has("contact")) {
+    JsonObject c = top.object("contact");
+    c.only_keys(
+        {"restitution", "friction", "iterations", "ccd", "resting_speed", "shock_propagation"});
+    settings.restitution = c.number_or("restitution", 1.0, kUnit);
+    settings.friction = c.number_or("friction", 0.0, kNonNegative);
+    settings.iterations = int(c.integer_or("iterations", 1, 1, 1000));
+    settings.ccd = c.boolean_or("ccd", false);
+    settings.rest_speed = c.number_or("resting_speed", 0.0, kNonNegative);
+    settings.shock = c.boolean_or("shock_propagation", false);
+  }
+  std::vector<PlaneDef> planes;
+  const json& list = top.array_or_empty("planes");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    JsonObject o = top.element("planes", k);
+    o.only_keys({"point", "normal", "restitution", "friction", "thickness"});
+    PlaneDef p;
+    p.point = o.vec2("point");
+    const Vec2 n = o.vec2("normal");
+    if (!(n.norm() > 0) || !std::isfinite(n.norm())) {
+      o.fail("normal", &o.raw()["normal"], "a non-zero vector (it is normalised)");
+    }
+    p.n = n / n.norm();
+    p.restitution = o.number_or("restitution", settings.restitution, kUnit);
+    p.friction = o.number_or("friction", settings.friction, kNonNegative);
+    p.thickness = o.number_or("thickness", std::numeric_limits<double>::infinity(), kPositive);
+    planes.push_back(p);
+  }
+  return planes;
+}
+
+ContactWorld::ContactWorld(const Scene& scene)
+    : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
+  planes_ = read_planes(scene, settings_);
+  any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
+  // "Up" for the stacking pass: against the sum of the uniform gravity terms
+  // (already checked by ForceWorld).
+  Vec2 g = Vec2::Zero();
+  for (const auto& f : scene.doc.value("forces", json::array())) {
+    if (f.value("type", "") == "gravity")
+      g += Vec2(f["g"][0].get<double>(), f["g"][1].get<double>());
+  }
+  if (g.norm() > 0) up_ = -g / g.norm();
+}
+
+// Continuous check (provided): a particle that was in front of a thin wall at
+// the previous step and is now beyond its back face crossed it during the
+// step. It is put back where its path first touched the wall (time of
+// impact, linear in the step) and its normal velocity is reflected with the
+// wall's restitution; the rest of that step's motion is dropped.
+void ContactWorld::continuous_check(Mat2X& x, Mat2X& v) const {
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    for (const PlaneDef& p : planes_) {
+      if (!std::isfinite(p.thickness)) continue;  // a half-space cannot be crossed
+      const double before = (x_prev_.col(i) - p.point).dot(p.n) - r_[i];
+      const double after = (x.col(i) - p.point).dot(p.n) - r_[i];
+      if (!(before >= 0 && after + r_[i] < -p.thickness)) continue;
+      const double toi = before / (before - after);  // fraction of the step, in [0, 1)
+      x.col(i) = x_prev_.col(i) + toi * (x.col(i) - x_prev_.col(i));
+      const double vn = v.col(i).dot(p.n);
+      if (vn < 0) v.col(i) -= (1 + p.restitution) * vn * p.n;
+    }
+  }
+}
+
+void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
+  if (!(x.allFinite() && v.allFinite())) return;  // diverged: the run loop reports it
+  const bool timing = timing_;
+  Clock::time_point t0;
+  if (settings_.ccd) continuous_check(x, v);
+
+  // Broad phase (C3), then the exact test.
+  // Pairs within a margin are kept too: the response of one contact can push
+  // a particle into a neighbour it did not touch after the integration, and
+  // that contact must be in the list for the next pass to see it. The margin
+  // is the distance two particles close in one step (2 h max |v|), at most
+  // the largest radius.
+  contacts_.clear();
+  if (any_radius_ && x.cols() >= 2) {
+    if (timing) t0 = Clock::now();
+    const double margin =
+        std::min(2 * h * std::sqrt(v.colwise().squaredNorm().maxCoeff()), r_.maxCoeff());
+    r_grown_ = r_.array() + margin;
+    grid_pairs(x, r_grown_, candidates_);
+    if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
+    narrow_phase(x, r_grown_, candidates_, contacts_);
+    if (timing) times_.narrow += seconds_since(t0);
+  }
+
+  // Response: a fixed number of passes over the contacts, then the planes.
+  if (timing) t0 = Clock::now();
+  const double e = settings_.restitution;
+  for (int it = 0; it < settings_.iterations; ++it) {
+    for (const auto& [i, j] : contacts_) pair_response(h, i, m_[j], j, e, x, v);
+    planes_pass(h, x, v);
+  }
+  if (settings_.shock && up_.norm() > 0) shock_pass(h, x, v);
+  if (timing) times_.response += seconds_since(t0);
+  x_prev_ = x;
+}
+
+void ContactWorld::planes_pass(double h, Mat2X& x, Mat2X& v) const {
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    for (const PlaneDef& p : planes_) {
+      // Beyond a thin wall's back face: no contact (it tunnelled).
+      if ((x.col(i) - p.point).dot(p.n) < -p.thickness) continue;
+      const Vec2 x0 = x.col(i), v0 = v.col(i);
+      Vec2 xi = x0, vi = v0;
+      const double jn = collide_plane(p.point, p.n, r_[i] + kSkin, m_[i], p.restitution,
+                                      settings_.rest_speed, xi, vi);
+      if (jn > 0) {
+        if (p.friction > 0) friction_impulse(p.n, jn, p.friction, m_[i], vi);
+        // The impulses act before this step's position update: x0 + h dv,
+        // then only what overlap remains is removed (a second call with no
+        // velocity moves without an impulse).
+        xi = x0 + h * (vi - v0);
+        Vec2 still = Vec2::Zero();
+        collide_plane(p.point, p.n, r_[i] + kSkin, m_[i], 0.0, 0.0, xi, still);
+      }
+      x.col(i) = xi, v.col(i) = vi;
+    }
+  }
+}
+
+// Shock propagation (Guendelman, Bridson and Fedkiw 2003, for stacks): one
+// last pass, planes first, then the contacts from the bottom up, each with
+// its lower particle treated as a wall (mass 10^9 times its own, so that the
+// impulse law needs no special case). The support of the floor then reaches
+// the top of a stack in one pass, instead of spreading by halves per pass.
+void ContactWorld::shock_pass(double h, Mat2X& x, Mat2X& v) const {
+  planes_pass(h, x, v);
+  // The contacts by the height of their lower particle (keys computed once).
+  order_.resize(contacts_.size());
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    const auto& [a, b] = contacts_[c];
+    order_[c] = {std::min(x.col(a).dot(up_), x.col(b).dot(up_)), int(c)};
+  }
+  std::sort(order_.begin(), order_.end());
+  sorted_.resize(contacts_.size());
+  for (std::size_t c = 0; c < order_.size(); ++c)
+    sorted_[c] = contacts_[std::size_t(order_[c].second)];
+  contacts_.swap(sorted_);
+  constexpr double kWall = 1e9;  // mass factor of the lower particle
+  for (const auto& [a, b] : contacts_) {
+    const bool a_low = x.col(a).dot(up_) <= x.col(b).dot(up_);
+    const int lo = a_low ? a : b, hi = a_low ? b : a;
+    const Vec2 x_lo = x.col(lo), v_lo = v.col(lo);
+    pair_response(h, hi, kWall * m_[lo], lo, settings_.restitution, x, v);
+    x.col(lo) = x_lo, v.col(lo) = v_lo;  // the lower one does not move
+  }
+  planes_pass(h, x, v);  // nothing ends the step inside a wall
+}
+
+// One contact through collide_particles (C2), j's mass given. As at planes,
+// the impulse acts before this step's position update (x0 + h dv), and a
+// second call without velocities removes what overlap remains.
+void ContactWorld::pair_response(double h, int i, double mj, int j, double e, Mat2X& x,
+                                 Mat2X& v) const {
+  const Vec2 x1_0 = x.col(i), v1_0 = v.col(i), x2_0 = x.col(j), v2_0 = v.col(j);
+  Vec2 x1 = x1_0, v1 = v1_0, x2 = x2_0, v2 = v2_0;
+  if (collide_particles(m_[i], r_[i] + kSkin, mj, r_[j] + kSkin, e, x1, v1, x2, v2) > 0) {
+    x1 = x1_0 + h * (v1 - v1_0);
+    x2 = x2_0 + h * (v2 - v2_0);
+    Vec2 s1 = Vec2::Zero(), s2 = Vec2::Zero();
+    collide_particles(m_[i], r_[i] + kSkin, mj, r_[j] + kSkin, 0.0, x1, s1, x2, s2);
+  }
+  x.col(i) = x1, v.col(i) = v1, x.col(j) = x2, v.col(j) = v2;
+}
+
+void use_collisions(LabInfo& info) {
+  use_forces(info);
+  info.scene_keys.push_back("planes");
+  info.scene_keys.push_back("contact");
+  info.make_world = [](const Scene& scene) -> std::unique_ptr<World> {
+    // A scene pays only for what it declares: no planes, no contact block, no collisions.
+    if (!scene.doc.contains("planes") && !scene.doc.contains("contact")) {
+      return std::make_unique<ForceWorld>(scene);
+    }
+    return std::make_unique<ContactWorld>(scene);
+  };
+  info.help_sections.push_back(
+      "Collision keys (docs/scenes.md#collisions):\n"
+      "  planes:  [{\"point\": [x, y], \"normal\": [nx, ny], \"restitution\": e, \"friction\": "
+      "mu,\n"
+      "            \"thickness\": t}]   (normal is normalised; solid side behind it)\n"
+      "  contact: {\"restitution\": e, \"friction\": mu, \"iterations\": k, \"ccd\": bool,\n"
+      "            \"resting_speed\": s, \"shock_propagation\": bool}\n"
+      "           (defaults 1, 0, 1, false, 0, false)\n"
+      "  particles and emitters take \"radius\" (default 0). Without planes or contact, no\n"
+      "  collisions are computed.\n");
+}
+
+}  // namespace wb

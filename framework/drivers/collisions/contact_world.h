@@ -1,0 +1,95 @@
+// The collisions lab's glue: a scene's "planes" and "contact" keys -> the
+// collision phase that runs after every integrator step (wb::World::after_step),
+// calling the student's functions: grid_pairs (C3, broad phase), then, for a
+// fixed number of iterations, collide_particles (C2) on the contacts and
+// collide_plane (C1) + friction_impulse (C4) on every particle and plane.
+// The forces are the forces lab's (ForceWorld). Keys: docs/scenes.md#collisions.
+#pragma once
+#include <limits>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "forces_world.h"
+#include "wb/run.h"
+#include "wb/world.h"
+
+namespace wb {
+
+using Pairs = std::vector<std::pair<int, int>>;
+
+// Provided reference broad phase, O(n^2): every (i, j), i < j, with
+//   |x_i - x_j| <= r_i + r_j  and  |y_i - y_j| <= r_i + r_j,
+// in lexicographic order. grid_pairs (C3) must find the same set.
+void brute_force_pairs(const Mat2X& x, const VecX& radius, Pairs& pairs);
+
+// Provided narrow phase: the candidate pairs whose discs touch or overlap,
+// |x_i - x_j| <= r_i + r_j.
+void narrow_phase(const Mat2X& x, const VecX& radius, const Pairs& candidates, Pairs& contacts);
+
+// One "planes" entry. The solid side is behind n; with a finite thickness the
+// solid is the slab of that thickness behind the surface (a thin wall), and a
+// particle whose centre is beyond its back face is not in contact.
+struct PlaneDef {
+  Vec2 point = Vec2::Zero();
+  Vec2 n = Vec2(0, 1);  // unit normal (normalised from the scene's "normal")
+  double restitution = 1, friction = 0;
+  double thickness = std::numeric_limits<double>::infinity();  // m
+};
+
+// The scene's "contact" block (defaults when it is left out).
+struct ContactSettings {
+  double restitution = 1;  // e for particle pairs and the default for planes
+  double friction = 0;     // mu at planes (default for planes)
+  int iterations = 1;      // impulse passes per step
+  bool ccd = false;        // continuous check of fast particles against planes
+  double rest_speed = 0;   // "resting_speed": slower approaches do not bounce (m/s)
+  bool shock = false;      // "shock_propagation": a last, bottom-up pass for stacks
+};
+
+// Reads "planes" and "contact" (throws InputError naming the key).
+std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings);
+
+// Where one collision step spends its time (seconds, accumulated), for the benchmark.
+struct PhaseTimes {
+  double broad = 0, narrow = 0, response = 0;
+};
+
+// Forces from the forces lab, then the collision phase after every step.
+class ContactWorld : public World {
+ public:
+  explicit ContactWorld(const Scene& scene);
+  const Dynamics& dynamics() const override { return forces_.dynamics(); }
+  Energy energy(const Mat2X& x, const Mat2X& v) const override { return forces_.energy(x, v); }
+  void after_step(double h, Mat2X& x, Mat2X& v) const override;
+
+  const std::vector<PlaneDef>& planes() const { return planes_; }
+  const ContactSettings& settings() const { return settings_; }
+  // Accumulated phase times when timing is on (off by default: no clock reads).
+  void set_timing(bool on) { timing_ = on; }
+  const PhaseTimes& times() const { return times_; }
+
+ private:
+  void continuous_check(Mat2X& x, Mat2X& v) const;
+  void planes_pass(double h, Mat2X& x, Mat2X& v) const;
+  void shock_pass(double h, Mat2X& x, Mat2X& v) const;
+  void pair_response(double h, int i, double mj, int j, double e, Mat2X& x, Mat2X& v) const;
+  ForceWorld forces_;
+  VecX m_, r_;
+  mutable VecX r_grown_;  // radii plus the contact margin of this step
+  std::vector<PlaneDef> planes_;
+  ContactSettings settings_;
+  bool any_radius_ = false;
+  Vec2 up_ = Vec2::Zero();  // against the scene's uniform gravity (0 without one)
+  bool timing_ = false;
+  mutable PhaseTimes times_;
+  mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
+  mutable Pairs candidates_, contacts_, sorted_;
+  mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
+};
+
+// Makes the lab run its scenes with the forces lab's forces, plus collisions
+// in scenes that declare "planes" or "contact"; adds the keys to --help.
+void use_collisions(LabInfo& info);
+
+}  // namespace wb

@@ -1,0 +1,150 @@
+// Graded tests for C1, particle-plane response (labs/collisions/collide_plane.cpp).
+// Expected values: the impulse law v' = v - (1 + e)(v.n) n for the normal part,
+// the tangential part unchanged, the gap closed to 0, and the rebound height
+// e^2 H of a ball dropped from H (energy (1/2) m v^2 scales by e^2 at the bounce).
+#include <cmath>
+
+#include "collide_plane.h"
+#include "test_helpers.h"
+
+namespace {
+
+using wb::Vec2;
+using wbtest::require_near;
+
+constexpr double kRound = 1e-13;  // a few ulps of O(1) quantities: the law is exact
+
+// A plane through p with the unit normal n = (0.6, 0.8) (exact in binary up to
+// rounding of 0.6 and 0.8) and its tangent t.
+const Vec2 kP(0.3, -0.2);
+const Vec2 kN(0.6, 0.8);
+const Vec2 kT(-0.8, 0.6);
+
+// The point at gap d and tangential offset s from the plane, for radius r.
+Vec2 at_gap(double d, double s, double r) { return kP + (r + d) * kN + s * kT; }
+
+}  // namespace
+
+TEST_CASE(
+    "C1 collide_plane: tilted plane reverses the normal velocity times e and keeps the "
+    "tangential one",
+    "[collisions][C1][8pts]") {
+  const double r = 0.1, m = 2.5, e = 0.5;
+  Vec2 x = at_gap(-0.02, 0.7, r);
+  Vec2 v = -1.5 * kN + 0.9 * kT;
+  const double j = collide_plane(kP, kN, r, m, e, 0.0, x, v);
+  require_near(v, Vec2(0.75 * kN + 0.9 * kT), kRound,
+               "velocity after: normal part -e v.n = 0.75, tangential part unchanged 0.9");
+  require_near(x, at_gap(0.0, 0.7, r), kRound,
+               "position after: moved out along n until the gap (x - p).n - r is 0");
+  require_near(j, (1 + e) * m * 1.5, kRound, "returned impulse j = -(1 + e) m v.n");
+}
+
+TEST_CASE(
+    "C1 collide_plane: the impulse j = -(1 + e) m v.n is positive and changes the "
+    "momentum by j n",
+    "[collisions][C1][5pts]") {
+  const double r = 0.05, e = 0.8;
+  for (double m : {0.5, 4.0}) {
+    Vec2 x = at_gap(-0.001, -0.3, r);
+    const Vec2 v0 = -2.0 * kN - 0.4 * kT;
+    Vec2 v = v0;
+    const double j = collide_plane(kP, kN, r, m, e, 0.0, x, v);
+    INFO("mass " << m);
+    require_near(j, (1 + e) * m * 2.0, kRound * m, "j = -(1 + e) m v.n (positive, in N s)");
+    require_near(Vec2(m * (v - v0)), Vec2(j * kN), kRound * m,
+                 "momentum change m (v' - v) = j n: the impulse acts along +n only");
+  }
+}
+
+TEST_CASE("C1 collide_plane: a receding particle is moved out but gets no impulse",
+          "[collisions][C1][4pts]") {
+  const double r = 0.2, m = 1.5;
+  Vec2 x = at_gap(-0.05, 0.25, r);
+  const Vec2 v0 = 0.3 * kN + 1.1 * kT;  // moving away from the plane
+  Vec2 v = v0;
+  const double j = collide_plane(kP, kN, r, m, 0.9, 0.0, x, v);
+  require_near(v, v0, kRound,
+               "a receding particle keeps its velocity (no impulse pulls it back)");
+  require_near(j, 0.0, kRound, "returned impulse of a receding particle");
+  require_near(x, at_gap(0.0, 0.25, r), kRound, "it is still moved out of the plane");
+}
+
+TEST_CASE(
+    "C1 collide_plane: a particle clear of the plane is left alone and touching counts "
+    "as contact",
+    "[collisions][C1][3pts]") {
+  const Vec2 p(0, 0), n(0, 1);
+  const double r = 0.25, m = 2.0;
+  {
+    Vec2 x(0.4, 0.26), v(0.5, -3.0);  // gap 0.01 > 0, approaching: not yet in contact
+    const double j = collide_plane(p, n, r, m, 1.0, 0.0, x, v);
+    require_near(x, Vec2(0.4, 0.26), 0.0, "position of a particle not in contact");
+    require_near(v, Vec2(0.5, -3.0), 0.0, "velocity of a particle not in contact");
+    require_near(j, 0.0, 0.0, "impulse on a particle not in contact");
+  }
+  Vec2 x(0.4, 0.25), v(0.5, -3.0);  // gap exactly 0 (all values exact in binary)
+  const double j = collide_plane(p, n, r, m, 1.0, 0.0, x, v);
+  require_near(v, Vec2(0.5, 3.0), kRound, "touching (gap 0) and approaching: it bounces, e = 1");
+  require_near(j, 12.0, kRound, "j = -(1 + e) m v.n = 2 * 2 * 3");
+}
+
+TEST_CASE(
+    "C1 collide_plane: below rest_speed the contact is resting and a ball on a floor "
+    "stays put for 10^5 steps",
+    "[collisions][C1][5pts]") {
+  const Vec2 p(0, 0), n(0, 1);
+  const double r = 0.1, m = 3.0, e = 0.9, rest = 0.05;
+  {
+    Vec2 x(0.0, 0.099), v(0.2, -0.03);  // slower than rest_speed: e = 0
+    collide_plane(p, n, r, m, e, rest, x, v);
+    require_near(v, Vec2(0.2, 0.0), kRound, "approach at 0.03 m/s < rest_speed: e = 0, v.n = 0");
+    Vec2 x2(0.0, 0.099), v2(0.2, -0.5);  // faster: bounces with e
+    collide_plane(p, n, r, m, e, rest, x2, v2);
+    require_near(v2, Vec2(0.2, 0.45), kRound, "approach at 0.5 m/s > rest_speed: v.n = e 0.5");
+  }
+  // A ball resting on the floor under gravity, semi-implicit Euler: gravity
+  // adds g h = 0.00981 m/s of approach each step, below rest_speed, so every
+  // contact is resting: the ball must neither bounce (jitter) nor gain energy.
+  const double g = 9.81, h = 1e-3;
+  Vec2 x(0.3, r), v(0.0, 0.0);
+  double highest = x.y(), fastest = 0;
+  for (int k = 0; k < 100000; ++k) {
+    v.y() -= g * h;
+    x += h * v;
+    collide_plane(p, n, r, m, e, rest, x, v);
+    highest = std::max(highest, x.y());
+    fastest = std::max(fastest, v.norm());
+  }
+  constexpr double kRestTol = 1e-12;  // rounding of x -= d n at a height of 0.1 m
+  require_near(highest, r, kRestTol, "highest centre over 10^5 steps: resting, never above r");
+  require_near(x.y(), r, kRestTol, "final height: still resting on the floor");
+  require_near(fastest, 0.0, kRestTol, "largest speed after a step's contact: 0 (no jitter)");
+}
+
+TEST_CASE("C1 collide_plane: the rebound height of a dropped ball is e^2 times the drop height",
+          "[collisions][C1][5pts]") {
+  const Vec2 p(0, 0), n(0, 1);
+  const double r = 0.05, m = 0.7, g = 9.81, h = 1e-4, H = 1.0;
+  for (double e : {1.0, 0.7}) {
+    Vec2 x(0.0, r + H), v(0.0, 0.0);
+    bool bounced = false;
+    double apex = 0, t = 0;
+    while (t < 3.0) {  // drop (0.45 s), bounce, rise to the apex (<= 0.45 s)
+      v.y() -= g * h;
+      x += h * v;
+      t += h;
+      if (collide_plane(p, n, r, m, e, 0.0, x, v) > 0) bounced = true;
+      if (bounced) apex = std::max(apex, x.y() - r);
+      if (bounced && v.y() < 0) break;  // past the apex
+    }
+    INFO("restitution " << e);
+    REQUIRE(bounced);
+    // Step-size error: semi-implicit Euler loses g^2 h^2 / 2 of specific energy
+    // per step (g h T / 2 in height over the time T flown); the contact is found
+    // up to |v| h deep, and the apex is sampled within |v| h: each bounded by
+    // v_max h with v_max = sqrt(2 g H).
+    const double tol = h * (g * t / 2 + 2 * std::sqrt(2 * g * H));
+    require_near(apex, e * e * H, tol, "rebound height e^2 H (kinetic energy scales by e^2)");
+  }
+}

@@ -1,0 +1,120 @@
+// Graded tests for C3, the grid broad phase (labs/collisions/grid_pairs.cpp).
+// Expected values: the pair set of the provided O(n^2) brute force (every pair
+// is tested there, so its set is right by construction), and for a square
+// lattice of touching discs the count of its 8-neighbour links.
+#include <algorithm>
+#include <random>
+#include <sstream>
+
+#include "contact_world.h"
+#include "grid_pairs.h"
+#include "test_helpers.h"
+
+namespace {
+
+using wb::Pairs;
+
+// Compares grid_pairs with brute force: same pairs, each once, i < j.
+void require_same_pairs(const wb::Mat2X& x, const wb::VecX& r, const std::string& what) {
+  Pairs got, expected;
+  grid_pairs(x, r, got);
+  wb::brute_force_pairs(x, r, expected);
+  for (const auto& [i, j] : got) {
+    INFO(what << ": grid_pairs gave (" << i << ", " << j << "), expected i < j, both < "
+              << x.cols());
+    REQUIRE((0 <= i && i < j && j < x.cols()));
+  }
+  Pairs sorted = got;
+  std::sort(sorted.begin(), sorted.end());
+  const bool unique = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+  Pairs missing, extra;
+  std::set_difference(expected.begin(), expected.end(), sorted.begin(), sorted.end(),
+                      std::back_inserter(missing));
+  std::set_difference(sorted.begin(), sorted.end(), expected.begin(), expected.end(),
+                      std::back_inserter(extra));
+  std::ostringstream s;
+  s << what << ": brute force finds " << expected.size() << " pairs, grid_pairs " << got.size();
+  if (!missing.empty()) {
+    s << "; missing (" << missing[0].first << ", " << missing[0].second << ") at "
+      << wbtest::str(x.col(missing[0].first)) << " r " << r[missing[0].first] << " and "
+      << wbtest::str(x.col(missing[0].second)) << " r " << r[missing[0].second];
+  }
+  if (!extra.empty()) s << "; extra (" << extra[0].first << ", " << extra[0].second << ")";
+  if (!unique) s << "; a pair is listed twice";
+  INFO(s.str());
+  REQUIRE(missing.empty());
+  REQUIRE(extra.empty());
+  REQUIRE(unique);
+}
+
+// n radii uniform in [lo, hi), from a fixed seed (the mapping to doubles is ours).
+wb::VecX random_radii(Eigen::Index n, std::uint64_t seed, double lo, double hi) {
+  std::mt19937_64 gen(seed);
+  wb::VecX r(n);
+  for (Eigen::Index i = 0; i < n; ++i) r[i] = lo + (hi - lo) * (double(gen() >> 11) * 0x1.0p-53);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed radii",
+          "[collisions][C3][8pts]") {
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+    const Eigen::Index n = 400;
+    const wb::Mat2X x = wbtest::random_points(n, seed, -3.0, 2.0);  // negative coordinates too
+    wb::VecX r = random_radii(n, 100 + seed, 0.01, 0.15);
+    for (Eigen::Index i = 0; i < n; i += 7) r[i] = 0.0;  // some points among the discs
+    require_same_pairs(x, r, "random scene, seed " + std::to_string(seed));
+  }
+  // Clustered: a dense patch in a sparse field.
+  wb::Mat2X x(2, 300);
+  x << wbtest::random_points(200, 9, 0.0, 0.5), wbtest::random_points(100, 10, -40.0, 40.0);
+  require_same_pairs(x, random_radii(300, 11, 0.02, 0.06), "dense patch in a sparse field");
+}
+
+TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
+          "[collisions][C3][6pts]") {
+  // k x k centres 2r apart (exact in binary), from -1 upwards: every disc
+  // touches its neighbours and each box touches its diagonal neighbours'
+  // corners, so the pairs are the lattice's 8-neighbour links:
+  //   2 k (k - 1) horizontal and vertical, 2 (k - 1)^2 diagonal.
+  for (double r : {0.125, 0.25}) {
+    const int k = 12;
+    wb::Mat2X x(2, k * k);
+    for (int a = 0; a < k; ++a) {
+      for (int b = 0; b < k; ++b) x.col(a * k + b) = wb::Vec2(-1.0 + 2 * r * a, -1.0 + 2 * r * b);
+    }
+    const wb::VecX radius = wb::VecX::Constant(k * k, r);
+    Pairs got;
+    grid_pairs(x, radius, got);
+    INFO("radius " << r);
+    REQUIRE(got.size() == std::size_t(2 * k * (k - 1) + 2 * (k - 1) * (k - 1)));
+    require_same_pairs(x, radius, "lattice of touching discs, r = " + std::to_string(r));
+  }
+}
+
+TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far outliers",
+          "[collisions][C3][6pts]") {
+  {
+    // Points (radius 0): only coincident ones pair up; none, one and two particles.
+    wb::Mat2X x(2, 6);
+    x << 0.5, -0.25, 0.5, 3.0, -0.25, 0.5, 1.0, 2.0, 1.0, 0.0, 2.0, 1.0;
+    require_same_pairs(x, wb::VecX::Zero(6), "points with coincident copies");
+    Pairs got;
+    grid_pairs(x, wb::VecX::Zero(6), got);
+    REQUIRE(got.size() == 4);  // {0, 2, 5} coincide (3 pairs), {1, 4} (1 pair)
+    grid_pairs(wb::Mat2X(2, 0), wb::VecX(0), got);
+    REQUIRE(got.empty());
+    grid_pairs(x.leftCols(1), wb::VecX::Constant(1, 0.3), got);
+    REQUIRE(got.empty());
+  }
+  {
+    const Eigen::Index n = 300;
+    wb::Mat2X x = wbtest::random_points(n, 21, -1.0, 1.0);
+    wb::VecX r = random_radii(n, 22, 0.005, 0.03);
+    r[n - 1] = 0.6;                      // one large disc
+    x.col(n - 2) = wb::Vec2(1e6, -1e6);  // far outliers
+    x.col(n - 3) = wb::Vec2(1e6 + 0.01, -1e6);
+    require_same_pairs(x, r, "one large disc and two far outliers");
+  }
+}

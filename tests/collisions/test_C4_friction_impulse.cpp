@@ -1,0 +1,100 @@
+// Graded tests for C4, Coulomb friction (labs/collisions/friction_impulse.cpp).
+// Expected values: Coulomb's law (the tangential impulse stops the sliding if
+// that takes at most mu jn, else it is mu jn against the sliding), and the
+// block on a slope of angle theta: at rest for tan theta <= mu, otherwise
+// sliding with acceleration g (sin theta - mu cos theta).
+#include <cmath>
+
+#include "friction_impulse.h"
+#include "test_helpers.h"
+
+namespace {
+
+using wb::Vec2;
+using wbtest::require_near;
+
+constexpr double kRound = 1e-13;  // a few ulps of O(1) quantities
+const Vec2 kN(0.6, 0.8), kT(-0.8, 0.6);
+
+// Slides a block on a slope of angle theta (plane through 0 with normal n) for
+// `steps` steps of semi-implicit Euler: gravity, the normal impulse that
+// cancels the approach (resting, e = 0), then friction. Returns the velocity.
+Vec2 slide(double theta, double mu, int steps, double h, Vec2& x) {
+  const double g = 9.81, m = 2.0;
+  const Vec2 n(-std::sin(theta), std::cos(theta));
+  Vec2 v(0, 0);
+  for (int k = 0; k < steps; ++k) {
+    v.y() -= g * h;
+    const double vn = v.dot(n);
+    if (vn < 0) {
+      const double jn = -m * vn;
+      v += (jn / m) * n;
+      friction_impulse(n, jn, mu, m, v);
+    }
+    x += h * v;
+  }
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity stops",
+          "[collisions][C4][5pts]") {
+  Vec2 v = -0.5 * kN + 0.2 * kT;
+  const double jt = friction_impulse(kN, 3.0, 0.5, 2.0, v);  // needs 2 * 0.2 = 0.4 <= 1.5
+  require_near(v, Vec2(-0.5 * kN), kRound, "static friction: tangential velocity 0, normal kept");
+  require_near(jt, 0.4, kRound, "returned impulse m |v_t| = 2 * 0.2");
+}
+
+TEST_CASE("C4 friction_impulse: outside the cone the impulse is mu jn against the sliding",
+          "[collisions][C4][5pts]") {
+  Vec2 v = 0.1 * kN + 3.0 * kT;
+  const double jt = friction_impulse(kN, 1.0, 0.4, 2.0, v);  // would need 6 > mu jn = 0.4
+  require_near(v, Vec2(0.1 * kN + 2.8 * kT), kRound,
+               "sliding: tangential speed drops by mu jn / m = 0.2, normal velocity kept");
+  require_near(jt, 0.4, kRound, "returned impulse mu jn");
+}
+
+TEST_CASE("C4 friction_impulse: a block on a slope sticks when tan theta < mu",
+          "[collisions][C4][4pts]") {
+  const double theta = 20.0 * M_PI / 180.0;  // tan = 0.364 < 0.5
+  Vec2 x(0.25, -0.5);
+  const Vec2 v = slide(theta, 0.5, 2000, 1e-3, x);
+  constexpr double kStickTol = 1e-12;  // rounding of the normal impulse each step
+  require_near(v.norm(), 0.0, kStickTol, "speed of a block that static friction holds");
+  require_near(x, Vec2(0.25, -0.5), 1e-12, "position of a block that static friction holds");
+}
+
+TEST_CASE(
+    "C4 friction_impulse: on a steeper slope it slides with a = g (sin theta - mu cos "
+    "theta)",
+    "[collisions][C4][4pts]") {
+  const double theta = 35.0 * M_PI / 180.0, mu = 0.3, g = 9.81, h = 1e-3;
+  const int steps = 1000;
+  Vec2 x(0, 0);
+  const Vec2 v = slide(theta, mu, steps, h, x);
+  const Vec2 down(-std::cos(theta), -std::sin(theta));  // down the slope
+  // Each step: gravity adds g h (sin theta) along the slope and g h cos theta
+  // into it; the normal impulse cancels the latter and friction removes mu times
+  // it: the speed grows by exactly h g (sin - mu cos) per step (no step-size error).
+  const double a = g * (std::sin(theta) - mu * std::cos(theta));
+  require_near(v, Vec2(a * steps * h * down), 1e-10,
+               "velocity after 1 s: a t down the slope (rounding over 1000 steps)");
+}
+
+TEST_CASE(
+    "C4 friction_impulse: the impulse opposes the sliding in both directions and no "
+    "sliding gives no NaN",
+    "[collisions][C4][2pts]") {
+  for (double s : {1.0, -1.0}) {
+    Vec2 v = -0.2 * kN + s * 1.5 * kT;
+    friction_impulse(kN, 2.0, 0.25, 1.0, v);  // bound 0.5 < 1.5: sliding
+    INFO("tangential direction " << s);
+    require_near(v, Vec2(-0.2 * kN + s * 1.0 * kT), kRound, "speed 1.5 - mu jn / m = 1.0");
+  }
+  Vec2 v = -0.7 * kN;  // no tangential velocity
+  const double jt = friction_impulse(kN, 2.0, 0.25, 1.0, v);
+  wbtest::require_finite(wb::Mat2X(v), "velocity with no tangential part");
+  require_near(v, Vec2(-0.7 * kN), kRound, "nothing to stop: velocity unchanged");
+  require_near(jt, 0.0, kRound, "no tangential impulse");
+}
