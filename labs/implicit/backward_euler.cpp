@@ -9,7 +9,7 @@
 // TODO(I4) backward Euler step of a spring network by Newton's method (see backward_euler.h).
 // Plan: 1. set v = 0 for pinned particles; y = v (a 2 x n matrix; Eigen::Map
 //          views it as the 2n vector of the unknowns);
-//       2. assemble_system at (x, v) -> A, b_0; scale = |M v| + |b_0|;
+//       2. assemble_system at (x, v) -> A, b_0; scale = |M v| + |b_0| + h |f_ext|;
 //          solve A dv = b_0 with Eigen::SimplicialLDLT or
 //          Eigen::ConjugateGradient<..., Eigen::Lower | Eigen::Upper> (opt.solver,
 //          cg.setTolerance(opt.cg_tol)); check info() and dv.allFinite(); y += dv;

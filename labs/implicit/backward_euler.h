@@ -6,7 +6,7 @@
 struct NewtonOptions {
   enum Solver { kLDLT, kCG };
   Solver solver = kLDLT;       // Eigen::SimplicialLDLT, or ConjugateGradient (Lower|Upper)
-  double tol = 1e-9;           // converged when |G(y)| <= tol (|M v0| + |b_0|)
+  double tol = 1e-9;           // converged when |G(y)| <= tol * scale
   int max_iterations = 20;     // cap on the linear solves
   bool one_iteration = false;  // Baraff and Witkin (1998): one linear solve, no test
   bool definite = true;        // clamp compressed springs' blocks (see spring_derivatives.h)
@@ -29,10 +29,12 @@ struct NewtonReport {
 //
 //   1. pinned particles: v = 0 (they never move);
 //   2. y = v; the first system is linearised at (x, v) (assemble_system, I3):
-//      A dv = b_0, y += dv  (one_iteration: stop here: Baraff and Witkin);
+//      A dv = b_0, y += dv  (one_iteration: stop after step 3's first |b|:
+//      Baraff and Witkin);
 //   3. then repeat: assemble at (x + h y, y), whose b is -G(y); stop when
-//      |b| <= tol (|M v| + |b_0|) (converged) or after max_iterations solves;
-//      else solve A dv = b, y += dv;
+//      |b| <= tol * scale (converged), scale = |M v| + |b_0| + h |f_ext| (the
+//      momenta at stake: the residual cannot be rounded below ~1e-16 of them),
+//      or after max_iterations solves; else solve A dv = b, y += dv;
 //   4. x += h y, v = y, and report iterations and the final residual |G(y)|.
 //
 // A failed solve (Eigen's info() != Success, or a non-finite dv) stops the

@@ -45,7 +45,7 @@ NewtonReport backward_euler_step(const SpringNetwork& net, const wb::Mat2X& f_ex
 
   // First solve, linearised at the start (Baraff and Witkin).
   assemble_system(net, x, v, x, v, f_ext, h, opt.definite, A, b);
-  rep.scale = (v * net.m.asDiagonal()).norm() + b.norm();
+  rep.scale = (v * net.m.asDiagonal()).norm() + b.norm() + h * f_ext.norm();
   if (!solve(A, b, opt, dv)) {
     rep.solver_failed = true;
   } else {

@@ -152,7 +152,7 @@ TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][3p
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.5, 0.1);
   net.pinned = {0, 0, 1, 0};  // particle 2 joins three springs
-  v0.col(2).setZero();
+  // Its given velocity (0.8, -0.1) is ignored: a pinned particle has v = 0.
   Mat2X f(2, 4);
   f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
   Mat2X x = x0, v = v0;
