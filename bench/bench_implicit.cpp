@@ -3,8 +3,11 @@
 // particles, against one semi-implicit Euler step (the euler lab's solution)
 // of the same network in the same run. docs/benchmarks.md, section implicit.
 //
-//   be/<shape>/<solver>/<n>   backward_euler_step, h = 1/60 s; counters: Newton
-//                             solves per step (iters), particles (n)
+//   be/<shape>_<solver>/<n>   backward_euler_step, h = 1/60 s, default options
+//                             (tol 1e-9, cg_tol 1e-12); solver ldlt, cg, or ldlt1 =
+//                             one_iteration (Baraff and Witkin: one LDLT solve per
+//                             step); counters: Newton solves per step (iters),
+//                             steps that did not converge, particles (n)
 //   se/<shape>/<n>            symplectic_euler_step on the same springs and
 //                             gravity (network_forces), h = 1e-4 s, inside its
 //                             stability limit (h sqrt(k/m) = 0.1 per spring)
@@ -90,10 +93,12 @@ Setup make(bool is_cloth, Eigen::Index n) {
   return s;
 }
 
-void be(benchmark::State& state, bool is_cloth, NewtonOptions::Solver solver) {
+void be(benchmark::State& state, bool is_cloth, NewtonOptions::Solver solver,
+        bool one_iteration) {
   Setup s = make(is_cloth, state.range(0));
   NewtonOptions opt;
   opt.solver = solver;
+  opt.one_iteration = one_iteration;
   long solves = 0, steps = 0, failed = 0;
   for (auto _ : state) {
     const NewtonReport r = backward_euler_step(s.net, s.f_ext, 1.0 / 60.0, opt, s.x, s.v);
@@ -134,10 +139,14 @@ void sizes(benchmark::internal::Benchmark* b) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(be, rope / ldlt, false, NewtonOptions::kLDLT)->Apply(sizes);
+// Names: be_<shape>_<solver>/<n> and se_<shape>/<n> (identifiers, so that
+// clang-format leaves them alone).
+BENCHMARK_CAPTURE(be, rope_ldlt, false, NewtonOptions::kLDLT, false)->Apply(sizes);
+BENCHMARK_CAPTURE(be, rope_ldlt1, false, NewtonOptions::kLDLT, true)->Apply(sizes);
 BENCHMARK_CAPTURE(se, rope, false)->Apply(sizes);
-BENCHMARK_CAPTURE(be, cloth / ldlt, true, NewtonOptions::kLDLT)->Apply(sizes);
-BENCHMARK_CAPTURE(be, cloth / cg, true, NewtonOptions::kCG)->Apply(sizes);
+BENCHMARK_CAPTURE(be, cloth_ldlt, true, NewtonOptions::kLDLT, false)->Apply(sizes);
+BENCHMARK_CAPTURE(be, cloth_ldlt1, true, NewtonOptions::kLDLT, true)->Apply(sizes);
+BENCHMARK_CAPTURE(be, cloth_cg, true, NewtonOptions::kCG, false)->Apply(sizes);
 BENCHMARK_CAPTURE(se, cloth, true)->Apply(sizes);
 
 BENCHMARK_MAIN();
