@@ -255,7 +255,10 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
   if (r.converged && !r.solver_failed) return;
   if (++failed_ <= 3) {
     std::cerr << "implicit: " << file_ << ": " << integrator << " step " << steps_ << ": ";
-    if (r.solver_failed) {
+    if (r.iterations == 0 && !r.solver_failed) {
+      std::cerr << "the step did no linear solve and did not converge (see TODO(I4), "
+                   "TODO(I5))\n";
+    } else if (r.solver_failed) {
       std::cerr << "the linear solver failed after " << r.iterations
                 << " solves; the step keeps the last good iterate\n";
     } else {
