@@ -1,0 +1,27 @@
+#include "assemble_system.h"
+
+#include <vector>
+
+#include "spring_derivatives.h"
+
+// TODO(I3) assembly of one Newton step's sparse system (see assemble_system.h).
+// Plan: 1. a std::vector<Eigen::Triplet<double>>; for each particle p, the
+//          diagonal m_p + h drag (m_p alone if pinned) at rows 2p, 2p+1;
+//       2. b starts as M (v0 - vl) + h (f_ext - drag vl), column by column;
+//       3. for each spring: spring_derivatives at (xl, vl) gives f, K, D;
+//          B = -h D - h^2 K goes to the blocks (i,i), (j,j) and -B to (i,j),
+//          (j,i) -- skip any block that touches a pinned particle;
+//          b_i += h (f + K (w_i - w_j)) and b_j -= the same, with
+//          w = x0 + h vl - xl (an anchor has w = 0);
+//       4. b_p = 0 for pinned particles;
+//       5. A.resize(2n, 2n), A.setFromTriplets(...); b as a 2n vector.
+void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Mat2X& v0,
+                     const wb::Mat2X& xl, const wb::Mat2X& vl, const wb::Mat2X& f_ext, double h,
+                     bool definite, Eigen::SparseMatrix<double>& A, Eigen::VectorXd& b) {
+  // ---- Replace with your code ----
+  (void)x0, (void)v0, (void)xl, (void)vl, (void)f_ext, (void)h, (void)definite;
+  A.resize(2 * net.n(), 2 * net.n());
+  A.setZero();
+  b = Eigen::VectorXd::Zero(2 * net.n());
+  // ---- end ----
+}

@@ -1,0 +1,47 @@
+// TODO(I3) assembly of one Newton step's sparse system. Handout:
+// handouts/implicit.md#i3. Tests: [I3].
+#pragma once
+#include <Eigen/SparseCore>
+
+#include "spring_network.h"
+
+// Backward Euler for a spring network, with the velocities y = v' at the end
+// of the step as unknowns (positions follow: x' = x0 + h y):
+//
+//   G(y) = M (y - v0) - h ( f(x0 + h y, y) + f_ext ) = 0
+//
+// where f is the network's force (springs and drag) and f_ext the other
+// forces, held constant. Linearising f around a point (xl, vl) and writing
+// y = vl + dv gives one linear system A dv = b with
+//
+//   A = M - h D - h^2 K
+//   b = M (v0 - vl) + h ( f(xl, vl) + f_ext ) + h K (x0 + h vl - xl)
+//
+// K = df/dx, D = df/dv (2n x 2n) at (xl, vl), from the springs' blocks (I2)
+// and the drag (D gets -drag on its diagonal). Two uses:
+//   - (xl, vl) = (x0, v0): b = h (f + f_ext + h K v0), the single linear
+//     solve of Baraff and Witkin (1998);
+//   - xl = x0 + h vl (a Newton iterate): the K term vanishes and b = -G(vl),
+//     the residual.
+//
+// Unknowns are ordered particle by particle: dv = (dv_0x, dv_0y, dv_1x, ...).
+// A pinned particle p does not move: its two rows and columns hold m_p on the
+// diagonal and nothing else, and b_p = 0, so that dv_p = 0. (Its springs still
+// act on their other ends, in f and in those ends' diagonal blocks.) The
+// caller gives pinned particles vl = 0, xl = x0.
+//
+// Inputs:
+//   net       masses, springs, drag, pinned flags (n particles)
+//   x0, v0    the state at the start of the step (2 x n; m, m/s)
+//   xl, vl    the linearisation point (2 x n; m, m/s)
+//   f_ext     the other forces (2 x n, N)
+//   h         step size (s), > 0
+//   definite  passed to spring_derivatives (I2)
+// Outputs:
+//   A  2n x 2n sparse, symmetric, built from triplets (setFromTriplets): for
+//      each particle its 2 x 2 diagonal block, for each spring between two free
+//      particles its two 2 x 2 off-diagonal blocks; nothing else is stored
+//   b  2n right-hand side (kg m/s)
+void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Mat2X& v0,
+                     const wb::Mat2X& xl, const wb::Mat2X& vl, const wb::Mat2X& f_ext, double h,
+                     bool definite, Eigen::SparseMatrix<double>& A, Eigen::VectorXd& b);

@@ -1,0 +1,52 @@
+// TODO(I4) backward Euler step of a spring network by Newton's method.
+// Handout: handouts/implicit.md#i4. Tests: [I4].
+#pragma once
+#include "spring_network.h"
+
+struct NewtonOptions {
+  enum Solver { kLDLT, kCG };
+  Solver solver = kLDLT;       // Eigen::SimplicialLDLT, or ConjugateGradient (Lower|Upper)
+  double tol = 1e-9;           // converged when |G(y)| <= tol * scale
+  int max_iterations = 20;     // cap on the linear solves
+  bool one_iteration = false;  // Baraff and Witkin (1998): one linear solve, no test
+  bool definite = true;        // clamp compressed springs' blocks (see spring_derivatives.h)
+  double cg_tol = 1e-12;       // CG: relative residual of each linear solve
+};
+
+struct NewtonReport {
+  int iterations = 0;          // linear solves done
+  double residual = 0;         // |G(y)| at the returned y (kg m/s), Euclidean norm
+  double scale = 0;            // |M v0| + |b_0| (kg m/s), b_0 the first right-hand side
+  bool converged = false;      // residual <= tol * scale (one_iteration: the solve succeeded)
+  bool solver_failed = false;  // a factorisation or CG failed, or dv was not finite
+};
+
+// One backward Euler step of a spring network:
+//
+//   x' = x + h v',   M v' = M v + h ( f(x', v') + f_ext )
+//
+// solved for y = v' by Newton's method on G(y) = M (y - v) - h (f(x + h y, y) + f_ext):
+//
+//   1. pinned particles: v = 0 (they never move);
+//   2. y = v; the first system is linearised at (x, v) (assemble_system, I3):
+//      A dv = b_0, y += dv  (one_iteration: stop after step 3's first |b|:
+//      Baraff and Witkin);
+//   3. then repeat: assemble at (x + h y, y), whose b is -G(y); stop when
+//      |b| <= tol * scale (converged), scale = |M v| + |b_0| + h |f_ext| (the
+//      momenta at stake: the residual cannot be rounded below ~1e-16 of them),
+//      or after max_iterations solves; else solve A dv = b, y += dv;
+//   4. x += h y, v = y, and report iterations and the final residual |G(y)|.
+//
+// A failed solve (Eigen's info() != Success, or a non-finite dv) stops the
+// iteration with solver_failed: x and v keep the last good iterate, never NaN.
+//
+// Inputs:
+//   net    the springs, masses, drag and pinned particles (n particles)
+//   f_ext  the other forces (2 x n, N), taken at the start of the step
+//   h      step size (s), > 0
+//   opt    solver choice, tolerance, iteration cap
+// Outputs:
+//   x, v   2 x n positions (m) and velocities (m/s): advanced in place
+//   returns what Newton's method did
+NewtonReport backward_euler_step(const SpringNetwork& net, const wb::Mat2X& f_ext, double h,
+                                 const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v);

@@ -1,0 +1,167 @@
+// Shared by the implicit lab's tests: the test's own spring forces and
+// derivatives (written from the formulas, not from any lab file), the
+// backward Euler and trapezoid residuals, and small networks.
+#pragma once
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "spring_network.h"
+#include "test_helpers.h"
+
+namespace imtest {
+
+using wb::Mat2;
+using wb::Mat2X;
+using wb::Vec2;
+
+// A damped spring's force on end i and its blocks, from the formulas
+//   f = -(k (L - r) + kd (v_i - v_j).u) u
+//   K = -k ((1 - r/L) I + (r/L) u u^T)   (= -k (P + (1 - r/L)(I - P)))
+//   D = -kd u u^T
+struct SpringTerms {
+  Vec2 f;
+  Mat2 K, D;
+};
+
+inline SpringTerms spring_terms(const Vec2& xi, const Vec2& xj, const Vec2& vi, const Vec2& vj,
+                                double k, double r, double kd) {
+  SpringTerms t;
+  const Vec2 d = xi - xj;
+  const double L = d.norm();
+  const Vec2 u = d / L;
+  t.f = -(k * (L - r) + kd * u.dot(vi - vj)) * u;
+  t.K = -k * ((1.0 - r / L) * Mat2::Identity() + (r / L) * u * u.transpose());
+  t.D = -kd * u * u.transpose();
+  return t;
+}
+
+// The network's force (springs and drag) at (x, v).
+inline Mat2X forces(const SpringNetwork& net, const Mat2X& x, const Mat2X& v) {
+  Mat2X f = -net.drag * v;
+  for (const NetworkSpring& s : net.springs) {
+    const bool a = s.j < 0;
+    const Vec2 xj = a ? s.anchor : Vec2(x.col(s.j)), vj = a ? Vec2::Zero() : Vec2(v.col(s.j));
+    const Vec2 fi = spring_terms(x.col(s.i), xj, v.col(s.i), vj, s.k, s.rest, s.kd).f;
+    f.col(s.i) += fi;
+    if (!a) f.col(s.j) -= fi;
+  }
+  return f;
+}
+
+// Dense K = df/dx and D = df/dv (2n x 2n), unknowns ordered (0x, 0y, 1x, ...).
+inline void dense_jacobians(const SpringNetwork& net, const Mat2X& x, const Mat2X& v,
+                            Eigen::MatrixXd& K, Eigen::MatrixXd& D) {
+  const Eigen::Index n = net.n();
+  K = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  D = -net.drag * Eigen::MatrixXd::Identity(2 * n, 2 * n);
+  for (const NetworkSpring& s : net.springs) {
+    const bool a = s.j < 0;
+    const Vec2 xj = a ? s.anchor : Vec2(x.col(s.j)), vj = a ? Vec2::Zero() : Vec2(v.col(s.j));
+    const SpringTerms t = spring_terms(x.col(s.i), xj, v.col(s.i), vj, s.k, s.rest, s.kd);
+    K.block<2, 2>(2 * s.i, 2 * s.i) += t.K;
+    D.block<2, 2>(2 * s.i, 2 * s.i) += t.D;
+    if (!a) {
+      K.block<2, 2>(2 * s.j, 2 * s.j) += t.K;
+      K.block<2, 2>(2 * s.i, 2 * s.j) -= t.K;
+      K.block<2, 2>(2 * s.j, 2 * s.i) -= t.K;
+      D.block<2, 2>(2 * s.j, 2 * s.j) += t.D;
+      D.block<2, 2>(2 * s.i, 2 * s.j) -= t.D;
+      D.block<2, 2>(2 * s.j, 2 * s.i) -= t.D;
+    }
+  }
+}
+
+inline Eigen::VectorXd flat(const Mat2X& m) {
+  return Eigen::Map<const Eigen::VectorXd>(m.data(), m.size());
+}
+
+// Backward Euler's residual at a step's result (x1, v1) from (x0, v0):
+// G = M (v1 - v0) - h (f(x1, v1) + f_ext) on the free particles (kg m/s), and
+// the position equation x1 - x0 - h v1 (m) folded in as M (.) / h.
+inline double be_residual(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                          const Mat2X& f_ext, double h, const Mat2X& x1, const Mat2X& v1) {
+  Mat2X G = (v1 - v0) * net.m.asDiagonal() - h * (forces(net, x1, v1) + f_ext);
+  G += (x1 - x0 - h * v1) * net.m.asDiagonal() / h;
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) G.col(p).setZero();
+  return G.norm();
+}
+
+// The implicit trapezoid's residual, like be_residual:
+// M (v1 - v0) - h/2 (f(x0, v0) + f(x1, v1)) - h f_ext and x1 - x0 - h/2 (v0 + v1).
+inline double trapezoid_residual(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                                 const Mat2X& f_ext, double h, const Mat2X& x1, const Mat2X& v1) {
+  Mat2X G = (v1 - v0) * net.m.asDiagonal() -
+            0.5 * h * (forces(net, x0, v0) + forces(net, x1, v1)) - h * f_ext;
+  G += (x1 - x0 - 0.5 * h * (v0 + v1)) * net.m.asDiagonal() / h;
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) G.col(p).setZero();
+  return G.norm();
+}
+
+// The momentum scale of a step, |M v0| + h |f(x0, v0) + f_ext| (kg m/s): the
+// residual of a good step is small against it.
+inline double momentum_scale(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                             const Mat2X& f_ext, double h) {
+  return (v0 * net.m.asDiagonal()).norm() + h * (forces(net, x0, v0) + f_ext).norm();
+}
+
+// Energy of particles on undamped springs: 1/2 sum m v^2 + 1/2 sum k (L - r)^2.
+inline double energy(const SpringNetwork& net, const Mat2X& x, const Mat2X& v) {
+  double E = 0.5 * v.colwise().squaredNorm().dot(net.m);
+  for (const NetworkSpring& s : net.springs) {
+    const Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
+    const double e = (Vec2(x.col(s.i)) - xj).norm() - s.rest;
+    E += 0.5 * s.k * e * e;
+  }
+  return E;
+}
+
+// Particle p on its own zero-rest-length spring of stiffness k[p] to anchor c[p].
+inline SpringNetwork anchored_network(const std::vector<double>& m, const std::vector<double>& k,
+                                      const std::vector<Vec2>& c) {
+  SpringNetwork net;
+  net.m = Eigen::Map<const Eigen::VectorXd>(m.data(), Eigen::Index(m.size()));
+  for (std::size_t p = 0; p < k.size(); ++p) {
+    NetworkSpring s;
+    s.i = Eigen::Index(p);
+    s.anchor = c[p];
+    s.k = k[p];
+    net.springs.push_back(s);
+  }
+  return net;
+}
+
+inline NetworkSpring spring(Eigen::Index i, Eigen::Index j, double k, double rest,
+                            double kd = 0.0, const Vec2& anchor = Vec2::Zero()) {
+  NetworkSpring s;
+  s.i = i;
+  s.j = j;
+  s.k = k;
+  s.rest = rest;
+  s.kd = kd;
+  s.anchor = anchor;
+  return s;
+}
+
+// A small nonlinear network (4 particles, a triangle with a tail to an
+// anchor), every spring stretched, every particle moving.
+inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.0,
+                          double drag = 0.0) {
+  net = SpringNetwork{};
+  net.m = Eigen::Vector4d(1.0, 2.0, 0.5, 1.5);
+  net.drag = drag;
+  net.springs = {spring(0, 1, 40.0, 0.8, kd), spring(1, 2, 25.0, 0.9, kd),
+                 spring(2, 0, 60.0, 0.7, kd), spring(2, 3, 30.0, 0.5, kd),
+                 spring(3, -1, 50.0, 0.6, kd, Vec2(2.5, -1.0))};
+  x.resize(2, 4);
+  v.resize(2, 4);
+  x << 0.0, 1.1, 0.4, 1.3,  //
+      0.0, 0.2, 1.0, 0.1;
+  v << 0.3, -0.5, 0.8, -0.2,  //
+      -0.7, 0.4, -0.1, 0.6;
+}
+
+}  // namespace imtest

@@ -1,0 +1,107 @@
+// Graded tests for I2, the spring's force and derivatives
+// (labs/implicit/spring_derivatives.cpp). Expected values: the force formula,
+// and central finite differences of it.
+#include "implicit_checks.h"
+#include "spring_derivatives.h"
+
+namespace {
+using wb::Mat2;
+using wb::Vec2;
+
+// Central differences with step 1e-5 m on O(1) lengths: truncation error
+// ~ delta^2 |f'''| ~ 1e-10 k, rounding ~ 1e-16 |f| / delta ~ 1e-11 k; 1e-7 k
+// leaves a wide margin and is still 1e-7 of the blocks' size.
+constexpr double kDelta = 1e-5;
+constexpr double kFdTol = 1e-7;
+constexpr double kRelTol = 1e-12;  // a closed form evaluated two ways: rounding only
+
+const Vec2 xi(0.4, 1.3), xj(-0.5, 0.6), vi(0.7, -0.2), vj(-0.3, 0.9);
+const double k = 30.0, kd = 2.5;
+
+void require_mat(const Mat2& got, const Mat2& expected, double tol, const std::string& what) {
+  INFO(what << "\n  expected\n" << expected << "\n  got\n" << got << "\n  tolerance " << tol);
+  REQUIRE((got - expected).cwiseAbs().maxCoeff() <= tol);
+}
+
+// Central differences in x_i of the force formula (imtest::spring_terms).
+Mat2 fd_x(double rest, double damping) {
+  Mat2 J;
+  for (int c = 0; c < 2; ++c) {
+    Vec2 e = Vec2::Zero();
+    e[c] = kDelta;
+    J.col(c) = (imtest::spring_terms(xi + e, xj, vi, vj, k, rest, damping).f -
+                imtest::spring_terms(xi - e, xj, vi, vj, k, rest, damping).f) /
+               (2 * kDelta);
+  }
+  return J;
+}
+}  // namespace
+
+TEST_CASE("I2 spring derivatives: force is -(k (L - rest) + kd (v_i - v_j).u) u",
+          "[implicit][I2][4pts]") {
+  for (double rest : {0.5, 1.6}) {  // stretched (L = 1.14) and compressed
+    Vec2 f;
+    Mat2 K, D;
+    spring_derivatives(xi, xj, vi, vj, k, rest, kd, false, f, K, D);
+    const Vec2 e = imtest::spring_terms(xi, xj, vi, vj, k, rest, kd).f;
+    wbtest::require_near(f, e, 0.0, "spring-damper force on end i, rest " + std::to_string(rest),
+                         kRelTol);
+  }
+}
+
+TEST_CASE("I2 spring derivatives: K matches central differences of the elastic force",
+          "[implicit][I2][6pts]") {
+  // The elastic force (kd = 0) stretched and compressed; definite = false: the exact block.
+  for (double rest : {0.5, 1.6, 0.0}) {
+    Vec2 f;
+    Mat2 K, D;
+    spring_derivatives(xi, xj, vi, vj, k, rest, 0.0, false, f, K, D);
+    require_mat(K, fd_x(rest, 0.0), kFdTol * k,
+                "K = df_i/dx_i against central differences, rest " + std::to_string(rest));
+  }
+}
+
+TEST_CASE("I2 spring derivatives: D matches central differences in the velocities",
+          "[implicit][I2][4pts]") {
+  Vec2 f;
+  Mat2 K, D, J;
+  for (int c = 0; c < 2; ++c) {
+    Vec2 e = Vec2::Zero();
+    e[c] = kDelta;
+    J.col(c) = (imtest::spring_terms(xi, xj, vi + e, vj, k, 0.8, kd).f -
+                imtest::spring_terms(xi, xj, vi - e, vj, k, 0.8, kd).f) /
+               (2 * kDelta);
+  }
+  spring_derivatives(xi, xj, vi, vj, k, 0.8, kd, false, f, K, D);
+  require_mat(D, J, kFdTol * kd, "D = df_i/dv_i against central differences");
+}
+
+TEST_CASE("I2 spring derivatives: definite drops only a compressed spring's cross term",
+          "[implicit][I2][3pts]") {
+  Vec2 f;
+  Mat2 K, D;
+  const Vec2 u = (xi - xj).normalized();
+  // Compressed (L = 1.14 < 1.6): K = -k u u^T, negative semi-definite.
+  spring_derivatives(xi, xj, vi, vj, k, 1.6, kd, true, f, K, D);
+  require_mat(K, -k * u * u.transpose(), kRelTol * k,
+              "compressed spring with definite = true: K = -k u u^T");
+  // Stretched: nothing to clamp, K is the exact block.
+  spring_derivatives(xi, xj, vi, vj, k, 0.5, kd, true, f, K, D);
+  require_mat(K, imtest::spring_terms(xi, xj, vi, vj, k, 0.5, kd).K, kRelTol * k,
+              "stretched spring with definite = true: the exact K");
+}
+
+TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
+          "[implicit][I2][3pts]") {
+  Vec2 f(1.0, 1.0);
+  Mat2 K, D;
+  spring_derivatives(xi, xi, vi, vj, k, 0.0, kd, true, f, K, D);
+  INFO("L = 0: the direction is undefined; f = 0, K = -k I (the rest-0 limit), D = 0; got f = "
+       << f.transpose() << ", K =\n"
+       << K << "\nD =\n"
+       << D);
+  REQUIRE(f.allFinite());
+  REQUIRE(f.norm() == 0.0);
+  REQUIRE((K + k * Mat2::Identity()).norm() <= kRelTol * k);
+  REQUIRE(D.norm() == 0.0);
+}

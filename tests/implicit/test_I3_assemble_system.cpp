@@ -1,0 +1,152 @@
+// Graded tests for I3, assembly of one Newton step's system
+// (labs/implicit/assemble_system.cpp). Expected values: the dense matrices
+// M - h D - h^2 K and the right-hand side written from the formulas in
+// assemble_system.h, with the test's own spring derivatives.
+#include "assemble_system.h"
+#include "implicit_checks.h"
+
+namespace {
+using wb::Mat2X;
+using wb::Vec2;
+
+// A and b hold sums of a few products of O(1..100) numbers: rounding only.
+constexpr double kRelTol = 1e-12;
+constexpr double kH = 0.1;
+
+struct Setup {
+  SpringNetwork net;
+  Mat2X x0, v0, xl, vl, f_ext;
+};
+
+Setup setup() {
+  Setup s;
+  imtest::small_network(s.net, s.x0, s.v0, 1.5, 0.3);
+  // A linearisation point away from x0 + h vl, so that b's K term counts.
+  s.vl = s.v0 + Mat2X::Constant(2, 4, 0.2);
+  s.xl = s.x0 + kH * s.vl;
+  s.xl(0, 1) += 0.03;
+  s.xl(1, 3) -= 0.02;
+  s.f_ext.resize(2, 4);
+  s.f_ext << 0.5, -0.3, 0.2, 0.4,  //
+      -9.8, -19.6, -4.9, -14.7;
+  return s;
+}
+
+// The dense A and b of assemble_system.h, pinned particles excluded.
+void dense_reference(const Setup& s, Eigen::MatrixXd& A, Eigen::VectorXd& b) {
+  Eigen::MatrixXd K, D;
+  imtest::dense_jacobians(s.net, s.xl, s.vl, K, D);
+  const Eigen::Index n = s.net.n();
+  Eigen::VectorXd M(2 * n);
+  for (Eigen::Index p = 0; p < n; ++p) M.segment<2>(2 * p).setConstant(s.net.m[p]);
+  A = Eigen::MatrixXd(M.asDiagonal()) - kH * D - kH * kH * K;
+  b = M.asDiagonal() * imtest::flat(s.v0 - s.vl) +
+      kH * imtest::flat(imtest::forces(s.net, s.xl, s.vl) + s.f_ext) +
+      kH * K * imtest::flat(s.x0 + kH * s.vl - s.xl);
+  for (Eigen::Index p = 0; p < n; ++p) {
+    if (!s.net.is_pinned(p)) continue;
+    A.middleRows(2 * p, 2).setZero();
+    A.middleCols(2 * p, 2).setZero();
+    A.block<2, 2>(2 * p, 2 * p) = s.net.m[p] * Eigen::Matrix2d::Identity();
+    b.segment<2>(2 * p).setZero();
+  }
+}
+
+void require_dense(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
+                   const Eigen::MatrixXd& Ae, const Eigen::VectorXd& be,
+                   const std::string& what) {
+  REQUIRE(A.rows() == Ae.rows());
+  REQUIRE(A.cols() == Ae.cols());
+  REQUIRE(b.size() == be.size());
+  const Eigen::MatrixXd Ad = A;
+  Eigen::Index r, c;
+  const double err = (Ad - Ae).cwiseAbs().maxCoeff(&r, &c);
+  INFO(what << ": largest difference from the dense reference at A(" << r << ", " << c
+            << "): got " << Ad(r, c) << ", expected " << Ae(r, c));
+  REQUIRE(err <= kRelTol * Ae.cwiseAbs().maxCoeff());
+  Eigen::Index i;
+  const double berr = (b - be).cwiseAbs().maxCoeff(&i);
+  INFO(what << ": largest difference in b at " << i << ": got " << b[i] << ", expected "
+            << be[i]);
+  REQUIRE(berr <= kRelTol * be.cwiseAbs().maxCoeff());
+}
+}  // namespace
+
+TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
+          "[implicit][I3][5pts]") {
+  const Setup s = setup();
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, A, b);
+  REQUIRE(A.rows() == 8);
+  REQUIRE(A.cols() == 8);
+  const Eigen::MatrixXd Ad = A;
+  INFO("A - A^T: largest entry " << (Ad - Ad.transpose()).cwiseAbs().maxCoeff());
+  REQUIRE((Ad - Ad.transpose()).cwiseAbs().maxCoeff() <= kRelTol * Ad.cwiseAbs().maxCoeff());
+  // Blocks that may hold entries: diagonal, and the pairs joined by a spring.
+  Eigen::Matrix4i allowed = Eigen::Matrix4i::Identity();
+  for (const NetworkSpring& sp : s.net.springs)
+    if (sp.j >= 0) allowed(sp.i, sp.j) = allowed(sp.j, sp.i) = 1;
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      INFO("stored entry A(" << it.row() << ", " << it.col() << ") between particles "
+                             << it.row() / 2 << " and " << it.col() / 2
+                             << ", which no spring joins");
+      REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
+    }
+  }
+  // M - h D - h^2 K with -D, -K positive semi-definite (definite = true): diagonal >= m.
+  for (Eigen::Index p = 0; p < 4; ++p) {
+    INFO("diagonal of particle " << p << ": " << Ad(2 * p, 2 * p) << ", "
+                                 << Ad(2 * p + 1, 2 * p + 1) << ", expected at least its mass "
+                                 << s.net.m[p]);
+    REQUIRE(Ad(2 * p, 2 * p) >= s.net.m[p]);
+    REQUIRE(Ad(2 * p + 1, 2 * p + 1) >= s.net.m[p]);
+  }
+}
+
+TEST_CASE("I3 assembly: A and b equal a dense reference on a small network",
+          "[implicit][I3][8pts]") {
+  const Setup s = setup();
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, A, b);
+  Eigen::MatrixXd Ae;
+  Eigen::VectorXd be;
+  dense_reference(s, Ae, be);
+  require_dense(A, b, Ae, be, "A = M - h D - h^2 K, b = M (v0 - vl) + h (f + f_ext) + h K w");
+}
+
+TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3][3pts]") {
+  Setup s = setup();
+  s.xl = s.x0;
+  s.vl = s.v0;
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, A, b);
+  Eigen::MatrixXd K, D;
+  imtest::dense_jacobians(s.net, s.x0, s.v0, K, D);
+  const Eigen::VectorXd be = kH * (imtest::flat(imtest::forces(s.net, s.x0, s.v0) + s.f_ext) +
+                                   kH * K * imtest::flat(s.v0));
+  REQUIRE(b.size() == be.size());
+  Eigen::Index i;
+  const double err = (b - be).cwiseAbs().maxCoeff(&i);
+  INFO("Baraff and Witkin's right-hand side: at " << i << " got " << b[i] << ", expected "
+                                                  << be[i]);
+  REQUIRE(err <= kRelTol * be.cwiseAbs().maxCoeff());
+}
+
+TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
+          "[implicit][I3][4pts]") {
+  Setup s = setup();
+  s.net.pinned = {0, 1, 0, 0};  // particle 1: springs to 0 and 2 act on them only
+  s.vl.col(1).setZero();
+  s.xl.col(1) = s.x0.col(1);
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, A, b);
+  Eigen::MatrixXd Ae;
+  Eigen::VectorXd be;
+  dense_reference(s, Ae, be);
+  require_dense(A, b, Ae, be, "particle 1 pinned");
+}

@@ -1,0 +1,243 @@
+// Graded tests for I4, backward Euler for a spring network by Newton's method
+// (labs/implicit/backward_euler.cpp; it uses I2 and I3). Expected values: the
+// backward Euler equations themselves (their residual, with the test's own
+// forces), closed forms on linear springs, Newton's quadratic convergence,
+// conservation of momentum, and a hanging chain's statics.
+#include <Eigen/Dense>
+
+#include "backward_euler.h"
+#include "implicit_checks.h"
+
+namespace {
+using wb::Mat2X;
+using wb::Vec2;
+
+// Newton's tolerance asked for in these tests, and what the result must meet:
+// the residual relative to the step's momentum scale, with a margin of 100 for
+// the solve's own rounding (LDLT) or CG's 1e-12 relative accuracy.
+constexpr double kNewtonTol = 1e-12;
+constexpr double kResidualTol = 1e-9;
+
+NewtonOptions options(NewtonOptions::Solver solver = NewtonOptions::kLDLT) {
+  NewtonOptions o;
+  o.solver = solver;
+  o.tol = kNewtonTol;
+  o.max_iterations = 50;
+  return o;
+}
+
+void require_solves_be(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                       const Mat2X& f_ext, double h, const Mat2X& x1, const Mat2X& v1,
+                       const std::string& what) {
+  REQUIRE(x1.allFinite());
+  REQUIRE(v1.allFinite());
+  const double r = imtest::be_residual(net, x0, v0, f_ext, h, x1, v1);
+  const double s = imtest::momentum_scale(net, x0, v0, f_ext, h);
+  INFO(what << ": backward Euler residual |M (v' - v) - h (f(x', v') + f_ext)| = " << r
+            << " against a momentum scale " << s << " (relative tolerance " << kResidualTol
+            << ")");
+  REQUIRE(r <= kResidualTol * s);
+}
+}  // namespace
+
+TEST_CASE("I4 backward Euler: one anchored linear spring takes the closed-form step",
+          "[implicit][I4][3pts]") {
+  for (auto solver : {NewtonOptions::kLDLT, NewtonOptions::kCG}) {
+    SpringNetwork net =
+        imtest::anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
+    net.drag = 0.7;
+    const double h = 0.05;
+    Mat2X x(2, 2), v(2, 2), f(2, 2);
+    x << 1.1, 0.2, 0.4, -0.6;
+    v << -0.6, 1.5, 2.1, 0.8;
+    f << 0.5, 0.1, -19.6, -4.9;
+    Mat2X xe(2, 2), ve(2, 2);
+    for (Eigen::Index p = 0; p < 2; ++p) {
+      const double m = net.m[p], k = net.springs[p].k, b = net.drag;
+      const Vec2 c = net.springs[p].anchor;
+      for (int d = 0; d < 2; ++d) {
+        Eigen::Matrix2d A;
+        A << 1.0, -h, h * k / m, 1.0 + h * b / m;
+        const Eigen::Vector2d r(x(d, p), v(d, p) + h * (k * c[d] + f(d, p)) / m);
+        const Eigen::Vector2d s = A.partialPivLu().solve(r);
+        xe(d, p) = s[0];
+        ve(d, p) = s[1];
+      }
+    }
+    backward_euler_step(net, f, h, options(solver), x, v);
+    const std::string which = solver == NewtonOptions::kCG ? "CG" : "LDLT";
+    wbtest::require_near(x, xe, 0.0, which + ": x' of the closed-form backward Euler step", 1e-9);
+    wbtest::require_near(v, ve, 0.0, which + ": v' of the closed-form backward Euler step", 1e-9);
+  }
+}
+
+TEST_CASE("I4 backward Euler: energy factor 1/(1 + (h w)^2) per step on linear springs",
+          "[implicit][I4][3pts]") {
+  // Two particles, each on its own spring, with the same w = sqrt(k/m).
+  SpringNetwork net =
+      imtest::anchored_network({1.0, 4.0}, {9.0, 36.0}, {Vec2(0.5, 0.5), Vec2(-0.4, 0.1)});
+  const double w = 3.0;
+  for (double hw : {0.1, 1.0, 10.0, 1000.0}) {
+    Mat2X x(2, 2), v(2, 2);
+    x << 1.0, -1.2, 0.3, 0.6;
+    v << 0.5, 0.4, -1.0, 0.9;
+    const double E0 = imtest::energy(net, x, v);
+    backward_euler_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v);
+    wbtest::require_near(imtest::energy(net, x, v) / E0, 1.0 / (1.0 + hw * hw), 0.0,
+                         "energy ratio of one step at h w = " + std::to_string(hw), 1e-9);
+  }
+}
+
+TEST_CASE("I4 backward Euler: Newton's residual roughly squares from one iteration to the next",
+          "[implicit][I4][5pts]") {
+  // A nonlinear network and a step of h w ~ 1: the first solve leaves a relative
+  // residual of a few percent;
+  // Newton's method with the exact Jacobian (definite = false, springs stay
+  // stretched) then converges quadratically: e_{k+1} <= C e_k^2 for the
+  // relative residual e_k = |G(y_k)| / scale. C = 10 allows for the Jacobian's
+  // variation; a fixed-point or a one-solve-per-step scheme only gains a constant factor.
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0);
+  const double h = 0.1;
+  const Mat2X f = Mat2X::Zero(2, 4);
+  const double s = imtest::momentum_scale(net, x0, v0, f, h);
+  std::vector<double> e;
+  for (int it = 1; it <= 6; ++it) {
+    NewtonOptions o = options();
+    o.definite = false;
+    o.tol = 1e-300;  // never converged: exactly `it` solves
+    o.max_iterations = it;
+    Mat2X x = x0, v = v0;
+    backward_euler_step(net, f, h, o, x, v);
+    e.push_back(imtest::be_residual(net, x0, v0, f, h, x, v) / s);
+  }
+  int pairs = 0;
+  for (std::size_t k = 0; k + 1 < e.size(); ++k) {
+    INFO("relative residual after " << k + 1 << " solves: " << e[k] << ", after " << k + 2 << ": "
+                                    << e[k + 1] << " (expected at most 10 e^2 + 1e-13)");
+    REQUIRE(std::isfinite(e[k + 1]));
+    REQUIRE(e[k + 1] <= 10.0 * e[k] * e[k] + 1e-13);
+    if (e[k] > 1e-7) ++pairs;
+  }
+  INFO("first relative residual " << e[0]
+                                  << ": the first solve alone should leave the "
+                                     "nonlinear step unsolved");
+  REQUIRE(pairs >= 2);
+  REQUIRE(e.back() <= kResidualTol);
+}
+
+TEST_CASE("I4 backward Euler: a converged step solves the backward Euler equations",
+          "[implicit][I4][4pts]") {
+  // Damped springs (their K leaves out the damping's turn: Newton still
+  // converges, more slowly), drag, gravity, and the CG solver too.
+  for (auto solver : {NewtonOptions::kLDLT, NewtonOptions::kCG}) {
+    SpringNetwork net;
+    Mat2X x0, v0;
+    imtest::small_network(net, x0, v0, 1.2, 0.4);
+    Mat2X f(2, 4);
+    f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+    Mat2X x = x0, v = v0;
+    const NewtonReport r = backward_euler_step(net, f, 0.1, options(solver), x, v);
+    INFO("report: " << r.iterations << " solves, residual " << r.residual << ", converged "
+                    << r.converged);
+    REQUIRE(r.converged);
+    REQUIRE_FALSE(r.solver_failed);
+    require_solves_be(net, x0, v0, f, 0.1, x, v, solver == NewtonOptions::kCG ? "CG" : "LDLT");
+  }
+}
+
+TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][3pts]") {
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0, 0.5, 0.1);
+  net.pinned = {0, 0, 1, 0};  // particle 2 joins three springs
+  // Its given velocity (0.8, -0.1) is ignored: a pinned particle has v = 0.
+  Mat2X f(2, 4);
+  f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+  Mat2X x = x0, v = v0;
+  for (int step = 0; step < 5; ++step) {
+    const Mat2X xs = x, vs = v;
+    backward_euler_step(net, f, 0.1, options(), x, v);
+    INFO("step " << step << ": pinned particle 2 at " << x.col(2).transpose() << ", velocity "
+                 << v.col(2).transpose());
+    REQUIRE(x.col(2) == x0.col(2));
+    REQUIRE(v.col(2) == Vec2::Zero());
+    require_solves_be(net, xs, vs, f, 0.1, x, v, "the free particles");
+  }
+}
+
+TEST_CASE("I4 backward Euler: internal springs conserve momentum", "[implicit][I4][2pts]") {
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0, 0.8);
+  net.springs.pop_back();  // no anchor: only internal forces
+  Mat2X x = x0, v = v0;
+  backward_euler_step(net, Mat2X::Zero(2, 4), 0.2, options(), x, v);
+  require_solves_be(net, x0, v0, Mat2X::Zero(2, 4), 0.2, x, v, "free network");
+  const Vec2 p0 = v0 * net.m, p1 = v * net.m;
+  wbtest::require_near(p1, p0, 1e-12, "total momentum sum m v (internal forces cancel in pairs)");
+}
+
+TEST_CASE("I4 backward Euler: one_iteration is the single solve of Baraff and Witkin",
+          "[implicit][I4][2pts]") {
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0, 0.6, 0.2);
+  Mat2X f(2, 4);
+  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  const double h = 0.1;
+  // (M - h D - h^2 K) dv = h (f + f_ext + h K v), all at the start.
+  Eigen::MatrixXd K, D;
+  imtest::dense_jacobians(net, x0, v0, K, D);
+  Eigen::VectorXd M(8);
+  for (int p = 0; p < 4; ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
+  const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
+  const Eigen::VectorXd b =
+      h * (imtest::flat(imtest::forces(net, x0, v0) + f) + h * K * imtest::flat(v0));
+  const Eigen::VectorXd dv = A.partialPivLu().solve(b);
+  Mat2X ve = v0 + Eigen::Map<const Mat2X>(dv.data(), 2, 4);
+  Mat2X xe = x0 + h * ve;
+  NewtonOptions o = options();
+  o.one_iteration = true;
+  Mat2X x = x0, v = v0;
+  backward_euler_step(net, f, h, o, x, v);
+  wbtest::require_near(v, ve, 0.0, "v' after one linear solve", 1e-10);
+  wbtest::require_near(x, xe, 0.0, "x' = x + h v'", 1e-10);
+}
+
+TEST_CASE("I4 backward Euler: a stiff hanging chain at h = 1/60 comes to rest in equilibrium",
+          "[implicit][I4][3pts]") {
+  // 8 beads of 10 g, springs of k = 1e4 N/m (k/m = 1e6: explicit Euler's energy
+  // would grow by 1 + (h w)^2 ~ 280 per step), the top bead pinned at
+  // top = (0.3, 0.2), hanging straight down from unstretched springs of rest 0.1 m.
+  // Backward Euler's slowest mode (w ~ 200 rad/s, h w ~ 3.5) loses all but
+  // 1/(1 + 12) of its energy per step: after 600 steps the chain hangs at its
+  // static equilibrium, spring s (above bead s + 1) stretched by
+  // (beads below it) m g / k.
+  const int N = 8;
+  const double m = 0.01, k = 1e4, rest = 0.1, g = 9.81, h = 1.0 / 60.0;
+  const Vec2 top(0.3, 0.2);
+  SpringNetwork net;
+  net.m = Eigen::VectorXd::Constant(N, m);
+  net.pinned.assign(N, 0);
+  net.pinned[0] = 1;
+  Mat2X x(2, N), v = Mat2X::Zero(2, N), f(2, N);
+  for (int q = 0; q < N; ++q) {
+    x.col(q) = top - Vec2(0.0, rest * q);
+    f.col(q) = Vec2(0.0, -m * g);
+    if (q > 0) net.springs.push_back(imtest::spring(q - 1, q, k, rest));
+  }
+  for (int step = 0; step < 600; ++step) backward_euler_step(net, f, h, options(), x, v);
+  Mat2X xe(2, N);
+  xe.col(0) = top;
+  for (int q = 1; q < N; ++q) {
+    const double stretch = (N - q) * m * g / k;
+    xe.col(q) = xe.col(q - 1) - Vec2(0.0, rest + stretch);
+  }
+  // Positions to 1e-9 m: the stretches are ~ 1e-5 m; Newton's tolerance and
+  // the last mode's 13^-300 are far below.
+  wbtest::require_near(x, xe, 1e-9, "bead position at static equilibrium");
+  INFO("largest bead speed " << v.colwise().norm().maxCoeff() << " m/s, expected at rest");
+  REQUIRE(v.colwise().norm().maxCoeff() <= 1e-7);
+}

@@ -1,0 +1,121 @@
+// Graded tests for I5, the implicit trapezoid (labs/implicit/implicit_trapezoid.cpp;
+// it uses I4). Expected values: the Cayley transform (I - hA/2)^-1 (I + hA/2)
+// that the rule is on a linear system, its energy conservation, the exact
+// oscillator, and the trapezoid equations themselves.
+#include <Eigen/Dense>
+
+#include "implicit_checks.h"
+#include "implicit_trapezoid.h"
+
+namespace {
+using wb::Mat2X;
+using wb::Vec2;
+
+NewtonOptions options() {
+  NewtonOptions o;
+  o.tol = 1e-12;
+  o.max_iterations = 50;
+  return o;
+}
+}  // namespace
+
+TEST_CASE("I5 implicit trapezoid: energy kept exactly on linear springs at any h w",
+          "[implicit][I5][5pts]") {
+  // On X' = A X the step is the Cayley transform of A, which preserves the
+  // energy norm: the energy ratio is 1 up to the solve's rounding (1e-9).
+  SpringNetwork net =
+      imtest::anchored_network({1.0, 4.0}, {9.0, 36.0}, {Vec2(0.5, 0.5), Vec2(-0.4, 0.1)});
+  const double w = 3.0;
+  for (double hw : {0.1, 1.0, 10.0, 1000.0}) {
+    Mat2X x(2, 2), v(2, 2);
+    x << 1.0, -1.2, 0.3, 0.6;
+    v << 0.5, 0.4, -1.0, 0.9;
+    const double E0 = imtest::energy(net, x, v);
+    const Mat2X x0 = x;
+    for (int step = 0; step < 10; ++step)
+      implicit_trapezoid_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v);
+    INFO("the particles must move (h w = " << hw << ")");
+    REQUIRE((x - x0).norm() > 1e-6);
+    wbtest::require_near(imtest::energy(net, x, v) / E0, 1.0, 0.0,
+                         "energy ratio after 10 steps at h w = " + std::to_string(hw), 1e-9);
+  }
+}
+
+TEST_CASE("I5 implicit trapezoid: one step on a damped linear spring is the Cayley transform",
+          "[implicit][I5][4pts]") {
+  // Per coordinate X = (x - c, v), X' = A X + F with A = [[0, 1], [-k/m, -b/m]],
+  // F = (0, f/m): the rule gives X' = (I - hA/2)^-1 ((I + hA/2) X + h F).
+  SpringNetwork net =
+      imtest::anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
+  net.drag = 0.7;
+  const double h = 0.2;
+  Mat2X x(2, 2), v(2, 2), f(2, 2);
+  x << 1.1, 0.2, 0.4, -0.6;
+  v << -0.6, 1.5, 2.1, 0.8;
+  f << 0.5, 0.1, -19.6, -4.9;
+  Mat2X xe(2, 2), ve(2, 2);
+  for (Eigen::Index p = 0; p < 2; ++p) {
+    const double m = net.m[p], k = net.springs[p].k, b = net.drag;
+    const Vec2 c = net.springs[p].anchor;
+    Eigen::Matrix2d A;
+    A << 0.0, 1.0, -k / m, -b / m;
+    const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+    for (int d = 0; d < 2; ++d) {
+      const Eigen::Vector2d X(x(d, p) - c[d], v(d, p)), F(0.0, f(d, p) / m);
+      const Eigen::Vector2d X1 =
+          (I - 0.5 * h * A).partialPivLu().solve((I + 0.5 * h * A) * X + h * F);
+      xe(d, p) = X1[0] + c[d];
+      ve(d, p) = X1[1];
+    }
+  }
+  implicit_trapezoid_step(net, f, h, options(), x, v);
+  wbtest::require_near(x, xe, 0.0, "x' of the trapezoid rule on a linear spring", 1e-9);
+  wbtest::require_near(v, ve, 0.0, "v' of the trapezoid rule on a linear spring", 1e-9);
+}
+
+TEST_CASE("I5 implicit trapezoid: second order in h against the exact oscillator",
+          "[implicit][I5][3pts]") {
+  // w = 2 pi, T = 0.5, N = 50 ... 200: error ~ C h^2 (1 + O((w h)^2)); a window
+  // of 0.1 around 2 rejects first-order (backward Euler) and order-0 steps.
+  const double w = 2.0 * M_PI, T = 0.5;
+  SpringNetwork net = imtest::anchored_network({1.0}, {w * w}, {Vec2::Zero()});
+  const Vec2 x0(1.0, 0.0), v0(0.0, 3.0);
+  auto error = [&](int N) {
+    Mat2X x = x0, v = v0;
+    for (int s = 0; s < N; ++s)
+      implicit_trapezoid_step(net, Mat2X::Zero(2, 1), T / N, options(), x, v);
+    const Vec2 xe = x0 * std::cos(w * T) + v0 / w * std::sin(w * T);
+    return (Vec2(x.col(0)) - xe).norm();
+  };
+  double prev = error(50);
+  for (int N : {100, 200}) {
+    const double e = error(N), p = std::log2(prev / e);
+    INFO("measured order " << p << " from " << N / 2 << " to " << N << " steps, expected 2");
+    REQUIRE(std::isfinite(p));
+    REQUIRE(std::abs(p - 2.0) <= 0.1);
+    prev = e;
+  }
+}
+
+TEST_CASE("I5 implicit trapezoid: a pinned particle never moves", "[implicit][I5][3pts]") {
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0, 0.5, 0.1);
+  net.pinned = {0, 0, 1, 0};
+  v0.col(2).setZero();
+  Mat2X f(2, 4);
+  f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+  Mat2X x = x0, v = v0;
+  for (int step = 0; step < 5; ++step) {
+    const Mat2X xs = x, vs = v;
+    implicit_trapezoid_step(net, f, 0.1, options(), x, v);
+    INFO("step " << step << ": pinned particle 2 at " << x.col(2).transpose() << ", velocity "
+                 << v.col(2).transpose());
+    REQUIRE(x.col(2) == x0.col(2));
+    REQUIRE(v.col(2) == Vec2::Zero());
+    const double r = imtest::trapezoid_residual(net, xs, vs, f, 0.1, x, v);
+    const double s = imtest::momentum_scale(net, xs, vs, f, 0.1);
+    INFO("trapezoid residual of the free particles " << r << " against scale " << s);
+    REQUIRE(r <= 1e-9 * s);
+  }
+}
