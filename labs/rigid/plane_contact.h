@@ -23,9 +23,9 @@
 //
 // resolve_plane_contact: every candidate point of the body (box vertices, the
 // lowest point of a sphere...) against one plane through `point`:
-//   1. passes over the points below the plane ((p - point) . n < 0), calling
-//      contact_impulse on each, until a pass applies no impulse (at most
-//      kContactPasses passes);
+//   1. passes over the points touching the plane ((p - point) . n < kContactSlop:
+//      below it, or above by less than the slop), calling contact_impulse on
+//      each, until a pass applies no impulse (at most kContactPasses passes);
 //   2. then pushes the body out: x += d n, d the deepest penetration (if any).
 //
 // Inputs:
@@ -37,6 +37,7 @@
 //   b.v, b.omega (impulses), b.x (push-out); returns the normal impulse jn (N s)
 //   of contact_impulse, or the sum of them for resolve_plane_contact
 constexpr int kContactPasses = 10;
+constexpr double kContactSlop = 1e-3;  // m: points this close count as touching
 double contact_impulse(rigid::Body& b, const rigid::Vec3& p, const rigid::Vec3& n, double e,
                        double mu);
 double resolve_plane_contact(rigid::Body& b, const std::vector<rigid::Vec3>& points,

@@ -24,13 +24,13 @@ using wb::Mat3;
 using wb::Vec3;
 
 struct Body {
-  double m = 1.0;                                        // mass (kg), > 0
-  Mat3 I_body = Mat3::Identity();                        // inertia about x, body frame (kg m^2)
-  Vec3 x = Vec3::Zero();                                 // centre of mass, world (m)
-  Vec3 v = Vec3::Zero();                                 // its velocity, world (m/s)
+  double m = 1.0;                                         // mass (kg), > 0
+  Mat3 I_body = Mat3::Identity();                         // inertia about x, body frame (kg m^2)
+  Vec3 x = Vec3::Zero();                                  // centre of mass, world (m)
+  Vec3 v = Vec3::Zero();                                  // its velocity, world (m/s)
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();  // orientation body -> world, unit
-  Vec3 omega = Vec3::Zero();                             // angular velocity, world (rad/s)
-  Vec3 f = Vec3::Zero();                                 // force accumulated this step (N)
+  Vec3 omega = Vec3::Zero();                              // angular velocity, world (rad/s)
+  Vec3 f = Vec3::Zero();                                  // force accumulated this step (N)
   Vec3 tau = Vec3::Zero();  // torque about x accumulated this step, world (N m)
 };
 

@@ -45,12 +45,13 @@ double contact_impulse(rigid::Body& b, const rigid::Vec3& p, const rigid::Vec3& 
 
 // TODO(R6) every point of a body against a plane (see plane_contact.h).
 double resolve_plane_contact(rigid::Body& b, const std::vector<rigid::Vec3>& points,
-                             const rigid::Vec3& point, const rigid::Vec3& n, double e, double mu) {
+                             const rigid::Vec3& point, const rigid::Vec3& n, double e,
+                             double mu) {
   double total = 0.0;
   for (int pass = 0; pass < kContactPasses; ++pass) {
     double applied = 0.0;
     for (const rigid::Vec3& p : points) {
-      if ((p - point).dot(n) < 0.0) applied += contact_impulse(b, p, n, e, mu);
+      if ((p - point).dot(n) < kContactSlop) applied += contact_impulse(b, p, n, e, mu);
     }
     total += applied;
     if (applied == 0.0) break;

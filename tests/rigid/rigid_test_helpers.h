@@ -28,15 +28,16 @@ inline std::string str(const Vec3& v) {
 // Every component of a 3-vector: |got - expected| <= abs_tol + rel_tol |.|.
 inline void require_near(const Vec3& got, const Vec3& expected, double abs_tol,
                          const std::string& what, double rel_tol = 0.0) {
-  INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got)
-            << "\n  tolerance " << abs_tol << " + " << rel_tol << " * |value|");
+  INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got) << "\n  tolerance "
+            << abs_tol << " + " << rel_tol << " * |value|");
   for (int i = 0; i < 3; ++i) REQUIRE(wbtest::near(got[i], expected[i], abs_tol, rel_tol));
 }
 
 inline void require_near(const Mat3& got, const Mat3& expected, double abs_tol,
                          const std::string& what) {
-  INFO(what << "\n  expected\n" << expected << "\n  got\n" << got << "\n  tolerance " << abs_tol
-            << " on every entry");
+  INFO(what << "\n  expected\n"
+            << expected << "\n  got\n"
+            << got << "\n  tolerance " << abs_tol << " on every entry");
   REQUIRE((got - expected).cwiseAbs().maxCoeff() <= abs_tol);
 }
 

@@ -44,8 +44,9 @@ TEST_CASE("R1 box: inertia equals the integral over the box with edges a b c",
           "[rigid][R1][4pts]") {
   const double m = 3.0;
   const Vec3 size(1.0, 2.0, 4.0);
-  const Mat3 expected = integrate([](const Vec3& u) { return u; }, [](const Vec3&) { return 1.0; },
-                                  -size / 2, size / 2, m / size.prod());
+  const Mat3 expected =
+      integrate([](const Vec3& u) { return u; }, [](const Vec3&) { return 1.0; }, -size / 2,
+                size / 2, m / size.prod());
   require_tensor(box_inertia(m, size), expected,
                  "box 1 x 2 x 4 m of 3 kg: I = rho * integral of (r^2 E - r r^T) dV");
 }

@@ -22,20 +22,23 @@ const Vec3 kI(0.5, 2.0, 7.0);  // principal moments (kg m^2), all different
 
 }  // namespace
 
-TEST_CASE("R2 world inertia: principal axes turned by R are eigenvectors and energy is frame-free",
-          "[rigid][R2][4pts]") {
+TEST_CASE(
+    "R2 world inertia: principal axes turned by R are eigenvectors and energy is frame-free",
+    "[rigid][R2][4pts]") {
   const Mat3 I = world_inertia(kR, kI.asDiagonal());
   for (int k = 0; k < 3; ++k) {
     const Vec3 axis = kR.col(k);  // the body's k-th axis in the world
     require_near(Vec3(I * axis), Vec3(kI[k] * axis), kAlgebraTol,
                  "I (R e_k) = I_k (R e_k): the body's principal axis k, turned with it, keeps "
-                 "its moment I_k (axis " + std::to_string(k) + ")");
+                 "its moment I_k (axis " +
+                     std::to_string(k) + ")");
   }
   const Vec3 w(0.3, -1.2, 2.5);  // world frame
   const Vec3 wb = kR.transpose() * w;
   require_near(0.5 * w.dot(I * w), 0.5 * wb.dot(kI.asDiagonal() * wb), kAlgebraTol,
                "1/2 w.I w (world) = 1/2 w_b.I_body w_b (body): kinetic energy does not depend "
-               "on the frame", kAlgebraTol);
+               "on the frame",
+               kAlgebraTol);
 }
 
 TEST_CASE("R2 world inverse inertia: I^-1 (I w) gives w back", "[rigid][R2][4pts]") {
@@ -43,8 +46,7 @@ TEST_CASE("R2 world inverse inertia: I^-1 (I w) gives w back", "[rigid][R2][4pts
   const Mat3 I = kR * kI.asDiagonal() * kR.transpose();
   require_near(Mat3(I_inv * I), Mat3::Identity(), kAlgebraTol,
                "I^-1 I = E for I = R diag(0.5, 2, 7) R^T");
-  require_near(Mat3(I_inv - I_inv.transpose()), Mat3::Zero(), kAlgebraTol,
-               "I^-1 is symmetric");
+  require_near(Mat3(I_inv - I_inv.transpose()), Mat3::Zero(), kAlgebraTol, "I^-1 is symmetric");
 }
 
 TEST_CASE("R2 parallel axis: a box about its corner equals the integral over the box",

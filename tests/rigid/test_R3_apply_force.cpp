@@ -29,7 +29,8 @@ TEST_CASE("R3 a force at a lever arm adds the torque (p - x) x F to what is ther
   apply_force(b, Vec3(0, 0, 3), b.x + Vec3(2, 0, 0));
   // Lever arm 1 m along y, force 4 N along x: tau = e_y x 4 e_x = -4 e_z.
   apply_force(b, Vec3(4, 0, 0), b.x + Vec3(0, 1, 0));
-  require_near(b.f, Vec3(4.5, 0.0, 2.0), kTol, "f adds every force: (0.5, 0, -1) + 3 e_z + 4 e_x");
+  require_near(b.f, Vec3(4.5, 0.0, 2.0), kTol,
+               "f adds every force: (0.5, 0, -1) + 3 e_z + 4 e_x");
   require_near(b.tau, Vec3(0.25, -5.0, -4.0), kTol,
                "tau adds (p - x) x F: (0.25, 1, 0) - 6 e_y - 4 e_z (the lever arm first)");
 }

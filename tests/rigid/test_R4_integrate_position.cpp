@@ -35,16 +35,18 @@ TEST_CASE("R4 constant omega: after n steps the body has turned by n h |omega| a
   for (int k = 0; k < n; ++k) integrate_position(b, h);
   // Rotations about one fixed (world) axis add their angles; the world-frame omega
   // turns the body AFTER its current orientation: R_n = Rot(n h |w|, w) R_0.
-  const Mat3 expected =
-      Eigen::AngleAxisd(n * h * w.norm(), w.normalized()).toRotationMatrix() * q0.toRotationMatrix();
+  const Mat3 expected = Eigen::AngleAxisd(n * h * w.norm(), w.normalized()).toRotationMatrix() *
+                        q0.toRotationMatrix();
   require_near(rot(b), expected, kComposeTol,
                "R after n steps = rotation by n h |omega| about omega (world frame), times R_0");
-  require_near(b.x, Vec3(x0 + n * h * v), kComposeTol, "x after n steps = x0 + n h v", kComposeTol);
+  require_near(b.x, Vec3(x0 + n * h * v), kComposeTol, "x after n steps = x0 + n h v",
+               kComposeTol);
   require_near(b.omega, w, 0.0, "omega is not changed by the position update");
 }
 
-TEST_CASE("R4 omega zero or along a principal axis: no NaN from a zero angle, the centre moves",
-          "[rigid][R4][3pts]") {
+TEST_CASE(
+    "R4 omega zero or along a principal axis: no NaN from a zero angle and the centre moves",
+    "[rigid][R4][3pts]") {
   const Eigen::Quaterniond q0 = quat(0.9, 0.1, 0.3, -0.2);
   Body b = make_body(1.0, Vec3(1, 2, 3), q0, Vec3::Zero(), Vec3::Zero(), Vec3(0.0, 3.0, 0.0));
   integrate_position(b, 0.5);

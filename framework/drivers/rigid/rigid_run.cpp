@@ -130,8 +130,8 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
     if (diverged || k == opt.steps || k % opt.every == 0) record(k, t);
     if (diverged) break;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                          .count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (k > 0 && !moved && !diverged) {
     warnings.push_back("body 0 never moved or turned in " + std::to_string(k) +
                        " steps: is integrate_position (R4) still a stub?");
@@ -199,8 +199,9 @@ ordered_json run_sweep(const LabInfo& info, const Scene& scene, double base_dt, 
     throw InputError("--repeats: got " + std::to_string(opt.repeats) + ", expected >= 1");
   }
   wb::AtomicFile csv(opt.csv);
-  std::string buf = "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,"
-                    "status\n";
+  std::string buf =
+      "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,"
+      "status\n";
   const Totals t0 = totals(scene, initial_bodies(scene));
   const double Lscale = std::max(t0.L.norm(), 1e-300), Escale = std::max(t0.energy(), 1e-300);
   long runs = 0, diverged_runs = 0;
@@ -215,8 +216,9 @@ ordered_json run_sweep(const LabInfo& info, const Scene& scene, double base_dt, 
         std::vector<Body> bodies = initial_bodies(scene);
         const auto start = std::chrono::steady_clock::now();
         for (long k = 0; k < steps; ++k) step(scene, *integ, h, bodies);
-        wall = std::min(wall, std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                            start).count());
+        wall = std::min(
+            wall,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       }
       // Untimed: the errors along the run.
       std::vector<Body> bodies = initial_bodies(scene);
@@ -265,9 +267,10 @@ std::string help_footer(const LabInfo& info) {
          it.description + " (order 1, 1 force evaluation per step)\n";
   }
   s += "  default: " + info.integrators.front().name + "\n";
-  s += "\nScene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
-       "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"
-       "contact (restitution, friction), hinges (body, anchor, beta). See docs/scenes.md.\n";
+  s +=
+      "\nScene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
+      "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"
+      "contact (restitution, friction), hinges (body, anchor, beta). See docs/scenes.md.\n";
   s += "\nTrace (--out): t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (omega in the world frame).\n"
        "Stats (--stats): step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz (L about the "
        "origin).\n";

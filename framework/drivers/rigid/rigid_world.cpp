@@ -100,8 +100,8 @@ Scene load_scene(const std::string& file) {
   s.file = file;
   const wb::json doc = wb::read_json_file(file);
   JsonObject top(file, doc, "");
-  top.only_keys({"name", "description", "dt", "t_end", "integrator", "bodies", "forces",
-                 "planes", "contact", "hinges"});
+  top.only_keys({"name", "description", "dt", "t_end", "integrator", "bodies", "forces", "planes",
+                 "contact", "hinges"});
   s.name = top.string_or("name", std::filesystem::path(file).stem().string());
   if (top.has("description")) top.string("description");
   const wb::Range positive{0, std::numeric_limits<double>::infinity(), true};
@@ -110,8 +110,9 @@ Scene load_scene(const std::string& file) {
   if (top.has("integrator")) s.integrator = top.string("integrator");
 
   const wb::json& bodies = top.array_or_empty("bodies");
-  if (bodies.empty()) top.fail("bodies", top.has("bodies") ? &doc.at("bodies") : nullptr,
-                               "an array of at least one body");
+  if (bodies.empty())
+    top.fail("bodies", top.has("bodies") ? &doc.at("bodies") : nullptr,
+             "an array of at least one body");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     s.bodies.push_back(read_body(top.element("bodies", i)));
   }

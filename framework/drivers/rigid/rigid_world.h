@@ -52,8 +52,9 @@ struct Scene {
   std::vector<Plane> planes;
   double restitution = 0.3, friction = 0.5;
   std::vector<Hinge> hinges;
-  bool torque_free() const { return g.isZero(0) && point_forces.empty() && planes.empty() &&
-                                    hinges.empty(); }
+  bool torque_free() const {
+    return g.isZero(0) && point_forces.empty() && planes.empty() && hinges.empty();
+  }
 };
 
 // Reads and checks a scene file; throws wb::InputError naming the key.
