@@ -215,6 +215,22 @@ def plot_momenta(paths, labels, out, title=None):
                                          abs(a - b) <= 1e-12 * max(abs(a), abs(b), 1e-300)
                                          for a, b in zip(e, e0)):
                 notes.append(f"the energies of {labels[0]} and {label} coincide")
+    # A blow-up spans decades: log scales, so that the other runs stay readable.
+    for ax, cols, start in ((axes[0], ("energy",), None), (axes[1], ("px", "py", "pz"), None),
+                            (axes[2], ("Lx", "Ly", "Lz"), None)):
+        vals = [v for s in runs for c in cols for v in s[c] if finite(v)]
+        first = [abs(s[c][0]) for s in runs for c in cols if finite(s[c][0])]
+        scale = max(first + [1e-12])
+        if vals and max(abs(v) for v in vals) > 1e3 * scale:
+            if all(v > 0 for v in vals):
+                ax.set_yscale("log")
+            else:
+                import matplotlib.ticker as mticker
+                ax.set_yscale("symlog", linthresh=scale)
+                ax.yaxis.set_major_locator(mticker.SymmetricalLogLocator(base=1e8,
+                                                                         linthresh=scale))
+            ax.text(0.01, 0.02, "log scale: a run blew up", transform=ax.transAxes,
+                    fontsize=8, color="#555")
     axes[0].set_ylabel("energy E (J)")
     axes[1].set_ylabel("momentum p (kg m/s)")
     axes[2].set_ylabel("angular momentum L\nabout the origin (kg m²/s)")
@@ -390,6 +406,16 @@ def plot_sweep(path, out, title=None):
         zero = [i for i in idx if finite(err[i]) and err[i] == 0]
         if zero:
             notes.append(f"{name}: {len(zero)} run(s) with zero error not drawn")
+    # Curves that lie on top of each other: say so, with how close they are.
+    if len(names) == 2:
+        a, b = (by[n] for n in names)
+        pairs = [(i, j) for i in a for j in b if rows[i]["dt"] == rows[j]["dt"]]
+        diffs = [abs(ys[i] - ys[j]) / max(abs(ys[i]), abs(ys[j]))
+                 for ys in (err, eerr) for i, j in pairs
+                 if finite(ys[i]) and finite(ys[j]) and max(abs(ys[i]), abs(ys[j])) > 0]
+        if pairs and diffs and max(diffs) < 0.25:
+            notes.append(f"the two integrators' curves nearly coincide (within "
+                         f"{100 * max(diffs):.0f}% at every dt)")
     axes[0].set_ylabel("|L(T) - L0| / |L0|")
     axes[1].set_ylabel("max |E - E0| / E0")
     for ax in axes:
