@@ -1,0 +1,240 @@
+// The rigid lab's scene keys and step (docs/scenes.md, "rigid").
+#include "rigid_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "apply_force.h"
+#include "body_inertia.h"
+#include "hinge.h"
+#include "integrate_position.h"
+#include "plane_contact.h"
+
+namespace rigid {
+
+namespace {
+
+using wb::JsonObject;
+
+// An array of n finite numbers at `key`.
+Eigen::VectorXd read_numbers(const JsonObject& o, const char* key, int n) {
+  const std::string expected = "an array of " + std::to_string(n) + " finite numbers";
+  if (!o.has(key)) o.fail(key, nullptr, expected);
+  const wb::json& v = o.raw().at(key);
+  if (!v.is_array() || int(v.size()) != n) o.fail(key, &v, expected);
+  Eigen::VectorXd out(n);
+  for (int i = 0; i < n; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) {
+      o.fail(std::string(key) + "[" + std::to_string(i) + "]", &v[i], "a finite number");
+    }
+    out[i] = v[i].get<double>();
+  }
+  return out;
+}
+
+Vec3 vec3(const JsonObject& o, const char* key) { return read_numbers(o, key, 3); }
+Vec3 vec3_or(const JsonObject& o, const char* key, const Vec3& def) {
+  return o.has(key) ? vec3(o, key) : def;
+}
+
+// A unit direction: non-zero, normalised.
+Vec3 direction(const JsonObject& o, const char* key) {
+  const Vec3 d = vec3(o, key);
+  if (!(d.norm() > 0)) o.fail(key, &o.raw().at(key), "a non-zero vector");
+  return d.normalized();
+}
+
+// [w, x, y, z], non-zero, normalised on load.
+Eigen::Quaterniond quaternion_or(const JsonObject& o, const char* key) {
+  if (!o.has(key)) return Eigen::Quaterniond::Identity();
+  const Eigen::VectorXd a = read_numbers(o, key, 4);
+  Eigen::Quaterniond q(a[0], a[1], a[2], a[3]);
+  if (!(q.norm() > 1e-12) || !std::isfinite(q.norm())) {
+    o.fail(key, &o.raw().at(key), "a non-zero quaternion [w, x, y, z]");
+  }
+  q.normalize();
+  return q;
+}
+
+int body_index(const JsonObject& o, const Scene& s) {
+  return int(o.integer("body", 0, std::int64_t(s.bodies.size()) - 1));
+}
+
+BodyDef read_body(const JsonObject& o) {
+  BodyDef d;
+  const std::string shape = o.string("shape");
+  const wb::Range positive{0, std::numeric_limits<double>::infinity(), true};
+  d.body.m = o.number("m", positive);
+  if (shape == "box") {
+    o.only_keys({"shape", "size", "m", "x", "v", "q", "omega"});
+    d.shape = BodyDef::kBox;
+    d.size = vec3(o, "size");
+    if (!(d.size.minCoeff() > 0)) o.fail("size", &o.raw().at("size"), "3 lengths > 0");
+    d.body.I_body = box_inertia(d.body.m, d.size);
+  } else if (shape == "sphere") {
+    o.only_keys({"shape", "radius", "m", "x", "v", "q", "omega"});
+    d.shape = BodyDef::kSphere;
+    d.radius = o.number("radius", positive);
+    d.body.I_body = sphere_inertia(d.body.m, d.radius);
+  } else if (shape == "cylinder") {
+    o.only_keys({"shape", "radius", "length", "m", "x", "v", "q", "omega"});
+    d.shape = BodyDef::kCylinder;
+    d.radius = o.number("radius", positive);
+    d.length = o.number("length", positive);
+    d.body.I_body = cylinder_inertia(d.body.m, d.radius, d.length);
+  } else {
+    o.fail("shape", &o.raw().at("shape"), "one of: box, sphere, cylinder");
+  }
+  d.body.x = vec3_or(o, "x", Vec3::Zero());
+  d.body.v = vec3_or(o, "v", Vec3::Zero());
+  d.body.q = quaternion_or(o, "q");
+  d.body.omega = vec3_or(o, "omega", Vec3::Zero());
+  return d;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& file) {
+  Scene s;
+  s.file = file;
+  const wb::json doc = wb::read_json_file(file);
+  JsonObject top(file, doc, "");
+  top.only_keys({"name", "description", "dt", "t_end", "integrator", "bodies", "forces", "planes",
+                 "contact", "hinges"});
+  s.name = top.string_or("name", std::filesystem::path(file).stem().string());
+  if (top.has("description")) top.string("description");
+  const wb::Range positive{0, std::numeric_limits<double>::infinity(), true};
+  if (top.has("dt")) s.dt = top.number("dt", positive);
+  if (top.has("t_end")) s.t_end = top.number("t_end", {.min = 0});
+  if (top.has("integrator")) s.integrator = top.string("integrator");
+
+  const wb::json& bodies = top.array_or_empty("bodies");
+  if (bodies.empty())
+    top.fail("bodies", top.has("bodies") ? &doc.at("bodies") : nullptr,
+             "an array of at least one body");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    s.bodies.push_back(read_body(top.element("bodies", i)));
+  }
+  const wb::json& forces = top.array_or_empty("forces");
+  for (std::size_t i = 0; i < forces.size(); ++i) {
+    JsonObject f = top.element("forces", i);
+    const std::string type = f.string("type");
+    if (type == "gravity") {
+      f.only_keys({"type", "g"});
+      s.g += vec3(f, "g");
+    } else if (type == "force") {
+      f.only_keys({"type", "body", "point", "F"});
+      PointForce pf;
+      pf.body = body_index(f, s);
+      pf.point_body = vec3_or(f, "point", Vec3::Zero());
+      pf.F = vec3(f, "F");
+      s.point_forces.push_back(pf);
+    } else {
+      f.fail("type", &f.raw().at("type"), "one of: gravity, force");
+    }
+  }
+  const wb::json& planes = top.array_or_empty("planes");
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    JsonObject p = top.element("planes", i);
+    p.only_keys({"point", "normal"});
+    s.planes.push_back({vec3_or(p, "point", Vec3::Zero()), direction(p, "normal")});
+  }
+  if (top.has("contact")) {
+    JsonObject c = top.object("contact");
+    c.only_keys({"restitution", "friction"});
+    s.restitution = c.number_or("restitution", s.restitution, {.min = 0, .max = 1});
+    s.friction = c.number_or("friction", s.friction, {.min = 0});
+  }
+  const wb::json& hinges = top.array_or_empty("hinges");
+  for (std::size_t i = 0; i < hinges.size(); ++i) {
+    JsonObject o = top.element("hinges", i);
+    o.only_keys({"body", "anchor", "beta"});
+    Hinge hg;
+    hg.body = body_index(o, s);
+    hg.anchor = vec3(o, "anchor");
+    hg.beta = o.number_or("beta", hg.beta, {.min = 0, .max = 1});
+    const Body& b = s.bodies[hg.body].body;
+    hg.r_body = b.q.toRotationMatrix().transpose() * (hg.anchor - b.x);
+    s.hinges.push_back(hg);
+  }
+  return s;
+}
+
+std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane& plane) {
+  const Mat3 R = b.q.toRotationMatrix();
+  std::vector<Vec3> pts;
+  if (def.shape == BodyDef::kSphere) {
+    pts.push_back(b.x - def.radius * plane.normal);  // the lowest point
+  } else if (def.shape == BodyDef::kBox) {
+    //     6-------7      corner k = (+-a/2, +-b/2, +-c/2),
+    //    /|      /|      bit 0: x, bit 1: y, bit 2: z (set: +)
+    //   4-------5 |
+    //   | 2-----|-3
+    //   |/      |/
+    //   0-------1
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 c(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
+      pts.push_back(b.x + R * c.cwiseProduct(def.size));
+    }
+  } else {
+    // Two rims of 16 points each: the edges a cylinder lands on.
+    constexpr int kRim = 16;
+    for (int end = -1; end <= 1; end += 2) {
+      for (int k = 0; k < kRim; ++k) {
+        const double a = 2.0 * M_PI * k / kRim;
+        const Vec3 c(def.radius * std::cos(a), def.radius * std::sin(a), 0.5 * end * def.length);
+        pts.push_back(b.x + R * c);
+      }
+    }
+  }
+  return pts;
+}
+
+double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies) {
+  // Accumulate forces.
+  for (Body& b : bodies) {
+    b.f.setZero();
+    b.tau.setZero();
+    apply_gravity(b, scene.g);
+  }
+  for (const PointForce& pf : scene.point_forces) {
+    Body& b = bodies[pf.body];
+    apply_force(b, pf.F, b.x + b.q.toRotationMatrix() * pf.point_body);
+  }
+  // Integrate velocities.
+  for (Body& b : bodies) integ.velocity(b, h);
+  // Constraint impulses: hinges, then contacts.
+  for (const Hinge& hg : scene.hinges) {
+    apply_hinge(bodies[hg.body], hg.r_body, hg.anchor, h, hg.beta);
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (const Plane& pl : scene.planes) {
+      resolve_plane_contact(bodies[i], contact_points(scene.bodies[i], bodies[i], pl), pl.point,
+                            pl.normal, scene.restitution, scene.friction);
+    }
+  }
+  // Integrate positions.
+  for (Body& b : bodies) integrate_position(b, h);
+  double drift = 0;
+  for (const Hinge& hg : scene.hinges) {
+    const Body& b = bodies[hg.body];
+    drift = std::max(drift, (b.x + b.q.toRotationMatrix() * hg.r_body - hg.anchor).norm());
+  }
+  return drift;
+}
+
+Totals totals(const Scene& scene, const std::vector<Body>& bodies) {
+  Totals t;
+  for (const Body& b : bodies) {
+    const Mat3 R = b.q.toRotationMatrix();
+    const Vec3 Lspin = R * (b.I_body * (R.transpose() * b.omega));
+    t.kinetic += 0.5 * b.m * b.v.squaredNorm() + 0.5 * b.omega.dot(Lspin);
+    t.potential -= b.m * scene.g.dot(b.x);
+    t.p += b.m * b.v;
+    t.L += b.m * b.x.cross(b.v) + Lspin;
+  }
+  return t;
+}
+
+}  // namespace rigid

@@ -1,0 +1,94 @@
+// The rigid lab's glue: a 3D scene of rigid bodies (docs/scenes.md, "rigid"),
+// the step that calls the student's functions, the trace, the summary line and
+// the sweep. It shares the run contract of the particle labs (flags, summary,
+// atomic output, exit status 2 on bad input) by calling the same core
+// functions; only the state is its own (rigid::Body, 3D).
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid_body.h"
+#include "wb/input.h"
+
+namespace rigid {
+
+// One body as the scene declares it: its shape (for the contact points) and
+// its initial state (I_body from the student's R1 functions).
+struct BodyDef {
+  enum Shape { kBox, kSphere, kCylinder } shape = kBox;
+  Vec3 size = Vec3::Ones();  // box: full edge lengths (m)
+  double radius = 0.5;       // sphere, cylinder (m)
+  double length = 1.0;       // cylinder, along body z (m)
+  Body body;                 // initial state
+};
+
+struct Plane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit
+};
+
+struct Hinge {
+  int body = 0;
+  Vec3 anchor = Vec3::Zero();  // world point (m)
+  Vec3 r_body = Vec3::Zero();  // the pinned point of the body, body frame (m)
+  double beta = 0.2;           // drift correction per step
+};
+
+// A constant world force applied at a point fixed in a body.
+struct PointForce {
+  int body = 0;
+  Vec3 point_body = Vec3::Zero();  // body frame, from the centre (m)
+  Vec3 F = Vec3::Zero();           // world frame (N)
+};
+
+struct Scene {
+  std::string file, name;
+  std::optional<double> dt, t_end;
+  std::optional<std::string> integrator;
+  std::vector<BodyDef> bodies;
+  Vec3 g = Vec3::Zero();  // sum of the "gravity" forces (m/s^2)
+  std::vector<PointForce> point_forces;
+  std::vector<Plane> planes;
+  double restitution = 0.3, friction = 0.5;
+  std::vector<Hinge> hinges;
+  bool torque_free() const {
+    return g.isZero(0) && point_forces.empty() && planes.empty() && hinges.empty();
+  }
+};
+
+// Reads and checks a scene file; throws wb::InputError naming the key.
+Scene load_scene(const std::string& file);
+
+// The update of (v, omega) an integrator stands for (the student's R5 functions).
+using VelocityStep = void (*)(Body&, double);
+struct Integrator {
+  std::string name;
+  VelocityStep velocity;
+  std::string description;
+};
+
+// One whole step of every body: forces, velocities, hinges, contacts, positions.
+// Returns the largest hinge drift |x + R r_body - anchor| after the step (m).
+double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies);
+
+// Diagnostics (the glue's own formulas, not the student's).
+struct Totals {
+  double kinetic = 0, potential = 0;
+  Vec3 p = Vec3::Zero(), L = Vec3::Zero();  // momentum, angular momentum about the origin
+  double energy() const { return kinetic + potential; }
+};
+Totals totals(const Scene& scene, const std::vector<Body>& bodies);
+
+// The contact candidates of a body against a plane (world points).
+std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane& plane);
+
+struct LabInfo {
+  std::string lab, side, summary;
+  std::vector<Integrator> integrators;  // the first is the default
+};
+
+// main() of the rigid lab: the run contract (docs/run-contract.md) for 3D bodies.
+int run_rigid_lab(int argc, char** argv, const LabInfo& info);
+
+}  // namespace rigid

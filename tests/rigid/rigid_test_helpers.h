@@ -1,0 +1,114 @@
+// Helpers for the rigid lab's graded tests: bodies, a reference free motion
+// written independently of the student's files, and 3D comparisons.
+#pragma once
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <string>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "rigid_body.h"
+#include "test_helpers.h"
+
+namespace rigidtest {
+
+using rigid::Body;
+using rigid::Mat3;
+using rigid::Vec3;
+
+inline std::string str(const Vec3& v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return s.str();
+}
+
+// Every component of a 3-vector: |got - expected| <= abs_tol + rel_tol |.|.
+inline void require_near(const Vec3& got, const Vec3& expected, double abs_tol,
+                         const std::string& what, double rel_tol = 0.0) {
+  INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got) << "\n  tolerance "
+            << abs_tol << " + " << rel_tol << " * |value|");
+  for (int i = 0; i < 3; ++i) REQUIRE(wbtest::near(got[i], expected[i], abs_tol, rel_tol));
+}
+
+inline void require_near(const Mat3& got, const Mat3& expected, double abs_tol,
+                         const std::string& what) {
+  INFO(what << "\n  expected\n"
+            << expected << "\n  got\n"
+            << got << "\n  tolerance " << abs_tol << " on every entry");
+  REQUIRE((got - expected).cwiseAbs().maxCoeff() <= abs_tol);
+}
+
+using wbtest::require_near;
+
+// A unit quaternion from [w, x, y, z] (normalised).
+inline Eigen::Quaterniond quat(double w, double x, double y, double z) {
+  return Eigen::Quaterniond(w, x, y, z).normalized();
+}
+
+inline Body make_body(double m, const Vec3& I_principal, const Eigen::Quaterniond& q,
+                      const Vec3& omega, const Vec3& x = Vec3::Zero(),
+                      const Vec3& v = Vec3::Zero()) {
+  Body b;
+  b.m = m;
+  b.I_body = I_principal.asDiagonal();
+  b.q = q;
+  b.omega = omega;
+  b.x = x;
+  b.v = v;
+  return b;
+}
+
+inline Mat3 rot(const Body& b) { return b.q.toRotationMatrix(); }
+
+// The world inertia tensor, written here as sum over principal axes I_k a_k a_k^T
+// (a_k = the body's k-th axis in the world): another way than R I R^T.
+inline Mat3 inertia(const Body& b) {
+  const Mat3 R = rot(b);
+  Mat3 I = Mat3::Zero();
+  for (int k = 0; k < 3; ++k) I += b.I_body(k, k) * R.col(k) * R.col(k).transpose();
+  return I;
+}
+inline Mat3 inverse_inertia(const Body& b) {
+  const Mat3 R = rot(b);
+  Mat3 I = Mat3::Zero();
+  for (int k = 0; k < 3; ++k) I += R.col(k) * R.col(k).transpose() / b.I_body(k, k);
+  return I;
+}
+
+// Rotational kinetic energy and the spin angular momentum about the centre.
+inline double spin_energy(const Body& b) { return 0.5 * b.omega.dot(inertia(b) * b.omega); }
+inline Vec3 spin_momentum(const Body& b) { return inertia(b) * b.omega; }
+// Angular velocity in the body frame.
+inline Vec3 body_omega(const Body& b) { return rot(b).transpose() * b.omega; }
+// Angular momentum about a point P: I omega + (x - P) x m v.
+inline Vec3 momentum_about(const Body& b, const Vec3& P) {
+  return spin_momentum(b) + (b.x - P).cross(b.m * b.v);
+}
+
+// Reference position update (the test's own): x += h v, q turned by h |omega|
+// about omega with the half-angle formula, renormalised.
+inline void ref_position(Body& b, double h) {
+  b.x += h * b.v;
+  const double a = b.omega.norm() * h;
+  if (a > 0) {
+    const Vec3 axis = b.omega.normalized() * std::sin(0.5 * a);
+    const Eigen::Quaterniond dq(std::cos(0.5 * a), axis.x(), axis.y(), axis.z());
+    b.q = (dq * b.q).normalized();
+  }
+}
+
+using VelocityStep = std::function<void(Body&, double)>;
+
+// A torque-free step: the velocity update under test, then the reference
+// position update (so that a velocity test does not depend on R4).
+inline void free_step(Body& b, double h, const VelocityStep& velocity) {
+  b.f.setZero();
+  b.tau.setZero();
+  velocity(b, h);
+  ref_position(b, h);
+}
+
+}  // namespace rigidtest

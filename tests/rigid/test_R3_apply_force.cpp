@@ -1,0 +1,45 @@
+// Graded tests for TODO(R3), forces and torques (labs/rigid/apply_force.cpp).
+// Expected values: the definition of the moment of a force, tau = (p - x) x F,
+// worked out by hand for lever arms along the axes.
+#include "apply_force.h"
+#include "rigid_test_helpers.h"
+
+using namespace rigidtest;
+
+namespace {
+// One cross product and a sum of numbers ~1-10: a few ulps.
+constexpr double kTol = 1e-13;
+}  // namespace
+
+TEST_CASE("R3 a force through the centre of mass pushes and gives no torque",
+          "[rigid][R3][3pts]") {
+  Body b = make_body(2.0, Vec3(1, 2, 3), quat(1, 0.2, 0.3, 0), Vec3::Zero(), Vec3(1, -2, 0.5));
+  const Vec3 F(3.0, -1.0, 2.0);
+  apply_force(b, F, b.x + 2.5 * F);  // the point lies on the line of action through x
+  require_near(b.f, F, kTol, "f = F");
+  require_near(b.tau, Vec3::Zero(), kTol, "tau = (p - x) x F = 0 when p - x is parallel to F");
+}
+
+TEST_CASE("R3 a force at a lever arm adds the torque (p - x) x F to what is there",
+          "[rigid][R3][3pts]") {
+  Body b = make_body(2.0, Vec3(1, 2, 3), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(1, 1, 1));
+  b.f = Vec3(0.5, 0.0, -1.0);
+  b.tau = Vec3(0.25, 1.0, 0.0);
+  // Lever arm 2 m along x, force 3 N along z: tau = 2 e_x x 3 e_z = -6 e_y.
+  apply_force(b, Vec3(0, 0, 3), b.x + Vec3(2, 0, 0));
+  // Lever arm 1 m along y, force 4 N along x: tau = e_y x 4 e_x = -4 e_z.
+  apply_force(b, Vec3(4, 0, 0), b.x + Vec3(0, 1, 0));
+  require_near(b.f, Vec3(4.5, 0.0, 2.0), kTol,
+               "f adds every force: (0.5, 0, -1) + 3 e_z + 4 e_x");
+  require_near(b.tau, Vec3(0.25, -5.0, -4.0), kTol,
+               "tau adds (p - x) x F: (0.25, 1, 0) - 6 e_y - 4 e_z (the lever arm first)");
+}
+
+TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3][3pts]") {
+  Body b = make_body(2.5, Vec3(1, 2, 3), quat(0.3, 0.2, 0.9, 0), Vec3(1, 2, 3), Vec3(4, 5, 6));
+  b.f = Vec3(1.0, 0.0, 0.0);
+  b.tau = Vec3(0.0, 2.0, 0.0);
+  apply_gravity(b, Vec3(0.0, -1.0, -9.81));
+  require_near(b.f, Vec3(1.0, -2.5, -24.525), kTol, "f += m g with m = 2.5 kg");
+  require_near(b.tau, Vec3(0.0, 2.0, 0.0), kTol, "gravity acts at the centre: tau unchanged");
+}
