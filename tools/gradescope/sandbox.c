@@ -18,6 +18,7 @@
 //              that creates, writes, renames, removes or changes a file fails.
 //   rlimits    always: address space (--as), largest file (--fsize), CPU
 //              seconds (--cpu), no core files, 64 open files.
+// The test always gets a clean environment (PATH, LANG, HOME only).
 // The status descriptor receives one line when the test has ended:
 // "exit N", "signal N", or "error MESSAGE" (the launcher could not start it).
 // It is closed (close-on-exec) in the test process itself.
@@ -217,7 +218,9 @@ int main(int argc, char** argv) {
       }
     }
     if (use_seccomp) install_seccomp(child_argv[0]);
-    execv(child_argv[0], child_argv);
+    // A clean environment: nothing of the grader's (tokens, paths) reaches the test.
+    char* env[] = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8", "HOME=/nonexistent", NULL};
+    execve(child_argv[0], child_argv, env);
     fail("exec");
   }
   int st;
