@@ -184,6 +184,11 @@ int main(int argc, char** argv) {
     return 125;
   }
   if (status_fd >= 0) fcntl(status_fd, F_SETFD, FD_CLOEXEC);
+  // If the grader dies (even by SIGKILL), so does the launcher, its init, and
+  // with it the namespace and the test: nothing runs on unwatched.
+  pid_t grader = getppid();
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != grader) return 125;
   char** child_argv = argv + i;
 
   if (use_ns && unshare(CLONE_NEWPID | CLONE_NEWNET | CLONE_NEWIPC | CLONE_NEWUTS) != 0)
