@@ -86,7 +86,7 @@ static void deny_unless_self(scmp_filter_ctx ctx, const char* name, pid_t self) 
   if (seccomp_rule_add_array(ctx, SCMP_ACT_ERRNO(EPERM), nr, 1, &cmp) != 0) fail(name);
 }
 
-static void install_seccomp(const char* exec_path) {
+static void install_seccomp(const char* exec_path, char* const* exec_argv) {
   if (prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) fail("no_new_privs");
   scmp_filter_ctx ctx = seccomp_init(SCMP_ACT_ALLOW);
   if (!ctx) fail("seccomp_init");
@@ -118,11 +118,15 @@ static void install_seccomp(const char* exec_path) {
   deny_unless_self(ctx, "kill", self);
   deny_unless_self(ctx, "tkill", self);
   deny_unless_self(ctx, "tgkill", self);
-  // Exec only this once: the filter admits execve of exactly this path
-  // pointer, which exists in this process only until the exec replaces it.
+  // Exec only this once: the filter admits execve of exactly these path and
+  // argv pointers, which exist in this process only until the exec replaces
+  // it (whatever a later exec could run would still be inside this filter).
   int nr = seccomp_syscall_resolve_name("execve");
-  struct scmp_arg_cmp cmp = {0, SCMP_CMP_NE, (scmp_datum_t)(uintptr_t)exec_path, 0};
-  if (seccomp_rule_add_array(ctx, SCMP_ACT_ERRNO(EPERM), nr, 1, &cmp) != 0) fail("execve");
+  struct scmp_arg_cmp path_cmp = {0, SCMP_CMP_NE, (scmp_datum_t)(uintptr_t)exec_path, 0};
+  struct scmp_arg_cmp argv_cmp = {1, SCMP_CMP_NE, (scmp_datum_t)(uintptr_t)exec_argv, 0};
+  if (seccomp_rule_add_array(ctx, SCMP_ACT_ERRNO(EPERM), nr, 1, &path_cmp) != 0 ||
+      seccomp_rule_add_array(ctx, SCMP_ACT_ERRNO(EPERM), nr, 1, &argv_cmp) != 0)
+    fail("execve");
   deny(ctx, "execveat", EPERM);
   // Files: read-only. Opening with any write, create, truncate or append
   // flag fails, and so does every call that changes the file system.
@@ -222,7 +226,7 @@ int main(int argc, char** argv) {
         fail("setresuid (still privileged)");
       }
     }
-    if (use_seccomp) install_seccomp(child_argv[0]);
+    if (use_seccomp) install_seccomp(child_argv[0], child_argv);
     // A clean environment: nothing of the grader's (tokens, paths) reaches the test.
     char* env[] = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8", "HOME=/nonexistent", NULL};
     execve(child_argv[0], child_argv, env);
