@@ -3,7 +3,8 @@
 
 Runs each case of tests/badinput/cases.json against the lab executables in
 --bin and checks the run contract for bad input (docs/run-contract.md):
-exit status 2 (or the case's `status`), exactly one line of valid UTF-8 on
+exit status 2 (or the case's `status`; `kill_after` S: a slow valid run,
+stopped after S seconds, that must have warned), exactly one line of valid UTF-8 on
 stderr of at most MAX_LINE bytes naming what the case `expect`s, nothing on
 stdout, no output file left behind (`absent`), within TIME_LIMIT_S seconds
 and MEMORY_LIMIT_BYTES of address space. Large scenes (deep nesting, a 17 MiB
@@ -49,6 +50,9 @@ def generate(kind, tmp):
                                                                 "softening": 0.1}],
                            "emitters": [{"count": 6000, "min": [0, 0], "max": [100, 100],
                                          "m": 1}]})
+    elif kind == "emitter-200":
+        text = ('{"dt": 0.01, "emitters": [{"count": 200, "min": [0, 0], "max": [1, 1], '
+                '"m": 1}]}')
     elif kind == "long-key":
         text = '{"' + "k" * 100000 + '": 1}'
     elif kind == "newline-in-file-name":
@@ -82,14 +86,22 @@ def run_case(case, args):
                 a = a.replace(k, v)
             argv.append(a)
         start = time.monotonic()
+        # A valid but slow run ("kill_after": S) must warn before it starts: it
+        # is stopped after S seconds and its stderr checked.
+        kill_after = case.get("kill_after")
         try:
-            p = subprocess.run(argv, capture_output=True, timeout=TIME_LIMIT_S,
+            p = subprocess.run(argv, capture_output=True, timeout=kill_after or TIME_LIMIT_S,
                                preexec_fn=None if args.no_memory_limit else limit_memory)
-        except subprocess.TimeoutExpired:
-            return [f"took more than {TIME_LIMIT_S} s"]
+        except subprocess.TimeoutExpired as e:
+            if not kill_after:
+                return [f"took more than {TIME_LIMIT_S} s"]
+            p = subprocess.CompletedProcess(argv, "killed", e.stdout or b"", e.stderr or b"")
+        else:
+            if kill_after:
+                return [f"finished within {kill_after} s, expected a run long enough to warn"]
         wall = time.monotonic() - start
         problems = []
-        status = case.get("status", 2)
+        status = case.get("status", "killed" if kill_after else 2)
         if p.returncode != status:
             problems.append(f"exit status {p.returncode}, expected {status}")
         try:
