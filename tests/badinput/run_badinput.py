@@ -89,12 +89,13 @@ def run_case(case, args):
         # A valid but slow run ("kill_after": S) must warn before it starts: it
         # is stopped after S seconds and its stderr checked.
         kill_after = case.get("kill_after")
+        limit = TIME_LIMIT_S * args.time_scale
         try:
-            p = subprocess.run(argv, capture_output=True, timeout=kill_after or TIME_LIMIT_S,
+            p = subprocess.run(argv, capture_output=True, timeout=kill_after or limit,
                                preexec_fn=None if args.no_memory_limit else limit_memory)
         except subprocess.TimeoutExpired as e:
             if not kill_after:
-                return [f"took more than {TIME_LIMIT_S} s"]
+                return [f"took more than {limit} s"]
             p = subprocess.CompletedProcess(argv, "killed", e.stdout or b"", e.stderr or b"")
         else:
             if kill_after:
@@ -148,6 +149,8 @@ def main():
     ap.add_argument("-k", dest="only", help="run only the cases whose name contains this")
     ap.add_argument("--no-memory-limit", action="store_true",
                     help="do not limit the address space (needed under AddressSanitizer)")
+    ap.add_argument("--time-scale", type=float, default=1.0,
+                    help="multiply the time limit (sanitizer builds run 10-50 times slower)")
     ap.add_argument("-v", "--verbose", action="store_true", help="print every message")
     args = ap.parse_args()
     with open(os.path.join(HERE, "cases.json"), encoding="utf-8") as f:
