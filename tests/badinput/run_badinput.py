@@ -4,7 +4,8 @@
 Runs each case of tests/badinput/cases.json against the lab executables in
 --bin and checks the run contract for bad input (docs/run-contract.md):
 exit status 2 (or the case's `status`; `kill_after` S: a slow valid run,
-stopped after S seconds, that must have warned), exactly one line of valid UTF-8 on
+stopped after S seconds, that must have warned; `differs_from`: the
+arguments of a second run whose initial momentum must differ), exactly one line of valid UTF-8 on
 stderr of at most MAX_LINE bytes naming what the case `expect`s, nothing on
 stdout, no output file left behind (`absent`), within TIME_LIMIT_S seconds
 and MEMORY_LIMIT_BYTES of address space. Large scenes (deep nesting, a 17 MiB
@@ -63,6 +64,12 @@ def generate(kind, tmp):
     with open(path, "w", encoding="utf-8") as f:
         f.write(text)
     return path
+
+
+def summary_state(stdout):
+    """The summary line's momentum (which the emitters' seeds decide)."""
+    lines = stdout.decode("utf-8", "replace").strip().splitlines()
+    return json.loads(lines[-1]).get("momentum0") if lines else None
 
 
 def limit_memory():
@@ -127,6 +134,11 @@ def run_case(case, args):
         for want in case.get("stdout", []):
             if want not in out:
                 problems.append(f"stdout lacks {want!r}")
+        if "differs_from" in case:  # another run whose summary must differ (seeds)
+            other = [exe] + [a.replace("{scenes}", subst["{scenes}"]) for a in case["differs_from"]]
+            q = subprocess.run(other, capture_output=True, timeout=limit)
+            if q.returncode != 0 or summary_state(q.stdout) == summary_state(p.stdout):
+                problems.append("gives the same summary as " + " ".join(case["differs_from"]))
         for name in case.get("absent", []):
             left = [f for f in os.listdir(tmp) if f.startswith(name)]
             if left:
