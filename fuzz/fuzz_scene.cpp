@@ -3,6 +3,7 @@
 //   JSON parsing (depth, duplicate keys, number overflow) -> load_scene's
 //   checks -> the forces glue (build_forces) -> the initial-state check ->
 //   the sweep's "exact" reader and its closed form.
+// It also feeds the input's first line to the whole-number flag parser.
 // A finding is a crash, a sanitizer report, an exception other than
 // InputError, an InputError message that is not one line of valid UTF-8, or
 // a scene accepted with a non-finite state or a non-finite closed form.
@@ -95,11 +96,26 @@ void check_scene(const wb::Scene& s) {
   }
 }
 
+// The whole-number flags' parser on the input's first line (cheap, so on
+// every input): a value or a refusal, never overflow.
+void check_flags(const std::string& text) {
+  const std::string arg = text.substr(0, text.find('\n'));
+  for (std::int64_t max : {std::int64_t(wb::kMaxSteps), std::int64_t(INT64_MAX)}) {
+    try {
+      const std::int64_t v = wb::parse_whole("--steps", arg, 0, max);
+      if (v < 0 || v > max) finding("parse_whole out of range", arg);
+    } catch (const wb::InputError& e) {
+      check_message(e.what(), wb::kMaxMessageBytes);
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   check_message(wb::one_line(text), wb::kMaxMessageBytes);
+  check_flags(text);
   try {
     wb::json doc = wb::parse_json(text, "fuzz.json");
     check_message(wb::describe(doc), 80);

@@ -108,19 +108,19 @@ std::int64_t parse_whole(const std::string& flag, const std::string& text, std::
   // no silent clamping of a value that does not fit.
   const std::string expected =
       "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
-  bool digits = !text.empty() && text.size() <= 19;
-  std::int64_t value = 0;
-  for (char c : text) {
-    if (c < '0' || c > '9') {
-      digits = false;
-      break;
-    }
-    value = value * 10 + (c - '0');  // at most 19 digits: no overflow
+  // At most 19 significant digits (< 10^19 < 2^64): the value fits a uint64.
+  const std::size_t first = std::min(text.find_first_not_of('0'), text.size());
+  bool digits = !text.empty() && text.size() - first <= 19;
+  std::uint64_t value = 0;
+  for (std::size_t i = first; digits && i < text.size(); ++i) {
+    const char c = text[i];
+    digits = c >= '0' && c <= '9';
+    value = value * 10 + std::uint64_t(c - '0');
   }
-  if (!digits || value < min || value > max) {
+  if (!digits || max < 0 || value > std::uint64_t(max) || std::int64_t(value) < min) {
     throw InputError(flag + ": got \"" + text + "\", expected " + expected + " (decimal digits)");
   }
-  return value;
+  return std::int64_t(value);
 }
 
 void check_initial_state(const Scene& scene, const World& world) {

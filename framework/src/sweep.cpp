@@ -199,6 +199,10 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
     }
     dts = default_dt_ladder(opt.dt ? *opt.dt : *scene.dt);
   }
+  // Who chose the step sizes, for the messages below.
+  const std::string ladder = opt.dts.empty()
+                                 ? (opt.dt ? std::string("--dt") : scene.file + ": dt")
+                                 : std::string("--dts");
   std::vector<long> steps;
   for (double dt : dts) {
     if (!(std::isfinite(dt) && dt > 0.0)) {
@@ -206,7 +210,7 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
     }
     const double n = std::round(T / dt);
     if (!(n >= 1.0 && n <= double(kMaxSteps))) {
-      throw InputError("--dts: " + num(dt) + " gives round(T/dt) = " + num(n) +
+      throw InputError(ladder + ": step " + num(dt) + " gives round(T/dt) = " + num(n) +
                        " steps for T = " + num(T) + ", expected 1 to " +
                        std::to_string(kMaxSteps));
     }
@@ -218,7 +222,7 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
     for (std::size_t d = 0; d < dts.size(); ++d) {
       const double n = std::round(double(steps[d]) * dts[d] / h_ref);
       if (!(n <= double(kMaxSteps))) {
-        throw InputError("--dts: the rk4 reference at the smallest dt / " +
+        throw InputError(ladder + ": the rk4 reference at the smallest dt / " +
                          num(kReferenceRefinement) + " = " + num(h_ref) + " takes " + num(n) +
                          " steps to t = " + num(double(steps[d]) * dts[d]) +
                          ", expected at most " + std::to_string(kMaxSteps) +

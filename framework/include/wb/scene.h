@@ -24,7 +24,7 @@ struct Scene {
 };
 
 // The most particles a scene may declare (particles plus every emitter's
-// count), checked before any is built: about 100 bytes each in a run.
+// count), checked before any is built: about 200 bytes each in a run, 2 GB.
 constexpr std::int64_t kMaxParticles = 10'000'000;
 
 // Reads and checks a scene. `seed` (from --seed) replaces emitter k's seed by
