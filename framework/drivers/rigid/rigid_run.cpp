@@ -296,13 +296,15 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
   CLI::App app(info.summary, exe);
   std::string scene_file, integrator, out, stats;
   std::optional<double> dt, t_end;
-  std::optional<long> steps, every;
+  // Whole numbers are read as text and parsed strictly (wb::parse_whole), as in
+  // the particle labs' run contract.
+  std::optional<std::string> steps_in, every_in, repeats_in;
   app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
   auto* o_integrator =
       app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
   app.add_option("--dt", dt,
                  "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
-  auto* o_steps = app.add_option("--steps", steps, "Take exactly N steps");
+  auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
   auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);
   auto* o_out =
@@ -310,7 +312,7 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
   auto* o_stats = app.add_option(
       "--stats", stats, "Write a CSV of step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz");
   auto* o_every =
-      app.add_option("--every", every, "Write every K-th step (step 0 and the last always)");
+      app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
   SweepOptions sweep;
   auto* o_sweep = app.add_option(
       "--sweep", sweep.csv,
@@ -323,7 +325,7 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
   app.add_option("--dts", sweep.dts, "Sweep: these step sizes (comma-separated)")
       ->delimiter(',')
       ->needs(o_sweep);
-  app.add_option("--repeats", sweep.repeats,
+  app.add_option("--repeats", repeats_in,
                  "Sweep: wall_s is the fastest of R timed step loops (default 3)")
       ->needs(o_sweep);
   for (CLI::Option* o : {o_integrator, o_steps, o_out, o_stats, o_every}) o_sweep->excludes(o);
@@ -347,10 +349,10 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
     if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
       throw flag_error("--t-end", num(*t_end), "a finite number >= 0");
     }
-    if (steps && *steps < 0)
-      throw flag_error("--steps", std::to_string(*steps), "a whole number >= 0");
-    if (every && *every < 1)
-      throw flag_error("--every", std::to_string(*every), "a whole number >= 1");
+    std::optional<long> steps, every;
+    if (steps_in) steps = long(wb::parse_whole("--steps", *steps_in, 0, wb::kMaxSteps));
+    if (every_in) every = long(wb::parse_whole("--every", *every_in, 1, INT64_MAX));
+    if (repeats_in) sweep.repeats = int(wb::parse_whole("--repeats", *repeats_in, 1, 1000));
     if (!out.empty()) wb::check_output_path("--out", out);
     if (!stats.empty()) wb::check_output_path("--stats", stats);
     if (!sweep.csv.empty()) wb::check_output_path("--sweep", sweep.csv);
@@ -384,9 +386,9 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
       opt.steps = *steps;
     } else if (T >= 0) {
       const double n = std::round(T / h);
-      if (!(n <= 1e12)) {
-        throw InputError("--t-end/--dt: " + num(T) + "/" + num(h) +
-                         " steps, expected at most 1e12");
+      if (!(n <= double(wb::kMaxSteps))) {
+        throw InputError("--t-end/--dt: " + num(T) + "/" + num(h) + " gives " + num(n) +
+                         " steps, expected at most " + std::to_string(wb::kMaxSteps));
       }
       opt.steps = long(n);
     } else {
