@@ -21,14 +21,25 @@
 #                     lab compiles little more than the lab and its tests.
 
 # Precompiled headers: Eigen and nlohmann-json (and Catch for the tests) are
-# parsed once per build instead of once per file. Targets reuse one PCH each
-# (wb_pch, wb_tests_pch); GCC ignores a PCH it cannot use, so this only ever
-# saves time. WB_PCH=OFF turns it off.
+# parsed once per build instead of once per file. Targets reuse one PCH each:
+# wb_pch (framework), wb_lab_pch (the student functions: Eigen alone, since a
+# PCH's inline functions cost every file that loads it) and wb_tests_pch.
+# CLI11 is in none: its static objects would be compiled into every file; only
+# framework/src/cli.cpp includes it. GCC ignores a PCH it cannot use, so this
+# only ever saves time. WB_PCH=OFF turns it off.
 function(wb_use_pch target)
   if(NOT WB_PCH)
     return()
   endif()
-  if(ARGN STREQUAL "TESTS")
+  if(ARGN STREQUAL "LAB")
+    set(pch wb_lab_pch)
+    if(NOT TARGET ${pch})
+      add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
+      target_link_libraries(${pch} PRIVATE Eigen3::Eigen)
+      target_precompile_headers(${pch} PRIVATE <Eigen/Core> <Eigen/Geometry> <Eigen/Sparse>
+                                               <cmath> <vector> <algorithm>)
+    endif()
+  elseif(ARGN STREQUAL "TESTS")
     set(pch wb_tests_pch)
     if(NOT TARGET ${pch})
       add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
@@ -94,6 +105,7 @@ function(wb_lab_library lab side)
     list(APPEND sources ${dir}/${lab}/${name})
   endforeach()
   add_library(${target} STATIC ${sources})
+  wb_use_pch(${target} LAB)
   target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR}/labs/${lab})
   target_link_libraries(${target} PUBLIC wb_core)
   wb_lab_deps(${lab} deps)
@@ -171,6 +183,14 @@ function(wb_add_lab lab side)
                                                         ${CMAKE_SOURCE_DIR}/tests/${lab})
     target_link_libraries(${lab}_tests_obj PRIVATE ${glue} wb_core Catch2::Catch2)
     wb_use_pch(${lab}_tests_obj TESTS)
+    # One translation unit per lab: the test files share Catch's and Eigen's
+    # template instantiations instead of compiling them once each (a third of
+    # the time). File names and line numbers in failures stay the files' own.
+    # Helpers at file scope must therefore have names unique within the lab.
+    if(WB_UNITY_TESTS)
+      set_target_properties(${lab}_tests_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
+                                                        UNITY_BUILD_BATCH_SIZE 0)
+    endif()
     # The lab's headers (and its dependencies'), without linking a side.
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/labs/${lab})
     wb_lab_deps(${lab} deps)

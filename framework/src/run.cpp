@@ -9,8 +9,7 @@
 
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
-
+#include "wb/cli.h"
 #include "wb/output.h"
 #include "wb/sweep.h"
 
@@ -64,12 +63,7 @@ void check_output_path(const std::string& flag, const std::string& path) {
 
 const Integrator& find_integrator(const LabInfo& info, const std::string& name,
                                   const std::string& where) {
-  std::string known;
-  for (const Integrator& it : info.integrators) {
-    if (it.name == name) return it;
-    known += (known.empty() ? "" : ", ") + it.name;
-  }
-  throw InputError(where + ": got \"" + name + "\", expected one of: " + known);
+  return find_named(info.integrators, name, where);
 }
 
 namespace {
@@ -241,10 +235,6 @@ std::string help_footer(const LabInfo& info) {
   }
   s += "  default: " + info.integrators.front().name + "\n";
   for (const auto& section : info.help_sections) s += "\n" + section;
-  s += "\nDefault scenes:\n";
-  auto scenes = default_scenes(info.lab);
-  if (scenes.empty()) s += "  (none found under scenes/" + info.lab + ")\n";
-  for (const auto& f : scenes) s += "  " + f + "\n";
   if (info.sweep) {
     s += "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
          "step size (--dts list, or dt*2^k for k = 3..-6 from --dt or the scene's dt) to\n"
@@ -252,85 +242,32 @@ std::string help_footer(const LabInfo& info) {
          "energy_error,reference,status. Errors against the scene's \"exact\" motion or an\n"
          "RK4 run at the smallest dt/16. See docs/sweep.md.\n";
   }
-  s += "\nThe last line on stdout is a JSON summary. Bad input exits with status 2.\n"
-       "Scene keys: docs/scenes.md. Run contract: docs/run-contract.md.\n";
-  return s;
+  return s + help_scenes_and_docs(info.lab);
 }
 
 }  // namespace
 
 int run_particle_lab(int argc, char** argv, const LabInfo& info) {
-  const std::string exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
-  CLI::App app(info.summary, exe);
-  std::string scene_file, integrator, out, stats;
-  std::optional<double> dt, t_end;
-  // Whole numbers are read as text and parsed strictly (parse_whole).
-  std::optional<std::string> steps_in, every_in, seed_in, repeats_in;
-  app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
-  auto* o_integrator =
-      app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
-  app.add_option("--dt", dt,
-                 "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
-  auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
-  auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
-  o_steps->excludes(o_tend);
-  auto* o_out = app.add_option("--out", out, "Write a CSV trace t,id,x,y,vx,vy");
-  auto* o_stats = app.add_option(
-      "--stats", stats, "Write a CSV of step,t,energy,kinetic,potential,px,py,force_evals");
-  auto* o_every =
-      app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
-  app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
-  // Sweep mode (integration labs): docs/sweep.md.
-  SweepOptions sweep;
-  if (info.sweep) {
-    auto* o_sweep = app.add_option(
-        "--sweep", sweep.csv,
-        "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
-        "k = 3..-6) to t_end and write one CSV row per run");
-    app.add_option("--integrators", sweep.integrators,
-                   "Sweep: only these integrators (comma-separated; default all)")
-        ->delimiter(',')
-        ->needs(o_sweep);
-    app.add_option("--dts", sweep.dts, "Sweep: these step sizes (comma-separated)")
-        ->delimiter(',')
-        ->needs(o_sweep);
-    app.add_option("--repeats", repeats_in,
-                   "Sweep: wall_s is the fastest of R timed step loops (default 3)")
-        ->needs(o_sweep);
-    for (CLI::Option* o : {o_integrator, o_steps, o_out, o_stats, o_every}) o_sweep->excludes(o);
-  }
-  app.footer(help_footer(info));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << exe << ": error: " << one_line(e.what()) << " (see " << exe << " --help)\n";
-    return 2;
-  }
+  FlagSpec spec;
+  spec.exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
+  spec.summary = info.summary;
+  spec.footer = help_footer(info);
+  spec.trace_columns = "t,id,x,y,vx,vy";
+  spec.stats_columns = "step,t,energy,kinetic,potential,px,py,force_evals";
+  spec.seed = true;
+  spec.sweep = info.sweep;
+  spec.sweep_help =
+      "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
+      "k = 3..-6) to t_end and write one CSV row per run";
+  int status = 0;
+  const std::optional<RunFlags> flags = parse_run_flags(argc, argv, spec, status);
+  if (!flags) return status;
+  const std::string& exe = spec.exe;
 
   try {
-    auto flag_error = [](const std::string& flag, const std::string& got,
-                         const std::string& expected) {
-      return InputError(flag + ": got " + got + ", expected " + expected);
-    };
-    if (dt && !(std::isfinite(*dt) && *dt > 0))
-      throw flag_error("--dt", num(*dt), "a finite number > 0");
-    if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
-      throw flag_error("--t-end", num(*t_end), "a finite number >= 0");
-    }
-    std::optional<long> steps, every;
-    if (steps_in) steps = long(parse_whole("--steps", *steps_in, 0, kMaxSteps));
-    if (every_in) every = long(parse_whole("--every", *every_in, 1, INT64_MAX));
-    std::optional<std::uint64_t> seed;
-    if (seed_in) seed = std::uint64_t(parse_whole("--seed", *seed_in, 0, INT64_MAX));
-    if (repeats_in) sweep.repeats = int(parse_whole("--repeats", *repeats_in, 1, 1000));
-    if (!out.empty()) check_output_path("--out", out);
-    if (!stats.empty()) check_output_path("--stats", stats);
-    if (!sweep.csv.empty()) check_output_path("--sweep", sweep.csv);
     std::vector<std::string> keys = info.scene_keys;
     if (info.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
-    Scene scene = load_scene(scene_file, seed, keys);
+    Scene scene = load_scene(flags->scene_file, flags->seed, keys);
     if (info.expand_scene) {
       info.expand_scene(scene);
       check_particles(scene, "the scene's generators");
@@ -339,9 +276,14 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     std::unique_ptr<World> world = info.make_world(scene);
     check_initial_state(scene, *world);
     if (info.sweep) read_exact(scene);  // checks the "exact" key in every mode
-    if (!sweep.csv.empty()) {
-      sweep.dt = dt;
-      sweep.t_end = t_end;
+    if (!flags->sweep_csv.empty()) {
+      SweepOptions sweep;
+      sweep.csv = flags->sweep_csv;
+      sweep.integrators = flags->sweep_integrators;
+      sweep.dts = flags->sweep_dts;
+      if (flags->repeats) sweep.repeats = *flags->repeats;
+      sweep.dt = flags->dt;
+      sweep.t_end = flags->t_end;
       SweepResult sr = run_sweep(info, scene, *world, sweep);
       ordered_json j;
       j["status"] = "ok";
@@ -353,39 +295,12 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     }
 
     RunOptions opt;
-    if (!integrator.empty()) {
-      opt.integrator = &find_integrator(info, integrator, "--integrator");
-    } else if (scene.integrator) {
-      opt.integrator = &find_integrator(info, *scene.integrator, scene.file + ": integrator");
-    } else {
-      opt.integrator = &info.integrators.front();
-    }
-    if (dt) {
-      opt.dt = *dt;
-    } else if (scene.dt) {
-      opt.dt = *scene.dt;
-    } else {
-      throw InputError(scene.file + ": dt: missing, expected a number > 0 (or pass --dt)");
-    }
-    double T = t_end ? *t_end : scene.t_end.value_or(-1.0);
-    if (steps) {
-      opt.steps = *steps;
-    } else if (T >= 0) {
-      const double n = std::round(T / opt.dt);
-      if (!(n <= double(kMaxSteps))) {
-        throw InputError(std::string(t_end ? "--t-end" : scene.file + ": t_end") + " / " +
-                         (dt ? "--dt" : "dt") + ": got " + num(T) + " / " + num(opt.dt) +
-                         ", which is " + num(n) + " steps, expected at most " +
-                         std::to_string(kMaxSteps) + " steps");
-      }
-      opt.steps = long(n);
-    } else {
-      throw InputError(scene.file +
-                       ": t_end: missing, expected a number >= 0 (or pass --steps or --t-end)");
-    }
-    opt.every = every.value_or(1);
-    opt.out = out;
-    opt.stats = stats;
+    opt.integrator = &choose_integrator(info.integrators, *flags, scene.integrator, scene.file);
+    opt.dt = step_size(*flags, scene.dt, scene.file);
+    opt.steps = steps_to_take(*flags, scene.t_end, scene.file, opt.dt);
+    opt.every = flags->every.value_or(1);
+    opt.out = flags->out;
+    opt.stats = flags->stats;
 
     const double work = double(opt.steps) * double(scene.n());
     if (work > kLongRunParticleSteps) {

@@ -7,6 +7,10 @@
 #include "collide_plane.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_C1_collide_plane {
+
 namespace {
 
 using wb::Vec2;
@@ -148,3 +152,5 @@ TEST_CASE("C1 collide_plane: the rebound height of a dropped ball is e^2 times t
     require_near(apex, e * e * H, tol, "rebound height e^2 H (kinetic energy scales by e^2)");
   }
 }
+
+}  // namespace test_C1_collide_plane

@@ -9,6 +9,10 @@
 #include "collide_particles.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_C2_collide_particles {
+
 namespace {
 
 using wb::Vec2;
@@ -143,3 +147,5 @@ TEST_CASE("C2 collide_particles: discs apart get nothing and touching discs are 
                "touching and approaching: J = -(1 + e) v_n / (1/m1 + 1/m2) = 2 * 2 / 2");
   require_near(v1, Vec2(-1.0, 0.0), kRound, "touching discs exchange velocities (e = 1)");
 }
+
+}  // namespace test_C2_collide_particles

@@ -10,6 +10,10 @@
 #include "grid_pairs.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_C3_grid_pairs {
+
 namespace {
 
 using wb::Pairs;
@@ -118,3 +122,5 @@ TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far
     require_same_pairs(x, r, "one large disc and two far outliers");
   }
 }
+
+}  // namespace test_C3_grid_pairs

@@ -8,6 +8,10 @@
 #include "friction_impulse.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_C4_friction_impulse {
+
 namespace {
 
 using wb::Vec2;
@@ -98,3 +102,5 @@ TEST_CASE(
   require_near(v, Vec2(-0.7 * kN), kRound, "nothing to stop: velocity unchanged");
   require_near(jt, 0.0, kRound, "no tangential impulse");
 }
+
+}  // namespace test_C4_friction_impulse

@@ -6,6 +6,10 @@
 #include "euler_test_helpers.h"
 #include "explicit_euler.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace explicit_euler_test {
+
 using namespace eulertest;
 using wbtest::require_near;
 
@@ -168,3 +172,5 @@ TEST_CASE("E1 long run: 10^6 steps follow E_n = (1 + (h w)^2)^n E_0", "[euler][E
   require_near(oscillator_energy(r.x, r.v, m, k) / E0, std::pow(1.0 + hw * hw, double(N)), 0.0,
                "explicit Euler energy after 10^6 steps at h w = 10^-3", kLongRunTol);
 }
+
+}  // namespace explicit_euler_test

@@ -7,6 +7,10 @@
 #include "euler_test_helpers.h"
 #include "symplectic_euler.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace symplectic_euler_test {
+
 using namespace eulertest;
 using wbtest::require_near;
 
@@ -259,3 +263,5 @@ TEST_CASE("E2 long run: 10^6 steps conserve the modified energy", "[euler][E2][2
   INFO("energy range max/min - 1 = " << Emax / Emin - 1.0);
   REQUIRE(Emax / Emin - 1.0 >= 0.5 * predicted_wobble(hw));
 }
+
+}  // namespace symplectic_euler_test

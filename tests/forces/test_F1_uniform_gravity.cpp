@@ -2,6 +2,10 @@
 #include "test_helpers.h"
 #include "uniform_gravity.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F1_uniform_gravity {
+
 using wb::Mat2X;
 using wb::Vec2;
 using wb::VecX;
@@ -60,3 +64,5 @@ TEST_CASE("F1 uniform gravity: the force is minus the gradient of V = -sum m_i g
   add_uniform_gravity(m, g, f);
   wbtest::require_near(f, expected, tol, "gravity is conservative: f = -dV/dx", tol);
 }
+
+}  // namespace test_F1_uniform_gravity

@@ -5,6 +5,10 @@
 #include "newton_gravity.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F2_newton_gravity {
+
 using wb::Mat2X;
 using wb::Vec2;
 using wb::VecX;
@@ -174,3 +178,5 @@ TEST_CASE("F2 newton gravity: coincident bodies give finite forces with and with
                        "eps > 0: a coincident pair has d = 0 so adds nothing, the others attract",
                        kTol);
 }
+
+}  // namespace test_F2_newton_gravity

@@ -5,6 +5,10 @@
 #include "attractor.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F3_attractor {
+
 using wb::Mat2X;
 using wb::Vec2;
 using wb::VecX;
@@ -91,3 +95,5 @@ TEST_CASE("F3 attractor: a particle exactly at the centre gets no force and no N
   wbtest::require_near(Vec2(f.col(1)), Vec2(-0.144, -0.192), kTol,
                        "the other particle is still pulled with GM m / r^2", kTol);
 }
+
+}  // namespace test_F3_attractor

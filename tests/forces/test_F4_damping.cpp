@@ -2,6 +2,10 @@
 #include "damping.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F4_damping {
+
 using wb::Mat2X;
 using wb::Vec2;
 
@@ -56,3 +60,5 @@ TEST_CASE("F4 damping: the drag removes energy at the rate b |v|^2", "[forces][F
                          "power of viscous drag: f . v = -b |v|^2", kTol);
   }
 }
+
+}  // namespace test_F4_damping

@@ -5,6 +5,10 @@
 #include "spring.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F5_spring {
+
 using wb::Mat2X;
 using wb::Vec2;
 
@@ -144,3 +148,5 @@ TEST_CASE("F5 spring: a zero-length spring returns zero and no NaN", "[forces][F
                        Vec2(-1.68, -2.24), kTol,
                        "a short compressed damped spring pushes i away from j", kTol);
 }
+
+}  // namespace test_F5_spring

@@ -7,6 +7,10 @@
 #include "accumulate_forces.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F6_accumulate_forces {
+
 using wb::Mat2X;
 using wb::Vec2;
 using wb::VecX;
@@ -167,3 +171,5 @@ TEST_CASE("F6 accumulate forces: no terms give zero force of the right size",
   wbtest::require_near(f, Mat2X::Zero(2, 4), 0.0,
                        "no force terms: every particle is free, f = 0 (2 x n)");
 }
+
+}  // namespace test_F6_accumulate_forces

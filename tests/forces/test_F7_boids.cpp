@@ -5,6 +5,10 @@
 #include "boids.h"
 #include "test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F7_boids {
+
 using wb::Mat2X;
 using wb::Vec2;
 using wb::VecX;
@@ -241,3 +245,5 @@ TEST_CASE(
                          1e-10);
   }
 }
+
+}  // namespace test_F7_boids

@@ -3,6 +3,10 @@
 #include "test_helpers.h"
 #include "vortex.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_F8_vortex {
+
 using wb::Mat2X;
 using wb::Vec2;
 
@@ -125,3 +129,5 @@ TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise"
   wbtest::require_near(vortex_flow(Vec2(4, 3), p), Vec2(0.96, -0.72), kTol,
                        "omega < 0: the same flow reversed", kTol);
 }
+
+}  // namespace test_F8_vortex

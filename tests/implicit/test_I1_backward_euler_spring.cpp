@@ -7,6 +7,10 @@
 #include "backward_euler_spring.h"
 #include "implicit_checks.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_I1_backward_euler_spring {
+
 namespace {
 using wb::Vec2;
 
@@ -79,3 +83,5 @@ TEST_CASE("I1 one spring: first order in h against the exact oscillator",
     prev = e;
   }
 }
+
+}  // namespace test_I1_backward_euler_spring

@@ -4,6 +4,10 @@
 #include "implicit_checks.h"
 #include "spring_derivatives.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_I2_spring_derivatives {
+
 namespace {
 using wb::Mat2;
 using wb::Vec2;
@@ -105,3 +109,5 @@ TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
   REQUIRE((K + k * Mat2::Identity()).norm() <= kRelTol * k);
   REQUIRE(D.norm() == 0.0);
 }
+
+}  // namespace test_I2_spring_derivatives

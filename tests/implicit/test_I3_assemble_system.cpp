@@ -5,6 +5,10 @@
 #include "assemble_system.h"
 #include "implicit_checks.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_I3_assemble_system {
+
 namespace {
 using wb::Mat2X;
 using wb::Vec2;
@@ -150,3 +154,5 @@ TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
   dense_reference(s, Ae, be);
   require_dense(A, b, Ae, be, "particle 1 pinned");
 }
+
+}  // namespace test_I3_assemble_system

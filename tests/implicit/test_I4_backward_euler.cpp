@@ -8,6 +8,10 @@
 #include "backward_euler.h"
 #include "implicit_checks.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_I4_backward_euler {
+
 namespace {
 using wb::Mat2X;
 using wb::Vec2;
@@ -241,3 +245,5 @@ TEST_CASE("I4 backward Euler: a stiff hanging chain at h = 1/60 comes to rest in
   INFO("largest bead speed " << v.colwise().norm().maxCoeff() << " m/s, expected at rest");
   REQUIRE(v.colwise().norm().maxCoeff() <= 1e-7);
 }
+
+}  // namespace test_I4_backward_euler

@@ -7,6 +7,10 @@
 #include "implicit_checks.h"
 #include "implicit_trapezoid.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_I5_implicit_trapezoid {
+
 namespace {
 using wb::Mat2X;
 using wb::Vec2;
@@ -119,3 +123,5 @@ TEST_CASE("I5 implicit trapezoid: a pinned particle never moves", "[implicit][I5
     REQUIRE(r <= 1e-9 * s);
   }
 }
+
+}  // namespace test_I5_implicit_trapezoid

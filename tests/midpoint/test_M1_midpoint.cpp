@@ -3,6 +3,10 @@
 #include "midpoint.h"
 #include "second_order_checks.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_M1_midpoint {
+
 namespace {
 const char* kMethod = "midpoint";
 constexpr double kThirdOrderCoef = 1.0 / 8.0;  // h^3 a''[f, f] coefficient (Taylor expansion)
@@ -43,3 +47,5 @@ TEST_CASE("M1 midpoint: h^3 velocity term on a nonlinear force is one eighth of 
 TEST_CASE("M1 midpoint: exactly two force evaluations per step", "[midpoint][M1][3pts]") {
   mptest::check_two_evaluations(midpoint_step, kMethod);
 }
+
+}  // namespace test_M1_midpoint

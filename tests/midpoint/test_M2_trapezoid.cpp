@@ -3,6 +3,10 @@
 #include "second_order_checks.h"
 #include "trapezoid.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_M2_trapezoid {
+
 namespace {
 const char* kMethod = "trapezoid";
 constexpr double kThirdOrderCoef = 1.0 / 4.0;  // h^3 a''[f, f] coefficient (Taylor expansion)
@@ -44,3 +48,5 @@ TEST_CASE("M2 trapezoid: h^3 velocity term on a nonlinear force is one quarter o
 TEST_CASE("M2 trapezoid: exactly two force evaluations per step", "[midpoint][M2][3pts]") {
   mptest::check_two_evaluations(trapezoid_step, kMethod);
 }
+
+}  // namespace test_M2_trapezoid

@@ -6,6 +6,10 @@
 #include "body_inertia.h"
 #include "rigid_test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R1_body_inertia {
+
 using namespace rigidtest;
 
 namespace {
@@ -77,3 +81,5 @@ TEST_CASE("R1 cylinder: inertia equals the integral over the cylinder along z",
                  "cylinder r = 0.4 m, length 3 m along z, 5 kg: I = rho * integral of "
                  "(r^2 E - r r^T) dV");
 }
+
+}  // namespace test_R1_body_inertia

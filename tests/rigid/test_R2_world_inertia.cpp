@@ -7,6 +7,10 @@
 #include "rigid_test_helpers.h"
 #include "world_inertia.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R2_world_inertia {
+
 using namespace rigidtest;
 
 namespace {
@@ -67,3 +71,5 @@ TEST_CASE("R2 parallel axis: a box about its corner equals the integral over the
   require_near(parallel_axis(I_c, m, d), expected, kExactQuadTol * expected.norm(),
                "I_corner = I_c + m (|d|^2 E - d d^T) for a 1 x 3 x 2 m box of 2 kg");
 }
+
+}  // namespace test_R2_world_inertia

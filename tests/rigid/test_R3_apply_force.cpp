@@ -4,6 +4,10 @@
 #include "apply_force.h"
 #include "rigid_test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R3_apply_force {
+
 using namespace rigidtest;
 
 namespace {
@@ -43,3 +47,5 @@ TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3
   require_near(b.f, Vec3(1.0, -2.5, -24.525), kTol, "f += m g with m = 2.5 kg");
   require_near(b.tau, Vec3(0.0, 2.0, 0.0), kTol, "gravity acts at the centre: tau unchanged");
 }
+
+}  // namespace test_R3_apply_force

@@ -6,6 +6,10 @@
 #include "integrate_position.h"
 #include "rigid_test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R4_integrate_position {
+
 using namespace rigidtest;
 
 namespace {
@@ -90,3 +94,5 @@ TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid
   INFO("|q| after 10^6 steps = " << b.q.norm());
   REQUIRE(std::abs(b.q.norm() - 1.0) <= kOrthoTol);
 }
+
+}  // namespace test_R4_integrate_position

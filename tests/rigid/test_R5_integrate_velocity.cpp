@@ -9,6 +9,10 @@
 #include "integrate_velocity.h"
 #include "rigid_test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R5_integrate_velocity {
+
 using namespace rigidtest;
 
 namespace {
@@ -228,3 +232,5 @@ TEST_CASE(
     }
   }
 }
+
+}  // namespace test_R5_integrate_velocity

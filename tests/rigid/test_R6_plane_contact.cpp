@@ -8,6 +8,10 @@
 #include "plane_contact.h"
 #include "rigid_test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R6_plane_contact {
+
 using namespace rigidtest;
 
 namespace {
@@ -147,3 +151,5 @@ TEST_CASE("R6 resolve: a box landing flat with e = 0 stops without sinking throu
   require_near(b.v, Vec3::Zero(), 0.1 * g * h, "at rest: the velocity is gone (e = 0)");
   require_near(b.omega, Vec3::Zero(), 0.1 * g * h / 0.25, "at rest: no spin (it landed flat)");
 }
+
+}  // namespace test_R6_plane_contact

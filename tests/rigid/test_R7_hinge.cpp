@@ -7,6 +7,10 @@
 #include "hinge.h"
 #include "rigid_test_helpers.h"
 
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_R7_hinge {
+
 using namespace rigidtest;
 
 namespace {
@@ -105,3 +109,5 @@ TEST_CASE("R7 drift correction: beta/h of the drift is removed and a long run st
   REQUIRE(worst <= 4 * h * h * 30.0 * 0.5 / beta);
   REQUIRE(p.b.x.norm() <= 0.5 + 1e-3);  // still hanging from the pin
 }
+
+}  // namespace test_R7_hinge

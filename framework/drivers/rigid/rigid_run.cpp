@@ -6,9 +6,8 @@
 #include <iostream>
 #include <optional>
 
-#include <CLI/CLI.hpp>
-
 #include "rigid_world.h"
+#include "wb/cli.h"
 #include "wb/output.h"
 #include "wb/run.h"
 
@@ -21,16 +20,6 @@ using wb::append_number;
 using wb::InputError;
 using wb::num;
 using wb::ordered_json;
-
-const Integrator& find_integrator(const LabInfo& info, const std::string& name,
-                                  const std::string& where) {
-  std::string known;
-  for (const Integrator& it : info.integrators) {
-    if (it.name == name) return it;
-    known += (known.empty() ? "" : ", ") + it.name;
-  }
-  throw InputError(where + ": got \"" + name + "\", expected one of: " + known);
-}
 
 std::vector<Body> initial_bodies(const Scene& scene) {
   std::vector<Body> bodies;
@@ -180,7 +169,7 @@ ordered_json run_sweep(const LabInfo& info, const Scene& scene, double base_dt, 
     for (const Integrator& it : info.integrators) integs.push_back(&it);
   } else {
     for (const std::string& n : opt.integrators) {
-      integs.push_back(&find_integrator(info, n, "--integrators"));
+      integs.push_back(&wb::find_named(info.integrators, n, "--integrators"));
     }
   }
   std::vector<double> dts = opt.dts;
@@ -274,130 +263,56 @@ std::string help_footer(const LabInfo& info) {
   s += "\nTrace (--out): t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (omega in the world frame).\n"
        "Stats (--stats): step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz (L about the "
        "origin).\n";
-  s += "\nDefault scenes:\n";
-  auto scenes = wb::default_scenes(info.lab);
-  if (scenes.empty()) s += "  (none found under scenes/" + info.lab + ")\n";
-  for (const auto& f : scenes) s += "  " + f + "\n";
   s += "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
        "step size (--dts list, or dt*2^k for k = 3..-6 from --dt or the scene's dt) to\n"
        "t_end, on a torque-free scene; one row per run: scene,integrator,dt,steps,\n"
        "force_evals,wall_s,error,energy_error,reference,status. error = |L(T) - L0| / |L0|,\n"
        "energy_error = max |E - E0| / E0 (the exact values are the initial ones). See "
        "docs/sweep.md.\n";
-  s += "\nThe last line on stdout is a JSON summary. Bad input exits with status 2.\n"
-       "Scene keys: docs/scenes.md. Run contract: docs/run-contract.md.\n";
-  return s;
+  return s + wb::help_scenes_and_docs(info.lab);
 }
 
 }  // namespace
 
 int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
-  const std::string exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
-  CLI::App app(info.summary, exe);
-  std::string scene_file, integrator, out, stats;
-  std::optional<double> dt, t_end;
-  // Whole numbers are read as text and parsed strictly (wb::parse_whole), as in
-  // the particle labs' run contract.
-  std::optional<std::string> steps_in, every_in, repeats_in;
-  app.add_option("--scene", scene_file, "Scene file (JSON)")->required();
-  auto* o_integrator =
-      app.add_option("--integrator", integrator, "Integrator name (overrides the scene's)");
-  app.add_option("--dt", dt,
-                 "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
-  auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
-  auto* o_tend = app.add_option("--t-end", t_end, "Simulate to time T: steps = round(T/H)");
-  o_steps->excludes(o_tend);
-  auto* o_out =
-      app.add_option("--out", out, "Write a CSV trace t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
-  auto* o_stats = app.add_option(
-      "--stats", stats, "Write a CSV of step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz");
-  auto* o_every =
-      app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
-  SweepOptions sweep;
-  auto* o_sweep = app.add_option(
-      "--sweep", sweep.csv,
+  wb::FlagSpec spec;
+  spec.exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
+  spec.summary = info.summary;
+  spec.footer = help_footer(info);
+  spec.trace_columns = "t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+  spec.stats_columns = "step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz";
+  spec.sweep = true;
+  spec.sweep_help =
       "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
-      "k = 3..-6) to t_end on a torque-free scene and write one CSV row per run");
-  app.add_option("--integrators", sweep.integrators,
-                 "Sweep: only these integrators (comma-separated; default all)")
-      ->delimiter(',')
-      ->needs(o_sweep);
-  app.add_option("--dts", sweep.dts, "Sweep: these step sizes (comma-separated)")
-      ->delimiter(',')
-      ->needs(o_sweep);
-  app.add_option("--repeats", repeats_in,
-                 "Sweep: wall_s is the fastest of R timed step loops (default 3)")
-      ->needs(o_sweep);
-  for (CLI::Option* o : {o_integrator, o_steps, o_out, o_stats, o_every}) o_sweep->excludes(o);
-  app.footer(help_footer(info));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << exe << ": error: " << e.what() << " (see " << exe << " --help)\n";
-    return 2;
-  }
+      "k = 3..-6) to t_end on a torque-free scene and write one CSV row per run";
+  int status = 0;
+  const std::optional<wb::RunFlags> flags = wb::parse_run_flags(argc, argv, spec, status);
+  if (!flags) return status;
+  const std::string& exe = spec.exe;
 
   try {
-    auto flag_error = [](const std::string& flag, const std::string& got,
-                         const std::string& expected) {
-      return InputError(flag + ": got " + got + ", expected " + expected);
-    };
-    if (dt && !(std::isfinite(*dt) && *dt > 0))
-      throw flag_error("--dt", num(*dt), "a finite number > 0");
-    if (t_end && !(std::isfinite(*t_end) && *t_end >= 0)) {
-      throw flag_error("--t-end", num(*t_end), "a finite number >= 0");
-    }
-    std::optional<long> steps, every;
-    if (steps_in) steps = long(wb::parse_whole("--steps", *steps_in, 0, wb::kMaxSteps));
-    if (every_in) every = long(wb::parse_whole("--every", *every_in, 1, INT64_MAX));
-    if (repeats_in) sweep.repeats = int(wb::parse_whole("--repeats", *repeats_in, 1, 1000));
-    if (!out.empty()) wb::check_output_path("--out", out);
-    if (!stats.empty()) wb::check_output_path("--stats", stats);
-    if (!sweep.csv.empty()) wb::check_output_path("--sweep", sweep.csv);
-    const Scene scene = load_scene(scene_file);
-
-    double h = 0;
-    if (dt) {
-      h = *dt;
-    } else if (scene.dt) {
-      h = *scene.dt;
-    } else {
-      throw InputError(scene.file + ": dt: missing, expected a number > 0 (or pass --dt)");
-    }
-    const double T = t_end ? *t_end : scene.t_end.value_or(-1.0);
-    if (!sweep.csv.empty()) {
+    const Scene scene = load_scene(flags->scene_file);
+    const double h = wb::step_size(*flags, scene.dt, scene.file);
+    if (!flags->sweep_csv.empty()) {
+      const double T = flags->t_end ? *flags->t_end : scene.t_end.value_or(-1.0);
       if (T < 0) throw InputError(scene.file + ": t_end: missing (or pass --t-end)");
+      SweepOptions sweep;
+      sweep.csv = flags->sweep_csv;
+      sweep.integrators = flags->sweep_integrators;
+      sweep.dts = flags->sweep_dts;
+      if (flags->repeats) sweep.repeats = *flags->repeats;
       std::cout << run_sweep(info, scene, h, T, sweep).dump() << std::endl;
       return 0;
     }
 
     RunOptions opt;
-    if (!integrator.empty()) {
-      opt.integrator = &find_integrator(info, integrator, "--integrator");
-    } else if (scene.integrator) {
-      opt.integrator = &find_integrator(info, *scene.integrator, scene.file + ": integrator");
-    } else {
-      opt.integrator = &info.integrators.front();
-    }
+    opt.integrator =
+        &wb::choose_integrator(info.integrators, *flags, scene.integrator, scene.file);
     opt.dt = h;
-    if (steps) {
-      opt.steps = *steps;
-    } else if (T >= 0) {
-      const double n = std::round(T / h);
-      if (!(n <= double(wb::kMaxSteps))) {
-        throw InputError("--t-end/--dt: " + num(T) + "/" + num(h) + " gives " + num(n) +
-                         " steps, expected at most " + std::to_string(wb::kMaxSteps));
-      }
-      opt.steps = long(n);
-    } else {
-      throw InputError(scene.file +
-                       ": t_end: missing, expected a number >= 0 (or pass --steps or --t-end)");
-    }
-    opt.every = every.value_or(1);
-    opt.out = out;
-    opt.stats = stats;
+    opt.steps = wb::steps_to_take(*flags, scene.t_end, scene.file, h);
+    opt.every = flags->every.value_or(1);
+    opt.out = flags->out;
+    opt.stats = flags->stats;
     std::vector<std::string> warnings;
     const ordered_json j = simulate(scene, opt, warnings);
     for (const auto& w : warnings) std::cerr << exe << ": warning: " << w << "\n";

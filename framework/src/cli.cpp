@@ -1,0 +1,127 @@
+// The run contract's flags: the one file that includes CLI11 (wb/cli.h).
+#include "wb/cli.h"
+
+#include <cmath>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "wb/run.h"
+
+namespace wb {
+
+namespace {
+
+InputError flag_error(const std::string& flag, const std::string& got,
+                      const std::string& expected) {
+  return InputError(flag + ": got " + got + ", expected " + expected);
+}
+
+}  // namespace
+
+std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& spec,
+                                        int& status) {
+  CLI::App app(spec.summary, spec.exe);
+  RunFlags f;
+  // Whole numbers are read as text and parsed strictly (parse_whole).
+  std::optional<std::string> steps_in, every_in, seed_in, repeats_in;
+  app.add_option("--scene", f.scene_file, "Scene file (JSON)")->required();
+  auto* o_integrator =
+      app.add_option("--integrator", f.integrator, "Integrator name (overrides the scene's)");
+  app.add_option("--dt", f.dt,
+                 "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
+  auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
+  auto* o_tend = app.add_option("--t-end", f.t_end, "Simulate to time T: steps = round(T/H)");
+  o_steps->excludes(o_tend);
+  auto* o_out = app.add_option("--out", f.out, "Write a CSV trace " + spec.trace_columns);
+  auto* o_stats = app.add_option("--stats", f.stats, "Write a CSV of " + spec.stats_columns);
+  auto* o_every =
+      app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
+  if (spec.seed)
+    app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
+  if (spec.sweep) {
+    auto* o_sweep = app.add_option("--sweep", f.sweep_csv, spec.sweep_help);
+    app.add_option("--integrators", f.sweep_integrators,
+                   "Sweep: only these integrators (comma-separated; default all)")
+        ->delimiter(',')
+        ->needs(o_sweep);
+    app.add_option("--dts", f.sweep_dts, "Sweep: these step sizes (comma-separated)")
+        ->delimiter(',')
+        ->needs(o_sweep);
+    app.add_option("--repeats", repeats_in,
+                   "Sweep: wall_s is the fastest of R timed step loops (default 3)")
+        ->needs(o_sweep);
+    for (CLI::Option* o : {o_integrator, o_steps, o_out, o_stats, o_every}) o_sweep->excludes(o);
+  }
+  app.footer(spec.footer);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    status = app.exit(e);
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << spec.exe << ": error: " << one_line(e.what()) << " (see " << spec.exe
+              << " --help)\n";
+    status = 2;
+    return std::nullopt;
+  }
+
+  try {
+    if (f.dt && !(std::isfinite(*f.dt) && *f.dt > 0)) {
+      throw flag_error("--dt", num(*f.dt), "a finite number > 0");
+    }
+    if (f.t_end && !(std::isfinite(*f.t_end) && *f.t_end >= 0)) {
+      throw flag_error("--t-end", num(*f.t_end), "a finite number >= 0");
+    }
+    if (steps_in) f.steps = long(parse_whole("--steps", *steps_in, 0, kMaxSteps));
+    if (every_in) f.every = long(parse_whole("--every", *every_in, 1, INT64_MAX));
+    if (seed_in) f.seed = std::uint64_t(parse_whole("--seed", *seed_in, 0, INT64_MAX));
+    if (repeats_in) f.repeats = int(parse_whole("--repeats", *repeats_in, 1, 1000));
+    if (!f.out.empty()) check_output_path("--out", f.out);
+    if (!f.stats.empty()) check_output_path("--stats", f.stats);
+    if (!f.sweep_csv.empty()) check_output_path("--sweep", f.sweep_csv);
+  } catch (const InputError& e) {
+    std::cerr << spec.exe << ": error: " << e.what() << "\n";
+    status = 2;
+    return std::nullopt;
+  }
+  status = 0;
+  return f;
+}
+
+double step_size(const RunFlags& flags, std::optional<double> scene_dt,
+                 const std::string& scene_file) {
+  if (flags.dt) return *flags.dt;
+  if (scene_dt) return *scene_dt;
+  throw InputError(scene_file + ": dt: missing, expected a number > 0 (or pass --dt)");
+}
+
+long steps_to_take(const RunFlags& flags, std::optional<double> scene_t_end,
+                   const std::string& scene_file, double h) {
+  if (flags.steps) return *flags.steps;
+  const double T = flags.t_end ? *flags.t_end : scene_t_end.value_or(-1.0);
+  if (!(T >= 0)) {
+    throw InputError(scene_file +
+                     ": t_end: missing, expected a number >= 0 (or pass --steps or --t-end)");
+  }
+  const double n = std::round(T / h);
+  if (!(n <= double(kMaxSteps))) {
+    throw InputError(std::string(flags.t_end ? "--t-end" : scene_file + ": t_end") + " / " +
+                     (flags.dt ? "--dt" : "dt") + ": got " + num(T) + " / " + num(h) +
+                     ", which is " + num(n) + " steps, expected at most " +
+                     std::to_string(kMaxSteps) + " steps");
+  }
+  return long(n);
+}
+
+std::string help_scenes_and_docs(const std::string& lab) {
+  std::string s = "\nDefault scenes:\n";
+  const auto scenes = default_scenes(lab);
+  if (scenes.empty()) s += "  (none found under scenes/" + lab + ")\n";
+  for (const auto& f : scenes) s += "  " + f + "\n";
+  s += "\nThe last line on stdout is a JSON summary. Bad input exits with status 2.\n"
+       "Scene keys: docs/scenes.md. Run contract: docs/run-contract.md.\n";
+  return s;
+}
+
+}  // namespace wb
