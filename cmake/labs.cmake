@@ -108,11 +108,39 @@ function(wb_lab_library lab side)
   wb_use_pch(${target} LAB)
   target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR}/labs/${lab})
   target_link_libraries(${target} PUBLIC wb_core)
+  # A lab's functions call no other lab's: its DEPS are linked by whatever
+  # runs their glue (the executable), not by the library, so that a lab's
+  # tests build without its DEPS' files.
   wb_lab_deps(${lab} deps)
   foreach(dep IN LISTS deps)
     wb_lab_library(${dep} ${side})
-    target_link_libraries(${target} PUBLIC ${dep}_${side})
   endforeach()
+endfunction()
+
+# A lab and its DEPS, theirs in turn, each once: `lab` first.
+function(wb_lab_closure lab out)
+  set(result ${lab})
+  wb_lab_deps(${lab} deps)
+  foreach(dep IN LISTS deps)
+    wb_lab_closure(${dep} sub)
+    list(APPEND result ${sub})
+  endforeach()
+  list(REMOVE_DUPLICATES result)
+  set(${out} ${result} PARENT_SCOPE)
+endfunction()
+
+# What links a lab's glue on one side: every glue library of the closure,
+# then every side library (static libraries: the callers before the callees).
+function(wb_lab_link_items lab side out)
+  wb_lab_closure(${lab} labs)
+  set(glues)
+  set(libs)
+  foreach(l IN LISTS labs)
+    wb_lab_glue(${l} g)
+    list(APPEND glues ${g})
+    list(APPEND libs ${l}_${side})
+  endforeach()
+  set(${out} ${glues} ${libs} PARENT_SCOPE)
 endfunction()
 
 # The glue of one lab: every .cpp in framework/drivers/<lab>/ but main.cpp.
@@ -167,7 +195,8 @@ function(wb_add_lab lab side)
   endif()
   add_executable(${exe} $<TARGET_OBJECTS:${lab}_main> $<TARGET_OBJECTS:wb_side_${side}>)
   # Glue first, then the side's student functions it calls.
-  target_link_libraries(${exe} PRIVATE ${glue} ${lab}_${side} wb_run wb_core)
+  wb_lab_link_items(${lab} ${side} link_items)
+  target_link_libraries(${exe} PRIVATE ${link_items} wb_run wb_core)
 
   if(NOT WB_TESTS)
     return()
@@ -202,7 +231,7 @@ function(wb_add_lab lab side)
   add_executable(${tests} $<TARGET_OBJECTS:${lab}_tests_obj>)
   get_property(use_glue GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab})
   if(use_glue)
-    target_link_libraries(${tests} PRIVATE ${glue} ${lab}_${side} wb_run)
+    target_link_libraries(${tests} PRIVATE ${link_items} wb_run)
   endif()
   target_link_libraries(${tests} PRIVATE ${lab}_${side} wb_core Catch2::Catch2WithMain)
   catch_discover_tests(${tests}
