@@ -14,11 +14,12 @@
 #   <lab>_<side>      static library of the student functions
 #   <lab>_glue        static library of the glue (compiled once, side-free)
 #   <lab>[-solution]  the executable
-#   <lab>[-solution]-tests  the graded tests; each test file compiles once
-#                     (<lab>_tests_obj) and links against either side. They
-#                     link the lab's glue and the run contract only with
+#   <lab>[-solution]-tests  the graded tests; a lab's test files compile once,
+#                     as one unit (<lab>_tests_obj), and link against either
+#                     side. They see the framework's headers only (wb_headers)
+#                     and link the lab's glue and the run contract only with
 #                     TESTS_USE_GLUE, so that the grader's scratch build of a
-#                     lab compiles little more than the lab and its tests.
+#                     lab compiles the lab and its tests, nothing else.
 
 # Precompiled headers: Eigen and nlohmann-json (and Catch for the tests) are
 # parsed once per build instead of once per file. Targets reuse one PCH each:
@@ -107,7 +108,7 @@ function(wb_lab_library lab side)
   add_library(${target} STATIC ${sources})
   wb_use_pch(${target} LAB)
   target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR}/labs/${lab})
-  target_link_libraries(${target} PUBLIC wb_core)
+  target_link_libraries(${target} PUBLIC wb_headers)
   # A lab's functions call no other lab's: its DEPS are linked by whatever
   # runs their glue (the executable), not by the library, so that a lab's
   # tests build without its DEPS' files.
@@ -210,7 +211,13 @@ function(wb_add_lab lab side)
     add_library(${lab}_tests_obj OBJECT ${test_sources})
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
                                                         ${CMAKE_SOURCE_DIR}/tests/${lab})
-    target_link_libraries(${lab}_tests_obj PRIVATE ${glue} wb_core Catch2::Catch2)
+    # Not the glue unless asked for (TESTS_USE_GLUE): linking it would make the
+    # tests wait for the glue and the run contract to be built.
+    get_property(use_glue GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab})
+    if(use_glue)
+      target_link_libraries(${lab}_tests_obj PRIVATE ${glue})
+    endif()
+    target_link_libraries(${lab}_tests_obj PRIVATE wb_headers Catch2::Catch2)
     wb_use_pch(${lab}_tests_obj TESTS)
     # One translation unit per lab: the test files share Catch's and Eigen's
     # template instantiations instead of compiling them once each (a third of
@@ -233,7 +240,7 @@ function(wb_add_lab lab side)
   if(use_glue)
     target_link_libraries(${tests} PRIVATE ${link_items} wb_run)
   endif()
-  target_link_libraries(${tests} PRIVATE ${lab}_${side} wb_core Catch2::Catch2WithMain)
+  target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
   catch_discover_tests(${tests}
     TEST_PREFIX "${side}/"
     EXTRA_ARGS -w NoTests
