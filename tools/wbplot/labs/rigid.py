@@ -216,31 +216,65 @@ def _arr(rows):
 # Figures
 
 
+# A run that blew up before this fraction of the time axis gets a zoomed column:
+# on the whole axis its blow-up would be a vertical line at the left edge.
+EARLY_BLOWUP = 0.2
+
+
+def _log_or_symlog(ax, vals, scale):
+    """Log scale for positive values, symmetric log around +-scale otherwise."""
+    if all(v > 0 for v in vals):
+        ax.set_yscale("log")
+    else:
+        import matplotlib.ticker as mticker
+        ax.set_yscale("symlog", linthresh=scale)
+        ax.yaxis.set_major_locator(mticker.SymmetricalLogLocator(base=1e8, linthresh=scale))
+
+
+def _norm3(s, cols, k):
+    v = [s[c][k] for c in cols]
+    return math.sqrt(sum(c * c for c in v)) if all(finite(c) for c in v) else float("nan")
+
+
 def plot_momenta(paths, labels, out, title=None):
-    """Energy, linear momentum and angular momentum (about the origin) against time."""
+    """Energy, linear momentum and angular momentum (about the origin) against time.
+
+    A run that diverged early gets a second column: the first moments of the run
+    on log scales (|E|, |p|, |L|) up to the step where it stopped being finite,
+    while the left column keeps the scale of the runs that stayed finite.
+    """
     runs = [read_stats(p) for p in paths]
     labels = labels or [os.path.basename(p) for p in paths]
     if len(labels) != len(paths):
         raise InputError(f"--labels: got {len(labels)} labels for {len(paths)} files")
-    fig, axes = new_figure(3, 1, figsize=(7.5, 8.0), sharex=True)
+    colors = [integrator_style(label, labels)[0] if label in INTEGRATORS else f"C{n}"
+              for n, label in enumerate(labels)]
+    ends = [last_finite(s["energy"]) for s in runs]
+    t_end = max((s["t"][-1] for s in runs if s["t"] and finite(s["t"][-1])), default=0.0)
+    blowups = {n: runs[n]["t"][ends[n] + 1] for n in range(len(runs))
+               if ends[n] < len(runs[n]["t"]) - 1}
+    finite_runs = [n for n in range(len(runs)) if n not in blowups]
+    zoom = bool(blowups) and bool(finite_runs) and t_end > 0 and \
+        max(blowups.values()) < EARLY_BLOWUP * t_end
+    fig, grid = new_figure(3, 2 if zoom else 1, figsize=(12.5 if zoom else 7.5, 8.0),
+                           sharex="col", squeeze=False)
+    axes = [row[0] for row in grid]
     styles = ["-", "--", ":"]
+    groups = (("energy",), ("px", "py", "pz"), ("Lx", "Ly", "Lz"))
     notes = []
     for n, (s, label) in enumerate(zip(runs, labels)):
-        color = integrator_style(label, labels)[0] if label in INTEGRATORS else f"C{n}"
-        end = last_finite(s["energy"])
+        end = ends[n]
         t = s["t"][:end + 1]
-        axes[0].plot(t, s["energy"][:end + 1], color=color, label=label)
-        for i, c in enumerate(("px", "py", "pz")):
-            axes[1].plot(t, s[c][:end + 1], color=color, ls=styles[i],
-                         label=f"{label}: {c}" if len(runs) > 1 else c)
-        for i, c in enumerate(("Lx", "Ly", "Lz")):
-            axes[2].plot(t, s[c][:end + 1], color=color, ls=styles[i],
-                         label=f"{label}: {c}" if len(runs) > 1 else c)
-        if end < len(s["t"]) - 1:
-            tb = s["t"][end + 1]
+        axes[0].plot(t, s["energy"][:end + 1], color=colors[n], label=label)
+        for ax, cols in zip(axes[1:], groups[1:]):
+            for i, c in enumerate(cols):
+                ax.plot(t, s[c][:end + 1], color=colors[n], ls=styles[i],
+                        label=f"{label}: {c}" if len(runs) > 1 else c)
+        if n in blowups:
             for ax in axes:
-                ax.axvline(tb, color=color, lw=0.8, ls="-.")
-            notes.append(f"{label} diverged at t = {tb:g} s (dash-dot line)")
+                ax.axvline(blowups[n], color=colors[n], lw=0.8, ls="-.")
+            notes.append(f"{label} diverged at t = {blowups[n]:g} s, step "
+                         f"{int(s['step'][end + 1])} (dash-dot line)")
     if len(runs) > 1:
         e0 = runs[0]["energy"]
         for s, label in zip(runs[1:], labels[1:]):
@@ -249,29 +283,60 @@ def plot_momenta(paths, labels, out, title=None):
                                          abs(a - b) <= 1e-12 * max(abs(a), abs(b), 1e-300)
                                          for a, b in zip(e, e0)):
                 notes.append(f"the energies of {labels[0]} and {label} coincide")
-    # A blow-up spans decades: log scales, so that the other runs stay readable.
-    for ax, cols, start in ((axes[0], ("energy",), None), (axes[1], ("px", "py", "pz"), None),
-                            (axes[2], ("Lx", "Ly", "Lz"), None)):
-        vals = [v for s in runs for c in cols for v in s[c] if finite(v)]
-        first = [abs(s[c][0]) for s in runs for c in cols if finite(s[c][0])]
+    for ax, cols in zip(axes, groups):
+        shown = finite_runs if zoom else range(len(runs))
+        vals = [v for n in shown for c in cols for v in runs[n][c][:ends[n] + 1]]
+        first = [abs(runs[n][c][0]) for n in shown for c in cols if finite(runs[n][c][0])]
         scale = max(first + [1e-12])
-        if vals and max(abs(v) for v in vals) > 1e3 * scale:
-            if all(v > 0 for v in vals):
-                ax.set_yscale("log")
-            else:
-                import matplotlib.ticker as mticker
-                ax.set_yscale("symlog", linthresh=scale)
-                ax.yaxis.set_major_locator(mticker.SymmetricalLogLocator(base=1e8,
-                                                                         linthresh=scale))
+        if zoom and vals:
+            # The left column keeps the finite runs' scale; the blow-up is on the right.
+            lo, hi = min(vals), max(vals)
+            pad = 0.05 * (hi - lo) if hi > lo else max(abs(hi), 1.0) * 0.05
+            ax.set_ylim(lo - pad, hi + pad)
+        elif vals and max(abs(v) for v in vals) > 1e3 * scale:
+            # A blow-up spans decades: log scales, so that the other runs stay readable.
+            _log_or_symlog(ax, vals, scale)
             ax.text(0.01, 0.02, "log scale: a run blew up", transform=ax.transAxes,
                     fontsize=8, color="#555")
+    if zoom:
+        axes[0].set_title("The whole run, on the scale of the runs that stayed finite",
+                          fontsize=10)
     axes[0].set_ylabel("energy E (J)")
     axes[1].set_ylabel("momentum p (kg m/s)")
     axes[2].set_ylabel("angular momentum L\nabout the origin (kg m²/s)")
     axes[2].set_xlabel("time t (s)")
     for ax in axes:
-        ax.legend(loc="best", ncol=2 if len(runs) > 1 else 3)
-    axes[0].set_title(title or "Energy and momenta" + ("\n" + "; ".join(notes) if notes else ""))
+        ax.legend(loc="best", ncol=2 if len(runs) > 1 else 3, fontsize=8)
+    if zoom:
+        right = [row[1] for row in grid]
+        t_zoom = 1.25 * max(blowups.values())
+        quantities = (("|E| (J)", lambda s, k: abs(s["energy"][k])),
+                      ("|p| (kg m/s)", lambda s, k: _norm3(s, groups[1], k)),
+                      ("|L| (kg m²/s)", lambda s, k: _norm3(s, groups[2], k)))
+        for ax, (name, value) in zip(right, quantities):
+            drawn = False
+            for n, (s, label) in enumerate(zip(runs, labels)):
+                ks = [k for k in range(ends[n] + 1) if s["t"][k] <= t_zoom]
+                pts = [(s["t"][k], value(s, k)) for k in ks]
+                pts = [(t, v) for t, v in pts if finite(v) and v > 0]
+                if pts:
+                    ax.plot([t for t, _ in pts], [v for _, v in pts], color=colors[n],
+                            marker="." if n in blowups else None, ms=3, label=label)
+                    drawn = True
+                if n in blowups:
+                    ax.axvline(blowups[n], color=colors[n], lw=0.8, ls="-.")
+            if drawn:
+                ax.set_yscale("log")
+            else:
+                ax.text(0.5, 0.5, f"{name.split(' ')[0]} = 0 in every run", ha="center",
+                        va="center", transform=ax.transAxes, color="#555")
+            ax.set_ylabel(name + ", log scale")
+            ax.set_xlim(0, t_zoom)
+        right[0].set_title(f"The first {t_zoom:.3g} s (one dot per written step)", fontsize=10)
+        right[0].legend(loc="best", fontsize=8)
+        right[2].set_xlabel("time t (s)")
+    fig.suptitle(title or "Energy and momenta" + ("\n" + "; ".join(notes) if notes else ""))
+    fig.tight_layout()
     save_figure(fig, out)
 
 
@@ -558,12 +623,18 @@ def scene_figures(ctx):
     trace = ctx.path(f"{stem}-trace.csv")
     for integ in integs:
         st = ctx.path(f"{stem}-{integ}-stats.csv")
-        argv = ["--scene", ctx.scene_path, "--integrator", integ, "--stats", st, "--every", every]
+        argv = ["--scene", ctx.scene_path, "--integrator", integ, "--stats", st]
         if integ == default:
             argv += ["--out", trace]
-        s = ctx.run(argv, f"{stem} ({integ})", label=integ)
+        s = ctx.run(argv + ["--every", every], f"{stem} ({integ})", label=integ)
         if s is None:
             continue
+        if s.get("status") == "diverged" and every != "1" and s.get("steps", 0) <= 10**6:
+            # Every step up to the blow-up, for the figure's zoomed column.
+            s = ctx.run(argv + ["--every", "1"], f"{stem} ({integ}, every step)", label=integ,
+                        again=True)
+            if s is None:
+                continue
         summaries[integ] = s
         stats.append((integ, st))
     if default not in summaries:
@@ -578,7 +649,9 @@ def scene_figures(ctx):
         "--labels", ",".join(i for i, _ in stats), "-o", out]
     if ctx.plot(args):
         ctx.figure(out, f"Energy, momentum and angular momentum about the origin against time "
-                        f"(--every {every}). In this run: {said}.", args)
+                        f"(--every {every}; a run that diverged: every step, and a right-hand "
+                        f"column shows its first moments on log scales when it blew up early). "
+                        f"In this run: {said}.", args)
     out = ctx.path(f"{stem}-polhode.png")
     args = ["rigid-polhode", trace, "-o", out]
     if ctx.plot(args):
