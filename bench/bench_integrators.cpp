@@ -43,6 +43,7 @@
 #include "forces_world.h"
 #include "wb/dynamics.h"
 #include "wb/scene.h"
+#include "wb/semi_implicit.h"
 #ifdef WB_BENCH_HAS_EULER
 #include "explicit_euler.h"
 #include "symplectic_euler.h"
@@ -320,15 +321,8 @@ void fused_loop(Arrays& A, Step step) {
 const wb::StepFn kSymplecticEuler = symplectic_euler_step;
 const char* const kSymplecticEulerSource = "solutions/euler";
 #else
-// A copy of the provided step in framework/drivers/forces.cpp.
-void semi_implicit_euler(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Mat2X& v,
-                         wb::Scratch& s) {
-  dyn.acceleration(x, v, s.a0);
-  v += h * s.a0;
-  x += h * v;
-}
-const wb::StepFn kSymplecticEuler = semi_implicit_euler;
-const char* const kSymplecticEulerSource = "bench copy of framework/drivers/forces.cpp";
+const wb::StepFn kSymplecticEuler = wb::semi_implicit_euler_step;
+const char* const kSymplecticEulerSource = "framework/src/semi_implicit.cpp";
 #endif
 
 void symplectic_passes(Arrays& A, double h) {

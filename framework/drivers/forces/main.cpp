@@ -1,18 +1,7 @@
 // The forces lab executable: scenes stepped with the provided semi-implicit Euler.
 #include "forces_world.h"
 #include "wb/run.h"
-
-namespace {
-
-// Provided: v += h a(x, v); x += h v (the new velocity).
-void semi_implicit_euler(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Mat2X& v,
-                         wb::Scratch& s) {
-  dyn.acceleration(x, v, s.a0);
-  v += h * s.a0;
-  x += h * v;
-}
-
-}  // namespace
+#include "wb/semi_implicit.h"
 
 int main(int argc, char** argv) {
   wb::LabInfo info;
@@ -20,8 +9,7 @@ int main(int argc, char** argv) {
   info.side = WB_SIDE;
   info.summary =
       "Forces lab: particles under the forces you write, stepped with semi-implicit Euler.";
-  info.integrators = {{"symplectic-euler", semi_implicit_euler, 1, 1,
-                       "semi-implicit Euler, provided: velocities first, then positions"}};
+  info.integrators = {wb::semi_implicit_euler_integrator()};
   wb::use_forces(info);
   return wb::run_particle_lab(argc, argv, info);
 }
