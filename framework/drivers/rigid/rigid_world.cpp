@@ -10,11 +10,13 @@
 #include "hinge.h"
 #include "integrate_position.h"
 #include "plane_contact.h"
+#include "wb/run.h"
 
 namespace rigid {
 
 namespace {
 
+using wb::json;
 using wb::JsonObject;
 
 // An array of n finite numbers at `key`.
@@ -38,11 +40,14 @@ Vec3 vec3_or(const JsonObject& o, const char* key, const Vec3& def) {
   return o.has(key) ? vec3(o, key) : def;
 }
 
-// A unit direction: non-zero, normalised.
+// A unit direction: non-zero, normalised. Scaled by its largest component
+// first, so that [1e200, 1e200, 0] (whose norm overflows) and [1e-200, 0, 0]
+// (whose squared norm underflows) give a unit vector, not a zero one.
 Vec3 direction(const JsonObject& o, const char* key) {
   const Vec3 d = vec3(o, key);
-  if (!(d.norm() > 0)) o.fail(key, &o.raw().at(key), "a non-zero vector");
-  return d.normalized();
+  const double scale = d.cwiseAbs().maxCoeff();
+  if (!(scale > 0)) o.fail(key, &o.raw().at(key), "a non-zero vector");
+  return (d / scale).normalized();
 }
 
 // [w, x, y, z], non-zero, normalised on load.
@@ -61,28 +66,91 @@ int body_index(const JsonObject& o, const Scene& s) {
   return int(o.integer("body", 0, std::int64_t(s.bodies.size()) - 1));
 }
 
+// The bounds on a body's initial numbers (docs/scenes.md, "rigid"). They use
+// the scene's own numbers (m and the dimensions), never the inertia of the
+// student's R1 functions, so that the skeleton loads the scenes the solution
+// loads.
+//
+// Inertia scale: every principal moment of inertia of a uniform box, sphere
+// or cylinder lies between m d_min^2 / 6 and m d_max^2 / 2, d_min and d_max its
+// smallest and largest dimension (box edges; sphere radius; cylinder radius
+// and length). Keeping m d^2 within [1e-290, 1e290] for both keeps every
+// moment and its inverse finite, with about 18 orders of magnitude to spare
+// for the products a step forms (I omega, R I R^T, the hinge's and contacts'
+// effective masses). The product is formed as m (d d), as the inertia
+// formulas form it, so a d d that underflows to 0 is refused rather than
+// accepted with I = 0.
+constexpr double kMinInertiaScale = 1e-290;
+constexpr double kMaxInertiaScale = 1e290;
+// Every initial quantity of one body (its kinetic and potential energy, the
+// largest component of its momentum and angular momentum) is at most this, so
+// that the totals, sums over the bodies of a file of at most 16 MiB (fewer
+// than 10^6 bodies), stay finite with a margin of 10^2.
+constexpr double kMaxBodyQuantity = 1e300;
+// The limits as the messages write them (wb::num writes 1e-290 with 17 digits).
+constexpr const char* kInertiaScaleText = "from 1e-290 to 1e+290";
+constexpr const char* kMaxBodyQuantityText = "1e+300";
+
+bool inertia_scale_ok(double m, double d) {
+  const double s = m * (d * d);
+  return s >= kMinInertiaScale && s <= kMaxInertiaScale;
+}
+
+std::string inertia_expected(double m) {
+  return std::string("lengths d with m d^2 ") + kInertiaScaleText + " for m = " + wb::num(m) +
+         " (the inertia, about m d^2, and its inverse must be finite)";
+}
+
+// An upper bound of every principal moment of inertia of the body: m d_max^2
+// (the largest moment is m (b^2 + c^2) / 12 for a box, 2/5 m r^2 for a sphere,
+// m (3 r^2 + L^2) / 12 or m r^2 / 2 for a cylinder).
+double inertia_bound(const BodyDef& d) {
+  double dmax = d.radius;
+  if (d.shape == BodyDef::kBox) dmax = d.size.maxCoeff();
+  if (d.shape == BodyDef::kCylinder) dmax = std::max(d.radius, d.length);
+  return d.body.m * (dmax * dmax);
+}
+
+bool within_body_limit(double q) { return std::abs(q) <= kMaxBodyQuantity; }
+
+const json* value_at(const JsonObject& o, const char* key) {
+  return o.has(key) ? &o.raw().at(key) : nullptr;
+}
+
 BodyDef read_body(const JsonObject& o) {
   BodyDef d;
   const std::string shape = o.string("shape");
   const wb::Range positive{0, std::numeric_limits<double>::infinity(), true};
-  d.body.m = o.number("m", positive);
+  const double m = d.body.m = o.number("m", positive);
+  if (!std::isfinite(1.0 / m)) {
+    o.fail("m", &o.raw().at("m"), "a mass whose inverse 1/m is finite (m >= 5.6e-309)");
+  }
   if (shape == "box") {
     o.only_keys({"shape", "size", "m", "x", "v", "q", "omega"});
     d.shape = BodyDef::kBox;
     d.size = vec3(o, "size");
     if (!(d.size.minCoeff() > 0)) o.fail("size", &o.raw().at("size"), "3 lengths > 0");
-    d.body.I_body = box_inertia(d.body.m, d.size);
+    if (!inertia_scale_ok(m, d.size.minCoeff()) || !inertia_scale_ok(m, d.size.maxCoeff())) {
+      o.fail("size", &o.raw().at("size"), inertia_expected(m));
+    }
+    d.body.I_body = box_inertia(m, d.size);
   } else if (shape == "sphere") {
     o.only_keys({"shape", "radius", "m", "x", "v", "q", "omega"});
     d.shape = BodyDef::kSphere;
     d.radius = o.number("radius", positive);
-    d.body.I_body = sphere_inertia(d.body.m, d.radius);
+    if (!inertia_scale_ok(m, d.radius))
+      o.fail("radius", &o.raw().at("radius"), inertia_expected(m));
+    d.body.I_body = sphere_inertia(m, d.radius);
   } else if (shape == "cylinder") {
     o.only_keys({"shape", "radius", "length", "m", "x", "v", "q", "omega"});
     d.shape = BodyDef::kCylinder;
     d.radius = o.number("radius", positive);
     d.length = o.number("length", positive);
-    d.body.I_body = cylinder_inertia(d.body.m, d.radius, d.length);
+    if (!inertia_scale_ok(m, d.radius))
+      o.fail("radius", &o.raw().at("radius"), inertia_expected(m));
+    if (!inertia_scale_ok(m, d.length))
+      o.fail("length", &o.raw().at("length"), inertia_expected(m));
+    d.body.I_body = cylinder_inertia(m, d.radius, d.length);
   } else {
     o.fail("shape", &o.raw().at("shape"), "one of: box, sphere, cylinder");
   }
@@ -90,15 +158,76 @@ BodyDef read_body(const JsonObject& o) {
   d.body.v = vec3_or(o, "v", Vec3::Zero());
   d.body.q = quaternion_or(o, "q");
   d.body.omega = vec3_or(o, "omega", Vec3::Zero());
+  // The translational and spin parts of the energy and momenta, formed as
+  // rigid::totals forms them (the spin ones with the bound of the inertia).
+  const Vec3& v = d.body.v;
+  if (!within_body_limit(0.5 * m * v.squaredNorm()) ||
+      !within_body_limit((m * v).cwiseAbs().maxCoeff())) {
+    o.fail("v", value_at(o, "v"),
+           "a velocity whose kinetic energy 1/2 m |v|^2 and momentum m |v| are at most " +
+               std::string(kMaxBodyQuantityText) + " for m = " + wb::num(m));
+  }
+  const double I = inertia_bound(d);
+  const Vec3& w = d.body.omega;
+  if (!within_body_limit(0.5 * I * w.squaredNorm()) ||
+      !within_body_limit(I * w.cwiseAbs().maxCoeff())) {
+    o.fail("omega", value_at(o, "omega"),
+           "an angular velocity whose kinetic energy 1/2 I |omega|^2 and angular momentum "
+           "I |omega| are at most " +
+               std::string(kMaxBodyQuantityText) + " for I = m d_max^2 = " + wb::num(I));
+  }
   return d;
+}
+
+// The terms of the body's potential energy and orbital angular momentum,
+// which need the scene's gravity (read after the bodies).
+void check_position(const JsonObject& o, const BodyDef& d, const Vec3& g) {
+  const Body& b = d.body;
+  if (!within_body_limit(b.m * g.dot(b.x)) ||
+      !within_body_limit((b.m * b.x.cross(b.v)).cwiseAbs().maxCoeff())) {
+    o.fail("x", value_at(o, "x"),
+           "a position whose potential energy m |g.x| and angular momentum m |x cross v| are "
+           "at most " +
+               std::string(kMaxBodyQuantityText) + " for m = " + wb::num(b.m) + ", g = [" +
+               wb::num(g.x()) + ", " + wb::num(g.y()) + ", " + wb::num(g.z()) + "]");
+  }
+}
+
+// The initial totals with every body's inertia replaced by its bound m d_max^2
+// (so the student's R1 functions play no part): finite whenever every body's
+// terms are within kMaxBodyQuantity, and so are the totals of any inertia
+// within that bound. Kept as the last line of defence, as the particle labs'
+// wb::check_initial_state.
+void check_initial_totals(const Scene& s) {
+  std::vector<Body> bodies;
+  for (const BodyDef& d : s.bodies) {
+    bodies.push_back(d.body);
+    bodies.back().I_body = inertia_bound(d) * Mat3::Identity();
+  }
+  const Totals t = totals(s, bodies);
+  if (std::isfinite(t.kinetic) && std::isfinite(t.potential) && std::isfinite(t.energy()) &&
+      t.p.allFinite() && t.L.allFinite()) {
+    return;
+  }
+  const auto vec = [](const Vec3& a) {
+    return "[" + wb::num(a.x()) + ", " + wb::num(a.y()) + ", " + wb::num(a.z()) + "]";
+  };
+  throw wb::InputError(s.file + ": initial state: kinetic energy " + wb::num(t.kinetic) +
+                       ", potential energy " + wb::num(t.potential) + ", momentum " + vec(t.p) +
+                       ", angular momentum " + vec(t.L) +
+                       ", expected finite values (a position, velocity, angular velocity, mass "
+                       "or size is so large that they overflow)");
 }
 
 }  // namespace
 
 Scene load_scene(const std::string& file) {
+  return scene_from_json(file, wb::read_json_file(file));
+}
+
+Scene scene_from_json(const std::string& file, const wb::json& doc) {
   Scene s;
   s.file = file;
-  const wb::json doc = wb::read_json_file(file);
   JsonObject top(file, doc, "");
   top.only_keys({"name", "description", "dt", "t_end", "integrator", "bodies", "forces", "planes",
                  "contact", "hinges"});
@@ -123,6 +252,9 @@ Scene load_scene(const std::string& file) {
     if (type == "gravity") {
       f.only_keys({"type", "g"});
       s.g += vec3(f, "g");
+      if (!s.g.allFinite()) {
+        f.fail("g", &f.raw().at("g"), "a gravity whose sum with the earlier ones is finite");
+      }
     } else if (type == "force") {
       f.only_keys({"type", "body", "point", "F"});
       PointForce pf;
@@ -134,6 +266,10 @@ Scene load_scene(const std::string& file) {
       f.fail("type", &f.raw().at("type"), "one of: gravity, force");
     }
   }
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    check_position(top.element("bodies", i), s.bodies[i], s.g);
+  }
+  check_initial_totals(s);
   const wb::json& planes = top.array_or_empty("planes");
   for (std::size_t i = 0; i < planes.size(); ++i) {
     JsonObject p = top.element("planes", i);
@@ -156,6 +292,10 @@ Scene load_scene(const std::string& file) {
     hg.beta = o.number_or("beta", hg.beta, {.min = 0, .max = 1});
     const Body& b = s.bodies[hg.body].body;
     hg.r_body = b.q.toRotationMatrix().transpose() * (hg.anchor - b.x);
+    if (!hg.r_body.allFinite()) {
+      o.fail("anchor", &o.raw().at("anchor"),
+             "a point whose offset from body " + std::to_string(hg.body) + "'s centre is finite");
+    }
     s.hinges.push_back(hg);
   }
   return s;

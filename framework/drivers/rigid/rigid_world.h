@@ -59,6 +59,10 @@ struct Scene {
 
 // Reads and checks a scene file; throws wb::InputError naming the key.
 Scene load_scene(const std::string& file);
+// The same checks on a parsed document (`file` names it in the messages):
+// every accepted scene has finite numbers, 1/m finite, an inertia scale
+// m d^2 within [1e-290, 1e290] and finite initial totals (docs/scenes.md).
+Scene scene_from_json(const std::string& file, const wb::json& doc);
 
 // The update of (v, omega) an integrator stands for (the student's R5 functions).
 using VelocityStep = void (*)(Body&, double);
