@@ -1,5 +1,5 @@
 # How a lab is built. A lab is registered with one line in CMakeLists.txt,
-#   wb_lab(<lab> [DEPS <lab>...])
+#   wb_lab(<lab> [DEPS <lab>...] [TESTS_USE_GLUE] [TEST_UNITS n])
 # and is made of these folders:
 #   labs/<lab>/*.h, *.cpp        the student's files (the .cpp are the skeletons)
 #   solutions/<lab>/*.cpp        the same .cpp files, completed (instructors only)
@@ -61,10 +61,11 @@ function(wb_use_pch target)
 endfunction()
 
 function(wb_lab lab)
-  cmake_parse_arguments(A "TESTS_USE_GLUE" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(A "TESTS_USE_GLUE" "TEST_UNITS" "DEPS" ${ARGN})
   set_property(GLOBAL APPEND PROPERTY WB_REGISTERED_LABS ${lab})
   set_property(GLOBAL PROPERTY WB_LAB_DEPS_${lab} ${A_DEPS})
   set_property(GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab} ${A_TESTS_USE_GLUE})
+  set_property(GLOBAL PROPERTY WB_LAB_TEST_UNITS_${lab} ${A_TEST_UNITS})
 endfunction()
 
 function(wb_lab_deps lab out)
@@ -223,9 +224,17 @@ function(wb_add_lab lab side)
     # template instantiations instead of compiling them once each (a third of
     # the time). File names and line numbers in failures stay the files' own.
     # Helpers at file scope must therefore have names unique within the lab.
+    # TEST_UNITS n in wb_lab() splits a lab whose tests are heavy into n units,
+    # so that the grader's 2 jobs share them.
     if(WB_UNITY_TESTS)
+      get_property(units GLOBAL PROPERTY WB_LAB_TEST_UNITS_${lab})
+      set(batch 0)
+      if(units)
+        list(LENGTH test_sources count)
+        math(EXPR batch "(${count} + ${units} - 1) / ${units}")
+      endif()
       set_target_properties(${lab}_tests_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
-                                                        UNITY_BUILD_BATCH_SIZE 0)
+                                                        UNITY_BUILD_BATCH_SIZE ${batch})
     endif()
     # The lab's headers (and its dependencies'), without linking a side.
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/labs/${lab})
