@@ -15,6 +15,7 @@
 #include <string>
 
 #include "forces_world.h"
+#include "fuzz_checks.h"
 #include "wb/input.h"
 #include "wb/run.h"
 #include "wb/scene.h"
@@ -26,46 +27,14 @@ namespace {
 // one input take seconds (the limits themselves are tested in tests/badinput).
 constexpr double kFuzzMaxParticles = 2000;
 
+constexpr const char* kFuzzTarget = "fuzz_scene";
+
 [[noreturn]] void finding(const char* what, const std::string& detail) {
-  std::fprintf(stderr, "fuzz_scene: %s: %s\n", what, detail.c_str());
-  std::abort();
+  fuzzcheck::finding(kFuzzTarget, what, detail);
 }
 
-// An independent check of UTF-8 (not the one the library uses).
-bool valid_utf8(const std::string& s) {
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const unsigned c = static_cast<unsigned char>(s[i]);
-    std::size_t n = c < 0x80           ? 1
-                    : (c >> 5) == 0x6  ? 2
-                    : (c >> 4) == 0xE  ? 3
-                    : (c >> 3) == 0x1E ? 4
-                                       : 0;
-    if (n == 0 || i + n > s.size()) return false;
-    std::uint32_t cp = n == 1 ? c : n == 2 ? (c & 0x1F) : n == 3 ? (c & 0x0F) : (c & 0x07);
-    for (std::size_t k = 1; k < n; ++k) {
-      const unsigned d = static_cast<unsigned char>(s[i + k]);
-      if ((d >> 6) != 0x2) return false;
-      cp = (cp << 6) | (d & 0x3F);
-    }
-    const std::uint32_t min_cp[5] = {0, 0, 0x80, 0x800, 0x10000};
-    if (cp < min_cp[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
-    i += n;
-  }
-  return true;
-}
-
-// One line, valid UTF-8, bounded: what every message must be.
 void check_message(const std::string& m, std::size_t max_bytes) {
-  if (m.size() > max_bytes) finding("message too long", std::to_string(m.size()) + " bytes");
-  if (!valid_utf8(m)) finding("message is not valid UTF-8", m);
-  for (unsigned char c : m) {
-    if (c < 0x20 || c == 0x7F) finding("message holds a control character", m);
-  }
-  if (m.find("\xC2\x85") != std::string::npos || m.find("\xE2\x80\xA8") != std::string::npos ||
-      m.find("\xE2\x80\xA9") != std::string::npos) {
-    finding("message holds a Unicode line break", m);
-  }
+  fuzzcheck::check_message(kFuzzTarget, m, max_bytes);
 }
 
 // The particles the scene's emitters would make, if it is cheap to tell.

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "wb/input.h"
+
 namespace wb {
 
 // What the flags said; a flag not given is empty. Whole numbers are already
@@ -68,8 +70,6 @@ const Named& choose_integrator(const std::vector<Named>& list, const RunFlags& f
 std::string help_scenes_and_docs(const std::string& lab);
 
 }  // namespace wb
-
-#include "wb/input.h"
 
 template <class Named>
 const Named& wb::find_named(const std::vector<Named>& list, const std::string& name,
