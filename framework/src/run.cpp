@@ -15,14 +15,6 @@
 
 namespace wb {
 
-std::string scenes_dir() {
-#ifdef WB_SCENES_DIR
-  return WB_SCENES_DIR;
-#else
-  return "scenes";
-#endif
-}
-
 std::vector<std::string> default_scenes(const std::string& lab) {
   std::vector<std::string> out;
   std::error_code ec;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "wb/dynamics.h"
+#include "wb/paths.h"
 #include "wb/scene.h"
 #include "wb/world.h"
 
@@ -88,7 +89,6 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info);
 // The default scenes shipped for a lab (files under scenes/<lab>/), sorted,
 // as paths relative to the repository (scenes/<lab>/NAME.json).
 std::vector<std::string> default_scenes(const std::string& lab);
-std::string scenes_dir();
 
 // A number as the summary and messages print it (17 significant digits).
 std::string num(double x);
