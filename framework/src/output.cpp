@@ -42,6 +42,28 @@ void AtomicFile::commit() {
   }
 }
 
+CsvFile::CsvFile(const std::string& path, const char* header) {
+  if (!path.empty()) {
+    file_.emplace(path);
+    buf_ = header;
+  }
+}
+
+void CsvFile::flush_if_large() {
+  if (file_ && buf_.size() > (1u << 20)) {
+    file_->write(buf_);
+    buf_.clear();
+  }
+}
+
+void CsvFile::commit() {
+  if (file_) {
+    file_->write(buf_);
+    buf_.clear();
+    file_->commit();
+  }
+}
+
 void append_number(std::string& out, double x) {
   char buf[32];
   auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);

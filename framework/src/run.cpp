@@ -131,23 +131,17 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
   Scratch scratch;
   scratch.resize(x.cols());
 
-  std::optional<AtomicFile> trace, stats;
-  std::string tbuf, sbuf;
-  if (!opt.out.empty()) {
-    trace.emplace(opt.out);
-    tbuf = "t,id,x,y,vx,vy\n";
-  }
-  if (!opt.stats.empty()) {
-    stats.emplace(opt.stats);
-    sbuf = "step,t,energy,kinetic,potential,px,py,force_evals\n";
-  }
+  CsvFile trace(opt.out, "t,id,x,y,vx,vy\n");
+  CsvFile stats(opt.stats, "step,t,energy,kinetic,potential,px,py,force_evals\n");
   auto record = [&](long step, double t) {
     if (trace) {
-      append_trace_rows(tbuf, t, x, v);
-      if (tbuf.size() > (1u << 20)) trace->write(tbuf), tbuf.clear();
+      append_trace_rows(trace.rows(), t, x, v);
+      trace.flush_if_large();
     }
     if (stats) {
-      append_stats_row(sbuf, step, t, world.energy(x, v), momentum(v, scene.m), dyn.evals());
+      append_stats_row(stats.rows(), step, t, world.energy(x, v), momentum(v, scene.m),
+                       dyn.evals());
+      stats.flush_if_large();
     }
   };
 
@@ -189,8 +183,8 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
                          "step, or a force, still a stub?");
   }
   r.momentum = momentum(v, scene.m);
-  if (trace) trace->write(tbuf), trace->commit();
-  if (stats) stats->write(sbuf), stats->commit();
+  trace.commit();
+  stats.commit();
   r.x = std::move(x);
   r.v = std::move(v);
   return r;

@@ -79,22 +79,17 @@ struct RunOptions {
 ordered_json simulate(const Scene& scene, const RunOptions& opt,
                       std::vector<std::string>& warnings) {
   std::vector<Body> bodies = initial_bodies(scene);
-  std::optional<wb::AtomicFile> trace, stats;
-  std::string tbuf, sbuf;
-  if (!opt.out.empty()) {
-    trace.emplace(opt.out);
-    tbuf = "t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
-  }
-  if (!opt.stats.empty()) {
-    stats.emplace(opt.stats);
-    sbuf = "step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz\n";
-  }
+  wb::CsvFile trace(opt.out, "t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n");
+  wb::CsvFile stats(opt.stats, "step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz\n");
   auto record = [&](long k, double t) {
     if (trace) {
-      append_trace_rows(tbuf, t, bodies);
-      if (tbuf.size() > (1u << 20)) trace->write(tbuf), tbuf.clear();
+      append_trace_rows(trace.rows(), t, bodies);
+      trace.flush_if_large();
     }
-    if (stats) append_stats_row(sbuf, k, t, totals(scene, bodies));
+    if (stats) {
+      append_stats_row(stats.rows(), k, t, totals(scene, bodies));
+      stats.flush_if_large();
+    }
   };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!(bodies[i].I_body.diagonal().minCoeff() > 0)) {
@@ -126,8 +121,8 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
                        " steps: is integrate_position (R4) still a stub?");
   }
   const Totals t1 = totals(scene, bodies);
-  if (trace) trace->write(tbuf), trace->commit();
-  if (stats) stats->write(sbuf), stats->commit();
+  trace.commit();
+  stats.commit();
 
   ordered_json j;  // keys in the documented order
   j["status"] = diverged ? "diverged" : "ok";

@@ -2,6 +2,7 @@
 // numbers printed so that they read back exactly.
 #pragma once
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace wb {
@@ -22,6 +23,22 @@ class AtomicFile {
  private:
   std::string path_, tmp_;
   std::FILE* f_ = nullptr;
+};
+
+// A CSV output, or nothing when its path is empty: opened (and so checked) at
+// once, its rows appended to rows(), written a megabyte at a time by
+// flush_if_large() and moved into place by commit().
+class CsvFile {
+ public:
+  CsvFile(const std::string& path, const char* header);  // throws InputError naming the path
+  explicit operator bool() const { return file_.has_value(); }
+  std::string& rows() { return buf_; }
+  void flush_if_large();
+  void commit();
+
+ private:
+  std::optional<AtomicFile> file_;
+  std::string buf_;
 };
 
 // Appends x with 17 significant digits (reads back to the same double).
