@@ -2,6 +2,8 @@
 #include "wb/cli.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -17,6 +19,34 @@ InputError flag_error(const std::string& flag, const std::string& got,
   return InputError(flag + ": got " + got + ", expected " + expected);
 }
 
+// A number flag: the whole text one finite number (strtod's syntax), else
+// InputError naming the flag and the text ("" included).
+double parse_number(const std::string& flag, const std::string& text,
+                    const std::string& expected) {
+  char* end = nullptr;
+  const double d = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(d)) {
+    throw flag_error(flag, "\"" + text + "\"", expected);
+  }
+  return d;
+}
+
+// Two outputs given the same file would mix their rows: refused, unless the
+// file is a character device (writing both to /dev/null is fine).
+void check_distinct(const std::string& flag_a, const std::string& a, const std::string& flag_b,
+                    const std::string& b) {
+  namespace fs = std::filesystem;
+  if (a.empty() || b.empty()) return;
+  std::error_code ec;
+  const fs::path pa = fs::weakly_canonical(a, ec);
+  const fs::path pb = ec ? fs::path() : fs::weakly_canonical(b, ec);
+  const bool same = ec ? a == b : pa == pb;
+  if (same && !fs::is_character_file(a, ec)) {
+    throw InputError(flag_a + " and " + flag_b + ": both got \"" + a +
+                     "\", expected two different files");
+  }
+}
+
 }  // namespace
 
 std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& spec,
@@ -24,14 +54,15 @@ std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& s
   CLI::App app(spec.summary, spec.exe);
   RunFlags f;
   // Whole numbers are read as text and parsed strictly (parse_whole).
-  std::optional<std::string> steps_in, every_in, seed_in, repeats_in;
+  std::optional<std::string> steps_in, every_in, seed_in, repeats_in, dt_in, t_end_in;
+  std::vector<std::string> dts_in;
   app.add_option("--scene", f.scene_file, "Scene file (JSON)")->required();
   auto* o_integrator =
       app.add_option("--integrator", f.integrator, "Integrator name (overrides the scene's)");
-  app.add_option("--dt", f.dt,
+  app.add_option("--dt", dt_in,
                  "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
   auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
-  auto* o_tend = app.add_option("--t-end", f.t_end, "Simulate to time T: steps = round(T/H)");
+  auto* o_tend = app.add_option("--t-end", t_end_in, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);
   auto* o_out = app.add_option("--out", f.out, "Write a CSV trace " + spec.trace_columns);
   auto* o_stats = app.add_option("--stats", f.stats, "Write a CSV of " + spec.stats_columns);
@@ -39,15 +70,16 @@ std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& s
       app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
   if (spec.seed)
     app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
+  CLI::Option *o_sweep = nullptr, *o_integrators = nullptr, *o_dts = nullptr;
   if (spec.sweep) {
-    auto* o_sweep = app.add_option("--sweep", f.sweep_csv, spec.sweep_help);
-    app.add_option("--integrators", f.sweep_integrators,
-                   "Sweep: only these integrators (comma-separated; default all)")
-        ->delimiter(',')
-        ->needs(o_sweep);
-    app.add_option("--dts", f.sweep_dts, "Sweep: these step sizes (comma-separated)")
-        ->delimiter(',')
-        ->needs(o_sweep);
+    o_sweep = app.add_option("--sweep", f.sweep_csv, spec.sweep_help);
+    o_integrators = app.add_option("--integrators", f.sweep_integrators,
+                                   "Sweep: only these integrators (comma-separated; default all)")
+                        ->delimiter(',')
+                        ->needs(o_sweep);
+    o_dts = app.add_option("--dts", dts_in, "Sweep: these step sizes (comma-separated)")
+                ->delimiter(',')
+                ->needs(o_sweep);
     app.add_option("--repeats", repeats_in,
                    "Sweep: wall_s is the fastest of R timed step loops (default 3)")
         ->needs(o_sweep);
@@ -67,11 +99,29 @@ std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& s
   }
 
   try {
-    if (f.dt && !(std::isfinite(*f.dt) && *f.dt > 0)) {
-      throw flag_error("--dt", num(*f.dt), "a finite number > 0");
+    // A flag given an empty value is refused, never taken as not given.
+    for (CLI::Option* o : {o_integrator, o_out, o_stats, o_sweep}) {
+      if (o && o->count() > 0 && o->as<std::string>().empty()) {
+        throw flag_error(o->get_name(), "an empty value", "a non-empty value");
+      }
     }
-    if (f.t_end && !(std::isfinite(*f.t_end) && *f.t_end >= 0)) {
+    for (CLI::Option* o : {o_integrators, o_dts}) {
+      if (!o || o->count() == 0) continue;
+      const auto items = o->as<std::vector<std::string>>();
+      bool empty = items.empty();
+      for (const auto& it : items) empty = empty || it.empty();
+      if (empty) {
+        throw flag_error(o->get_name(), "an empty entry", "a comma-separated list of values");
+      }
+    }
+    if (dt_in) f.dt = parse_number("--dt", *dt_in, "a finite number > 0");
+    if (f.dt && !(*f.dt > 0)) throw flag_error("--dt", num(*f.dt), "a finite number > 0");
+    if (t_end_in) f.t_end = parse_number("--t-end", *t_end_in, "a finite number >= 0");
+    if (f.t_end && !(*f.t_end >= 0)) {
       throw flag_error("--t-end", num(*f.t_end), "a finite number >= 0");
+    }
+    for (const auto& d : dts_in) {
+      f.sweep_dts.push_back(parse_number("--dts", d, "finite step sizes > 0"));
     }
     if (steps_in) f.steps = long(parse_whole("--steps", *steps_in, 0, kMaxSteps));
     if (every_in) f.every = long(parse_whole("--every", *every_in, 1, INT64_MAX));
@@ -80,6 +130,10 @@ std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& s
     if (!f.out.empty()) check_output_path("--out", f.out);
     if (!f.stats.empty()) check_output_path("--stats", f.stats);
     if (!f.sweep_csv.empty()) check_output_path("--sweep", f.sweep_csv);
+    check_distinct("--out", f.out, "--stats", f.stats);
+    check_distinct("--scene", f.scene_file, "--out", f.out);
+    check_distinct("--scene", f.scene_file, "--stats", f.stats);
+    check_distinct("--scene", f.scene_file, "--sweep", f.sweep_csv);
   } catch (const InputError& e) {
     std::cerr << spec.exe << ": error: " << e.what() << "\n";
     status = 2;

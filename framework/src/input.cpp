@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
-#include <unordered_set>
 #include <vector>
 
 namespace wb {
@@ -203,37 +203,66 @@ std::string JsonObject::string_or(const char* key, const std::string& def) const
   return j_.contains(key) ? string(key) : def;
 }
 
-std::int64_t JsonObject::integer(const char* key, std::int64_t min, std::int64_t max) const {
-  std::string expected =
-      "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
-  if (!j_.contains(key)) fail(key, nullptr, expected);
-  const json& v = j_.at(key);
-  // Whole numbers written as such are read exactly (no trip through a double,
-  // which rounds above 2^53); a number written with a fraction or an exponent
-  // is accepted only where a double holds every whole number (|x| <= 2^53).
+namespace {
+
+// A whole number in [min, max] from `v`, or nothing. Whole numbers written as
+// such are read exactly (no trip through a double, which rounds above 2^53); a
+// number written with a fraction or an exponent is accepted only where a
+// double holds every whole number (|x| <= 2^53): `beyond` then says so.
+std::optional<std::int64_t> whole_number(const json& v, std::int64_t min, std::int64_t max,
+                                         bool& beyond) {
   constexpr double kExactDouble = 9007199254740992.0;  // 2^53
+  beyond = false;
   if (v.is_number_unsigned()) {
     const std::uint64_t u = v.get<std::uint64_t>();
     if (max < 0 || u > static_cast<std::uint64_t>(max) ||
         (min > 0 && u < static_cast<std::uint64_t>(min))) {
-      fail(key, &v, expected);
+      return std::nullopt;
     }
     return static_cast<std::int64_t>(u);
   }
   if (v.is_number_integer()) {
     const std::int64_t i = v.get<std::int64_t>();
-    if (i < min || i > max) fail(key, &v, expected);
+    if (i < min || i > max) return std::nullopt;
     return i;
   }
-  if (!v.is_number()) fail(key, &v, expected);
+  if (!v.is_number()) return std::nullopt;
   const double d = v.get<double>();
-  if (!std::isfinite(d) || d != std::floor(d)) fail(key, &v, expected);
+  if (!std::isfinite(d) || d != std::floor(d)) return std::nullopt;
   if (std::abs(d) > kExactDouble) {
-    fail(key, &v, expected + " (beyond 2^53, write it without a fraction or an exponent)");
+    beyond = true;
+    return std::nullopt;
   }
   const auto i = static_cast<std::int64_t>(d);  // exact: |d| <= 2^53
-  if (i < min || i > max) fail(key, &v, expected);
+  if (i < min || i > max) return std::nullopt;
   return i;
+}
+
+std::string whole_expected(std::int64_t min, std::int64_t max, bool beyond) {
+  return "a whole number from " + std::to_string(min) + " to " + std::to_string(max) +
+         (beyond ? " (beyond 2^53, write it without a fraction or an exponent)" : "");
+}
+
+}  // namespace
+
+std::int64_t JsonObject::integer(const char* key, std::int64_t min, std::int64_t max) const {
+  if (!j_.contains(key)) fail(key, nullptr, whole_expected(min, max, false));
+  const json& v = j_.at(key);
+  bool beyond = false;
+  const std::optional<std::int64_t> i = whole_number(v, min, max, beyond);
+  if (!i) fail(key, &v, whole_expected(min, max, beyond));
+  return *i;
+}
+
+std::int64_t JsonObject::integer_in(const char* key, std::size_t i, std::int64_t min,
+                                    std::int64_t max, const std::string& note) const {
+  const json& a = array_or_empty(key);
+  const std::string at = std::string(key) + "[" + std::to_string(i) + "]";
+  if (i >= a.size()) fail(at, nullptr, whole_expected(min, max, false) + note);
+  bool beyond = false;
+  const std::optional<std::int64_t> w = whole_number(a[i], min, max, beyond);
+  if (!w) fail(at, &a[i], whole_expected(min, max, beyond) + note);
+  return *w;
 }
 
 std::int64_t JsonObject::integer_or(const char* key, std::int64_t def, std::int64_t min,
@@ -327,44 +356,46 @@ void render(const json& v, std::string& out, int depth) {
   }
 }
 
-// Follows the parser through the document: the JSON path of the value being
-// read, the keys seen in each open object, the depth.
-class PathTracker {
+// Builds the document as the parser reads it (nlohmann's SAX interface),
+// keeping the JSON path of the value being read for messages, refusing a key
+// given twice in one object and nesting deeper than kMaxJsonDepth. Every event
+// costs O(1) plus the key lookup in its own object, so parsing is linear in
+// the file's size. (nlohmann 3.11's parser callback is not: when an object or
+// array closes it rescans its parent array, so an array of n objects costs
+// O(n^2), hours for a 16 MiB file.)
+class DomBuilder {
  public:
-  explicit PathTracker(const std::string& file) : file_(file) {}
+  DomBuilder(const std::string& file, json& root) : file_(file), root_(root) {}
 
-  bool event(json::parse_event_t ev, const json& parsed) {
-    switch (ev) {
-      case json::parse_event_t::object_start:
-      case json::parse_event_t::array_start:
-        if (stack_.size() >= std::size_t(kMaxJsonDepth)) {
-          throw InputError(file_ + ": " + path() + ": nested deeper than " +
-                           std::to_string(kMaxJsonDepth) +
-                           " arrays and objects, expected at most " +
-                           std::to_string(kMaxJsonDepth) + " levels");
-        }
-        stack_.push_back(Frame{ev == json::parse_event_t::array_start, 0, {}, false, {}});
-        break;
-      case json::parse_event_t::key: {
-        Frame& f = stack_.back();
-        f.key = parsed.get<std::string>();
-        f.has_key = true;
-        if (!f.keys.insert(f.key).second) {
-          throw InputError(file_ + ": " + path() +
-                           ": key given twice in one object, expected each key at most once");
-        }
-        break;
-      }
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        stack_.pop_back();
-        value_done();
-        break;
-      case json::parse_event_t::value:
-        value_done();
-        break;
+  bool null() { return value(json(nullptr)); }
+  bool boolean(bool b) { return value(json(b)); }
+  bool number_integer(json::number_integer_t i) { return value(json(i)); }
+  bool number_unsigned(json::number_unsigned_t u) { return value(json(u)); }
+  bool number_float(json::number_float_t d, const std::string&) { return value(json(d)); }
+  bool string(std::string& s) { return value(json(std::move(s))); }
+  bool binary(json::binary_t& b) { return value(json(std::move(b))); }
+  bool start_object(std::size_t) { return open(json::value_t::object); }
+  bool start_array(std::size_t) { return open(json::value_t::array); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(std::string& k) {
+    Frame& f = stack_.back();
+    f.key = k;
+    f.has_key = true;
+    if (f.node->contains(k)) {
+      throw InputError(file_ + ": " + path() +
+                       ": key given twice in one object, expected each key at most once");
     }
+    slot_ = &(*f.node)[k];
     return true;
+  }
+
+  // A syntax error or a number too large for a double: thrown as the
+  // library's exception, caught by parse_json with path() still in place.
+  template <class Exception>
+  bool parse_error(std::size_t, const std::string&, const Exception& e) {
+    throw e;
   }
 
   // Where the parser is: "forces[2].k", or "(top level)".
@@ -382,17 +413,56 @@ class PathTracker {
 
  private:
   struct Frame {
-    bool array;
+    json* node;         // the array or object being filled
+    bool array;         // an array (else an object)
     std::size_t index;  // array: elements read so far
     std::string key;    // object: the key being read
     bool has_key;
-    std::unordered_set<std::string> keys;  // object: keys read so far
   };
+
+  // Stores v where the parser is (the root, the next array element or the
+  // value of the last key) and returns where it went.
+  json* place(json&& v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Frame& f = stack_.back();
+    if (f.array) {
+      f.node->get_ref<json::array_t&>().push_back(std::move(v));
+      return &f.node->get_ref<json::array_t&>().back();
+    }
+    *slot_ = std::move(v);
+    return slot_;
+  }
+  bool value(json&& v) {
+    place(std::move(v));
+    value_done();
+    return true;
+  }
+  bool open(json::value_t type) {
+    if (stack_.size() >= std::size_t(kMaxJsonDepth)) {
+      throw InputError(file_ + ": " + path() + ": nested deeper than " +
+                       std::to_string(kMaxJsonDepth) + " arrays and objects, expected at most " +
+                       std::to_string(kMaxJsonDepth) + " levels");
+    }
+    json* node = place(json(type));
+    stack_.push_back(Frame{node, type == json::value_t::array, 0, {}, false});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    value_done();
+    return true;
+  }
   void value_done() {
     if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
   }
+
   const std::string& file_;
+  json& root_;
   std::vector<Frame> stack_;
+  json* slot_ = nullptr;  // the value of the last key read
 };
 
 // The library's message without its "[json.exception...]" prefix.
@@ -411,12 +481,11 @@ std::string describe(const json& value) {
 }
 
 json parse_json(const std::string& text, const std::string& file) {
-  PathTracker where(file);
-  json::parser_callback_t cb = [&where](int, json::parse_event_t ev, json& parsed) {
-    return where.event(ev, parsed);
-  };
+  json doc;
+  DomBuilder where(file, doc);
   try {
-    return json::parse(text, cb);
+    json::sax_parse(text, &where);
+    return doc;
   } catch (const json::out_of_range& e) {
     // A number too large for a double (1e999) is refused by the parser.
     const std::string what = e.what();

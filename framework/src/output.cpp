@@ -2,27 +2,93 @@
 #include "wb/output.h"
 
 #include <unistd.h>
+
 #include <charconv>
+#include <csignal>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include "wb/input.h"
 
 namespace wb {
 
+namespace {
+
+// Temporary files not yet committed, removed by a signal that ends the
+// process (SIGINT, SIGTERM, SIGHUP) before it dies: a stopped run leaves no
+// "<path>.tmp-<pid>" behind. Fixed slots, since a handler may not allocate.
+constexpr int kTmpSlots = 8;
+constexpr std::size_t kTmpPathBytes = 4096;
+char g_tmp[kTmpSlots][kTmpPathBytes];
+volatile std::sig_atomic_t g_tmp_used[kTmpSlots];
+
+extern "C" void remove_tmp_and_die(int sig) {
+  for (int k = 0; k < kTmpSlots; ++k)
+    if (g_tmp_used[k]) ::unlink(g_tmp[k]);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+int register_tmp(const std::string& tmp) {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      if (std::signal(sig, remove_tmp_and_die) == SIG_IGN) std::signal(sig, SIG_IGN);
+    }
+    return true;
+  }();
+  (void)installed;
+  if (tmp.size() >= kTmpPathBytes) return -1;
+  for (int k = 0; k < kTmpSlots; ++k) {
+    if (!g_tmp_used[k]) {
+      std::memcpy(g_tmp[k], tmp.c_str(), tmp.size() + 1);
+      g_tmp_used[k] = 1;
+      return k;
+    }
+  }
+  return -1;
+}
+
+void unregister_tmp(int slot) {
+  if (slot >= 0) g_tmp_used[slot] = 0;
+}
+
+}  // namespace
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  tmp_ = path_ + ".tmp-" + std::to_string(::getpid());
+  // Only a regular file (or a new one) is replaced by the rename: a device, a
+  // FIFO or a socket (/dev/null, a pipe) is written through, as a shell's
+  // redirection would; a symbolic link's target is replaced, not the link.
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path_, ec);
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st)) {
+    f_ = std::fopen(path_.c_str(), "wb");
+    if (!f_) {
+      throw InputError(path_ + ": cannot open for writing (" + std::strerror(errno) + ")");
+    }
+    return;
+  }
+  std::string target = path_;
+  if (fs::is_symlink(fs::symlink_status(path_, ec))) {
+    const fs::path real = fs::canonical(path_, ec);
+    if (!ec) target = real.string();
+  }
+  target_ = target;
+  tmp_ = target + ".tmp-" + std::to_string(::getpid());
   f_ = std::fopen(tmp_.c_str(), "wb");
   if (!f_) {
     throw InputError(path_ + ": cannot open for writing (" + std::strerror(errno) + ")");
   }
+  slot_ = register_tmp(tmp_);
 }
 
 AtomicFile::~AtomicFile() {
   if (f_) {
     std::fclose(f_);
-    std::remove(tmp_.c_str());
+    if (!tmp_.empty()) std::remove(tmp_.c_str());
   }
+  unregister_tmp(slot_);
 }
 
 void AtomicFile::write(const char* s, std::size_t n) {
@@ -35,11 +101,20 @@ void AtomicFile::commit() {
   bool ok = std::fflush(f_) == 0;
   ok = std::fclose(f_) == 0 && ok;
   f_ = nullptr;
-  if (!ok || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+  if (tmp_.empty()) {  // written through
+    if (!ok)
+      throw std::runtime_error(path_ + ": could not be written (" + std::strerror(errno) + ")");
+    return;
+  }
+  if (!ok || std::rename(tmp_.c_str(), target_.c_str()) != 0) {
     std::string why = std::strerror(errno);
     std::remove(tmp_.c_str());
+    unregister_tmp(slot_);
+    slot_ = -1;
     throw std::runtime_error(path_ + ": could not be written (" + why + ")");
   }
+  unregister_tmp(slot_);
+  slot_ = -1;
 }
 
 CsvFile::CsvFile(const std::string& path, const char* header) {

@@ -41,6 +41,13 @@ void check_output_path(const std::string& flag, const std::string& path) {
   if (fs::is_directory(p, ec)) {
     throw InputError(flag + ": got \"" + path + "\", a folder, expected a file name");
   }
+  const fs::file_status st = fs::status(p, ec);
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st)) {  // /dev/null, a FIFO: written through
+    if (::access(path.c_str(), W_OK) != 0) {
+      throw InputError(flag + ": got \"" + path + "\", expected a file you can write");
+    }
+    return;
+  }
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   if (!fs::is_directory(dir, ec)) {
     throw InputError(flag + ": got \"" + path + "\", expected a file in an existing folder (\"" +
@@ -270,6 +277,8 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
       if (flags->repeats) sweep.repeats = *flags->repeats;
       sweep.dt = flags->dt;
       sweep.t_end = flags->t_end;
+      sweep.exe = exe;
+      sweep.warnings = world->cost_warnings;
       SweepResult sr = run_sweep(info, scene, *world, sweep);
       ordered_json j;
       j["status"] = "ok";
@@ -288,12 +297,19 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     opt.out = flags->out;
     opt.stats = flags->stats;
 
+    // Accepted: what will be slow is said now, once, before the run.
+    std::vector<std::string> warnings = world->cost_warnings;
+    if (opt.integrator->check) {
+      const std::string w = opt.integrator->check(*opt.integrator, world->dynamics());
+      if (!w.empty()) warnings.push_back(w);
+    }
     const double work = double(opt.steps) * double(scene.n());
     if (work > kLongRunParticleSteps) {
-      std::cerr << exe << ": warning: " << opt.steps << " steps of " << scene.n()
-                << " particles (" << num(work)
-                << " particle-steps): this run may take minutes or more\n";
+      warnings.push_back(std::to_string(opt.steps) + " steps of " + std::to_string(scene.n()) +
+                         " particles (" + num(work) +
+                         " particle-steps): this run may take minutes or more");
     }
+    for (const auto& w : warnings) std::cerr << exe << ": warning: " << w << "\n";
     RunResult r = simulate(scene, *world, opt);
     for (const auto& w : r.warnings) std::cerr << exe << ": warning: " << w << "\n";
     std::cout << summary_json(r).dump() << std::endl;

@@ -231,8 +231,17 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
     }
   }
 
+  // Every integrator against the scene before the first run.
+  std::vector<std::string> warnings = opt.warnings;
+  for (const Integrator* integ : integrators) {
+    if (!integ->check) continue;
+    const std::string w = integ->check(*integ, world.dynamics());
+    if (!w.empty()) warnings.push_back(w);
+  }
+
   // Opened now, so that an unwritable path fails before the runs.
   AtomicFile file(opt.csv);
+  for (const auto& w : warnings) std::cerr << opt.exe << ": warning: " << w << "\n";
 
   // The reference: the exact motion, or RK4 at the smallest dt / 16 (cached
   // per end time: a dt that does not divide T ends at round(T/dt) dt).

@@ -19,7 +19,9 @@
 // neighbouring cells.
 //
 // Inputs:
-//   x       2 x n centres (m); any coordinates, negative ones too
+//   x       2 x n centres (m); any coordinates, negative ones too (the
+//           collision phase makes sure that max - min of each coordinate, plus
+//           the largest diameter, is finite: positions near +-1e308 are scaled)
 //   radius  n radii (m), >= 0 (mixed sizes allowed; all zero allowed)
 // Outputs:
 //   pairs   cleared, then every overlapping pair once, as (i, j) with i < j, in

@@ -4,12 +4,18 @@
 Runs each case of tests/badinput/cases.json against the lab executables in
 --bin and checks the run contract for bad input (docs/run-contract.md):
 exit status 2 (or the case's `status`; `kill_after` S: a slow valid run,
-stopped after S seconds, that must have warned; `differs_from`: the
+stopped after S seconds, that must have warned; `stop_after` S: a run sent
+SIGTERM after S seconds, which must leave no output behind; `differs_from`: the
 arguments of a second run whose initial momentum must differ), exactly one line of valid UTF-8 on
-stderr of at most MAX_LINE bytes naming what the case `expect`s, nothing on
-stdout, no output file left behind (`absent`), within TIME_LIMIT_S seconds
-and MEMORY_LIMIT_BYTES of address space. Large scenes (deep nesting, a 17 MiB
-file) are generated into a temporary folder, not checked in.
+stderr of at most MAX_LINE bytes naming what the case `expect`s (`stderr_lines`: the
+number of lines of a run that is not refused), nothing on stdout, no output
+file left behind (`absent`), special files still special (`special`: made by
+`fifo` with a reader, or `symlink` [name, target]), within TIME_LIMIT_S seconds
+(`max_seconds`: another limit; `max_cpu_seconds`: a limit on the CPU time it
+used, which a loaded machine does not inflate) and MEMORY_LIMIT_BYTES of
+address space. `{exe}` in an `expect` string is the executable's name. Large
+scenes (deep nesting, a 17 MiB file, a file at the 16 MiB cap, generators at
+their maximum) are generated into a temporary folder, not checked in.
 
   tests/badinput/run_badinput.py --bin build/bin [--side solution] [-k NAME]
 """
@@ -18,9 +24,12 @@ import json
 import os
 import resource
 import shutil
+import signal
+import stat
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -56,6 +65,40 @@ def generate(kind, tmp):
                 '"m": 1}]}')
     elif kind == "long-key":
         text = '{"' + "k" * 100000 + '": 1}'
+    elif kind == "at-size-cap":  # exactly 16 MiB: ~870,000 small objects, the last one bad
+        head, tail = '{"dt": 0.1, "t_end": 0, "particles": [', '{"x": [0, 0], "m": -1}]}'
+        item = '{"x": [0, 0], "m": 1},'
+        count = ((16 << 20) - len(head) - len(tail)) // len(item)
+        pad = (16 << 20) - len(head) - len(tail) - count * len(item)
+        text = head + item * count + " " * pad + tail
+        assert len(text) == 16 << 20
+    elif kind == "rope-max":  # the rope generator at its maximum
+        text = json.dumps({"dt": 1e-3, "t_end": 0, "rope": {"start": [0, 0], "end": [1000, 0],
+                                                             "beads": 1000000, "m": 0.01,
+                                                             "k": 100},
+                           "forces": [{"type": "gravity", "g": [0, -9.81]}]})
+    elif kind == "cloth-max":  # the cloth generator at its maximum: 1000 x 1000
+        text = json.dumps({"dt": 1e-3, "t_end": 0, "cloth": {
+            "origin": [0, 0], "rows": 1000, "cols": 1000, "spacing": 0.01, "m": 0.001, "k": 10,
+            "k_bend": 1}, "forces": [{"type": "gravity", "g": [0, -9.81]}]})
+    elif kind == "cloth-300":  # the issue's 300 x 300 cloth
+        text = json.dumps({"dt": 1e-3, "t_end": 1, "cloth": {
+            "origin": [0, 0], "rows": 300, "cols": 300, "spacing": 0.01, "m": 0.001, "k": 10},
+            "forces": [{"type": "gravity", "g": [0, -9.81]}]})
+    elif kind == "discs-at-one-point":  # 10^5 discs emitted at one point: 5e9 pairs
+        text = json.dumps({"dt": 1e-3, "t_end": 1, "contact": {}, "emitters": [
+            {"count": 100000, "min": [0, 0], "max": [0, 0], "m": 1, "radius": 0.1}]})
+    elif kind == "particles-x-planes":  # 10^6 particles x 100 planes x 20 passes
+        planes = [{"point": [0, -k], "normal": [0, 1]} for k in range(100)]
+        text = json.dumps({"dt": 1e-3, "t_end": 1, "contact": {"iterations": 20},
+                           "planes": planes, "emitters": [
+                               {"count": 1000000, "min": [0, 0], "max": [1000, 1000],
+                                "m": 1}]})
+    elif kind == "bodies-x-planes":  # 1000 boxes x 20000 planes: 1.6e8 point tests
+        bodies = [{"shape": "box", "size": [1, 1, 1], "m": 1, "x": [2 * k, 0, 5]}
+                  for k in range(1000)]
+        planes = [{"point": [0, 0, -k], "normal": [0, 0, 1]} for k in range(20000)]
+        text = json.dumps({"dt": 1e-3, "t_end": 1, "bodies": bodies, "planes": planes})
     elif kind == "newline-in-file-name":
         path = os.path.join(tmp, "bad\nname.json")
         text = '{"dt": 0.1, "dt": 0.2}'
@@ -92,24 +135,56 @@ def run_case(case, args):
             for k, v in subst.items():
                 a = a.replace(k, v)
             argv.append(a)
+        # Special files the run writes to: a symbolic link (to /dev/null, say)
+        # and FIFOs, each with a reader that drains it.
+        readers = []
+        if "symlink" in case:
+            os.symlink(case["symlink"][1], os.path.join(tmp, case["symlink"][0]))
+        for name in case.get("fifo", []):
+            path = os.path.join(tmp, name)
+            os.mkfifo(path)
+            got = []
+            t = threading.Thread(target=lambda p=path, g=got: g.append(open(p, "rb").read()),
+                                 daemon=True)
+            t.start()
+            readers.append((name, t, got))
         start = time.monotonic()
+        cpu_before = resource.getrusage(resource.RUSAGE_CHILDREN)
         # A valid but slow run ("kill_after": S) must warn before it starts: it
-        # is stopped after S seconds and its stderr checked.
+        # is stopped after S seconds and its stderr checked. A run stopped by
+        # SIGTERM ("stop_after": S) must leave no temporary file behind.
         kill_after = case.get("kill_after")
-        limit = TIME_LIMIT_S * args.time_scale
+        stop_after = case.get("stop_after")
+        limit = case.get("max_seconds", TIME_LIMIT_S) * args.time_scale
+        proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                preexec_fn=None if args.no_memory_limit else limit_memory)
         try:
-            p = subprocess.run(argv, capture_output=True, timeout=kill_after or limit,
-                               preexec_fn=None if args.no_memory_limit else limit_memory)
-        except subprocess.TimeoutExpired as e:
-            if not kill_after:
+            out, err_bytes = proc.communicate(timeout=kill_after or stop_after or limit)
+            code = proc.returncode
+            if kill_after or stop_after:
+                return [f"finished within {kill_after or stop_after} s, expected a run long "
+                        "enough to stop"]
+        except subprocess.TimeoutExpired:
+            if not (kill_after or stop_after):
+                proc.kill()
+                proc.communicate()
                 return [f"took more than {limit} s"]
-            p = subprocess.CompletedProcess(argv, "killed", e.stdout or b"", e.stderr or b"")
-        else:
-            if kill_after:
-                return [f"finished within {kill_after} s, expected a run long enough to warn"]
+            if stop_after:
+                proc.send_signal(signal.SIGTERM)
+            else:
+                proc.kill()
+            out, err_bytes = proc.communicate()
+            code = "stopped" if stop_after else "killed"
+        p = subprocess.CompletedProcess(argv, code, out, err_bytes)
+        for _, t, _ in readers:
+            t.join(timeout=5)
         wall = time.monotonic() - start
+        cpu_after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (cpu_after.ru_utime - cpu_before.ru_utime) + (cpu_after.ru_stime - cpu_before.ru_stime)
         problems = []
-        status = case.get("status", "killed" if kill_after else 2)
+        if "max_cpu_seconds" in case and cpu > case["max_cpu_seconds"] * args.time_scale:
+            problems.append(f"used {cpu:.1f} s of CPU, expected at most {case['max_cpu_seconds']}")
+        status = case.get("status", "stopped" if stop_after else "killed" if kill_after else 2)
         if p.returncode != status:
             problems.append(f"exit status {p.returncode}, expected {status}")
         try:
@@ -127,7 +202,10 @@ def run_case(case, args):
                 problems.append("stdout is not empty")
             if "\r" in err:
                 problems.append("stderr holds a carriage return")
+        elif "stderr_lines" in case and len(lines) - 1 != case["stderr_lines"]:
+            problems.append(f"stderr has {len(lines) - 1} lines, expected {case['stderr_lines']}")
         for want in case.get("expect", []):
+            want = want.replace("{exe}", os.path.basename(exe))
             if want not in err:
                 problems.append(f"stderr lacks {want!r}")
         out = p.stdout.decode("utf-8", "replace")
@@ -143,8 +221,19 @@ def run_case(case, args):
             left = [f for f in os.listdir(tmp) if f.startswith(name)]
             if left:
                 problems.append(f"left output files behind: {left}")
+        for name in case.get("special", []):
+            mode = os.lstat(os.path.join(tmp, name)).st_mode
+            if stat.S_ISREG(mode):
+                problems.append(f"{name} was replaced by a regular file")
+            left = [f for f in os.listdir(tmp) if f.startswith(name + ".tmp")]
+            if left:
+                problems.append(f"left temporary files behind: {left}")
+        for name, _, got in readers:
+            data = got[0] if got else b""
+            if not data.startswith(case.get("fifo_starts", "").encode()):
+                problems.append(f"the reader of {name} got {data[:40]!r}")
         if args.verbose or problems:
-            print(f"    ({wall:.2f} s) stderr: {err.strip()[:300]!r}")
+            print(f"    ({wall:.2f} s, {cpu:.2f} s CPU) stderr: {err.strip()[:300]!r}")
         return problems
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

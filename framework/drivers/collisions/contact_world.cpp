@@ -77,11 +77,15 @@ std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings)
     o.only_keys({"point", "normal", "restitution", "friction", "thickness"});
     PlaneDef p;
     p.point = o.vec2("point");
+    // Scaled by its largest component before it is normalised (as the rigid
+    // lab's normals), so that [1e200, 1e200] (whose norm overflows) and
+    // [0, 3e-162] (whose squared norm is subnormal) give unit vectors too.
     const Vec2 n = o.vec2("normal");
-    if (!(n.norm() > 0) || !std::isfinite(n.norm())) {
-      o.fail("normal", &o.raw()["normal"], "a non-zero vector (it is normalised)");
+    const double scale = n.cwiseAbs().maxCoeff();
+    if (!(scale > 0)) {
+      o.fail("normal", &o.raw().at("normal"), "a non-zero vector (it is normalised)");
     }
-    p.n = n / n.norm();
+    p.n = (n / scale).normalized();
     p.restitution = o.number_or("restitution", settings.restitution, kUnit);
     p.friction = o.number_or("friction", settings.friction, kNonNegative);
     p.thickness = o.number_or("thickness", std::numeric_limits<double>::infinity(), kPositive);
@@ -90,18 +94,84 @@ std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings)
   return planes;
 }
 
+double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
+  const Eigen::Index n = x.cols();
+  if (n < 2 || !(radius.maxCoeff() > 0)) return 0;
+  // Cells as wide as the largest grown diameter (a radius plus a margin of at
+  // most the largest radius), as grid_pairs may use. Cell coordinates stay
+  // doubles: no conversion of a huge or infinite quotient to an integer.
+  const double size = 4 * radius.maxCoeff();
+  std::vector<std::pair<double, double>> cells(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    cells[std::size_t(i)] = {std::floor(x(1, i) / size), std::floor(x(0, i) / size)};
+  }
+  std::sort(cells.begin(), cells.end());
+  // (cell, count), sorted by cell.
+  std::vector<std::pair<std::pair<double, double>, double>> groups;
+  for (const auto& c : cells) {
+    if (groups.empty() || groups.back().first != c) {
+      groups.push_back({c, 1.0});
+    } else {
+      groups.back().second += 1.0;
+    }
+  }
+  const auto count = [&](double row, double col) {
+    const auto it = std::lower_bound(
+        groups.begin(), groups.end(), std::make_pair(row, col),
+        [](const auto& g, const std::pair<double, double>& c) { return g.first < c; });
+    return it != groups.end() && it->first == std::make_pair(row, col) ? it->second : 0.0;
+  };
+  double total = 0;
+  for (const auto& [cell, c] : groups) {
+    total += c * (c - 1) / 2;
+    const auto [row, col] = cell;
+    total += c * (count(row, col + 1) + count(row + 1, col - 1) + count(row + 1, col) +
+                  count(row + 1, col + 1));
+  }
+  return total;
+}
+
 ContactWorld::ContactWorld(const Scene& scene)
     : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
+  cost_warnings = forces_.cost_warnings;
   planes_ = read_planes(scene, settings_);
   any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
+  // The work of one step, estimated before the first: every particle against
+  // every plane in every pass, and the broad phase's candidate pairs.
+  const double passes =
+      settings_.iterations + (settings_.shock ? 2 : 0) + (settings_.ccd ? 1 : 0);
+  const double plane_tests = double(scene.n()) * double(planes_.size()) * passes;
+  if (plane_tests > kMaxPlaneTests) {
+    throw InputError(scene.file + ": planes: " + std::to_string(scene.n()) + " particles x " +
+                     std::to_string(planes_.size()) + " planes x " + num(passes) +
+                     " passes (contact.iterations, + 2 with shock_propagation, + 1 with ccd) = " +
+                     num(plane_tests) + " particle-plane tests per step, expected at most " +
+                     num(kMaxPlaneTests) + " (minutes per step)");
+  }
+  const double pairs = any_radius_ ? candidate_pairs_estimate(scene.x, r_) : 0.0;
+  if (pairs > kMaxCandidatePairs) {
+    throw InputError(scene.file + ": particles: their initial positions and radii give about " +
+                     num(pairs) +
+                     " candidate pairs for the broad phase (particles in neighbouring cells of "
+                     "4 largest radii), expected at most " +
+                     num(kMaxCandidatePairs) + " (spread them out or use fewer)");
+  }
+  if (plane_tests + pairs * settings_.iterations > kSlowContactWork) {
+    cost_warnings.push_back(scene.file + ": about " + num(plane_tests) +
+                            " particle-plane tests and " + num(pairs * settings_.iterations) +
+                            " pair tests per step: expect seconds per step");
+  }
   // "Up" for the stacking pass: against the sum of the uniform gravity terms
-  // (already checked by ForceWorld).
+  // (each already checked by ForceWorld), summed scaled by 2^-30 so that the
+  // sum of large ones does not overflow, and normalised after dividing by its
+  // largest component.
   Vec2 g = Vec2::Zero();
   for (const auto& f : scene.doc.value("forces", json::array())) {
     if (f.value("type", "") == "gravity")
-      g += Vec2(f["g"][0].get<double>(), f["g"][1].get<double>());
+      g += 0x1p-30 * Vec2(f["g"][0].get<double>(), f["g"][1].get<double>());
   }
-  if (g.norm() > 0) up_ = -g / g.norm();
+  const double gmax = g.cwiseAbs().maxCoeff();
+  if (gmax > 0 && std::isfinite(gmax)) up_ = -(g / gmax).normalized();
 }
 
 // Continuous check (provided): a particle that was in front of a thin wall at
@@ -142,9 +212,23 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
     const double margin =
         std::min(2 * h * std::sqrt(v.colwise().squaredNorm().maxCoeff()), r_.maxCoeff());
     r_grown_ = r_.array() + margin;
-    grid_pairs(x, r_grown_, candidates_);
-    if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
-    narrow_phase(x, r_grown_, candidates_, contacts_);
+    // grid_pairs is handed positions whose span, plus the largest diameter,
+    // is finite in each coordinate. Positions near +-1e308 (or radii near it)
+    // are scaled by 1/4 first: an exact power of two, so the pairs it finds
+    // are the same (|x_i - x_j| <= r_i + r_j scales exactly for normal numbers).
+    const Vec2 span = x.rowwise().maxCoeff() - x.rowwise().minCoeff();
+    const double reach = 2 * r_grown_.maxCoeff();
+    if ((span.array() + reach).allFinite()) {
+      grid_pairs(x, r_grown_, candidates_);
+      if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
+      narrow_phase(x, r_grown_, candidates_, contacts_);
+    } else {
+      x_scaled_ = 0.25 * x;
+      r_scaled_ = 0.25 * r_.array() + 0.25 * margin;
+      grid_pairs(x_scaled_, r_scaled_, candidates_);
+      if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
+      narrow_phase(x_scaled_, r_scaled_, candidates_, contacts_);
+    }
     if (timing) times_.narrow += seconds_since(t0);
   }
 
@@ -194,7 +278,9 @@ void ContactWorld::shock_pass(double h, Mat2X& x, Mat2X& v) const {
   order_.resize(contacts_.size());
   for (std::size_t c = 0; c < contacts_.size(); ++c) {
     const auto& [a, b] = contacts_[c];
-    order_[c] = {std::min(x.col(a).dot(up_), x.col(b).dot(up_)), int(c)};
+    const double h_low = std::min(x.col(a).dot(up_), x.col(b).dot(up_));
+    // A NaN key (a state that is diverging) would break std::sort's ordering.
+    order_[c] = {std::isnan(h_low) ? std::numeric_limits<double>::infinity() : h_low, int(c)};
   }
   std::sort(order_.begin(), order_.end());
   sorted_.resize(contacts_.size());

@@ -47,6 +47,20 @@ struct ContactSettings {
   bool shock = false;      // "shock_propagation": a last, bottom-up pass for stacks
 };
 
+// Limits of one collision step, checked on the initial state before the first
+// step (docs/scenes.md, "collisions"): particle-plane tests per step
+// (particles x planes x passes), the broad phase's candidate pairs (estimated
+// by candidate_pairs_estimate: 8 bytes each, twice, and a test per pass), and
+// the work above which a run warns that its steps are slow.
+constexpr double kMaxPlaneTests = 1e9;
+constexpr double kMaxCandidatePairs = 1e7;
+constexpr double kSlowContactWork = 1e8;
+
+// An upper bound of the pairs a uniform grid of cells 4 max(radius) wide
+// tests (each particle against its own and the neighbouring cells), in
+// O(n log n) time and O(n) memory, defined for any finite positions.
+double candidate_pairs_estimate(const Mat2X& x, const VecX& radius);
+
 // Reads "planes" and "contact" (throws InputError naming the key).
 std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings);
 
@@ -76,7 +90,9 @@ class ContactWorld : public World {
   void pair_response(double h, int i, double mj, int j, double e, Mat2X& x, Mat2X& v) const;
   ForceWorld forces_;
   VecX m_, r_;
-  mutable VecX r_grown_;  // radii plus the contact margin of this step
+  mutable VecX r_grown_;    // radii plus the contact margin of this step
+  mutable Mat2X x_scaled_;  // positions / 4, when their span overflows
+  mutable VecX r_scaled_;   // r_grown_ / 4, then
   std::vector<PlaneDef> planes_;
   ContactSettings settings_;
   bool any_radius_ = false;

@@ -2,7 +2,6 @@
 #include "forces_world.h"
 
 #include <cmath>
-#include <iostream>
 
 #include "accumulate_forces.h"
 #include "attractor.h"
@@ -164,7 +163,7 @@ const std::vector<std::string>& force_types() {
   return types;
 }
 
-ForceList build_forces(const Scene& scene) {
+ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
   ForceList out;
   JsonObject top(scene.file, scene.doc, "");
   const json& list = top.array_or_empty("forces");
@@ -172,12 +171,13 @@ ForceList build_forces(const Scene& scene) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     JsonObject o = top.element("forces", k);
     std::string type = o.string("type");
-    if ((type == "newton" || type == "boids") && scene.n() > kQuadraticWarnParticles) {
+    if ((type == "newton" || type == "boids") && scene.n() > kQuadraticWarnParticles &&
+        warnings) {
       const double n = double(scene.n());
-      std::cerr << "warning: " << one_line(scene.file) << ": " << o.path() << " (" << type
-                << ") costs O(n^2): " << n * (n - 1) / 2
-                << " particle pairs per force evaluation for " << scene.n()
-                << " particles; expect slow steps\n";
+      warnings->push_back(one_line(scene.file) + ": " + o.path() + " (" + type +
+                          ") costs O(n^2): " + num(n * (n - 1) / 2) +
+                          " particle pairs per force evaluation for " +
+                          std::to_string(scene.n()) + " particles; expect slow steps");
     }
     if (type == "gravity") {
       o.only_keys({"type", "g"});
@@ -245,6 +245,14 @@ ForceList build_forces(const Scene& scene) {
   return out;
 }
 
+Springs& spring_term(ForceList& forces) {
+  for (auto& f : forces) {
+    if (auto* s = dynamic_cast<Springs*>(f.get())) return *s;
+  }
+  forces.push_back(std::make_unique<Springs>());
+  return static_cast<Springs&>(*forces.back());
+}
+
 ParticleDynamics::ParticleDynamics(const ForceList& forces, const VecX& m)
     : forces_(forces),
       m_(m),
@@ -269,7 +277,7 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
 }
 
 ForceWorld::ForceWorld(const Scene& scene)
-    : m_(scene.m), forces_(build_forces(scene)), dyn_(forces_, m_) {}
+    : m_(scene.m), forces_(build_forces(scene, &cost_warnings)), dyn_(forces_, m_) {}
 
 Energy ForceWorld::energy(const Mat2X& x, const Mat2X& v) const {
   return wb::energy(forces_, x, v, m_);

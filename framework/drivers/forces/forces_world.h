@@ -18,8 +18,10 @@ using ForceList = std::vector<std::unique_ptr<Force>>;
 // The force types a scene may name, for --help and error messages.
 const std::vector<std::string>& force_types();
 
-// Builds only what the scene declares; throws InputError on bad entries.
-ForceList build_forces(const Scene& scene);
+// Builds only what the scene declares; throws InputError on bad entries. A
+// force that will be slow adds a sentence to `warnings` (printed by the run
+// once everything is accepted).
+ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings = nullptr);
 
 // One "spring" entry of a scene. All of a scene's springs form one Springs term.
 struct SpringDef {
@@ -37,6 +39,10 @@ class Springs : public Force {
   double potential(const Mat2X& x, const VecX& m) const override;
   std::string type() const override { return "spring"; }
 };
+
+// The list's spring term, made (at the end) if it has none: where a lab's
+// generators add springs without a JSON entry per spring.
+Springs& spring_term(ForceList& forces);
 
 // a = (sum of the forces) / m, through the student's accumulate_forces (F6).
 class ParticleDynamics : public Dynamics {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "backward_euler_spring.h"
 #include "implicit_trapezoid.h"
@@ -14,129 +15,171 @@ namespace {
 
 const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
 const Range kNonNegative{0.0};
-constexpr std::int64_t kMaxGenerated = 4'000'000;  // particles one generator may add
 
-json spring_json(std::int64_t i, std::int64_t j, double k, double rest, double kd) {
-  return json{{"type", "spring"}, {"i", i}, {"j", j}, {"k", k}, {"rest", rest}, {"damping", kd}};
-}
+std::string count_text(std::int64_t n) { return std::to_string(n); }
 
-// Appends one particle at rest to the scene.
-void add_particle(Scene& s, const Vec2& x, double m) {
-  const Eigen::Index n = s.x.cols();
-  s.x.conservativeResize(2, n + 1);
-  s.v.conservativeResize(2, n + 1);
-  s.m.conservativeResize(n + 1);
-  s.radius.conservativeResize(n + 1);
-  s.x.col(n) = x;
-  s.v.col(n).setZero();
-  s.m[n] = m;
-  s.radius[n] = 0.0;
-}
-
-void reserve(Scene& s, std::int64_t more) {
-  const Eigen::Index n = s.x.cols();
-  s.x.conservativeResize(2, n + more);
-  s.v.conservativeResize(2, n + more);
-  s.m.conservativeResize(n + more);
-  s.radius.conservativeResize(n + more);
-  s.x.conservativeResize(2, n);
-  s.v.conservativeResize(2, n);
-  s.m.conservativeResize(n);
-  s.radius.conservativeResize(n);
-}
-
-// "rope": N beads on the segment start -> end, joined in a chain.
-void expand_rope(Scene& s, json& forces, json& pinned) {
-  JsonObject top(s.file, s.doc, "");
+RopeDef read_rope(const JsonObject& top) {
   JsonObject r = top.object("rope");
   r.only_keys({"start", "end", "beads", "m", "k", "damping", "pin"});
-  const Vec2 a = r.vec2("start"), b = r.vec2("end");
-  const std::int64_t N = r.integer("beads", 2, kMaxGenerated);
-  const double m = r.number("m", kPositive), k = r.number("k", kNonNegative);
-  const double kd = r.number_or("damping", 0.0, kNonNegative);
-  const std::string pin = r.string_or("pin", "start");
-  if (pin != "start" && pin != "ends" && pin != "none")
-    r.fail("pin", &r.raw().at("pin"), "one of: start, ends, none");
-  if (a == b) r.fail("end", &r.raw().at("end"), "a point other than \"start\"");
-  const std::int64_t first = s.n();
-  std::vector<json> springs;
-  for (std::int64_t q = 0; q < N; ++q) {
-    add_particle(s, a + (b - a) * (double(q) / double(N - 1)), m);
-    if (q > 0) {
-      const double rest = (s.x.col(first + q) - s.x.col(first + q - 1)).norm();
-      forces.push_back(spring_json(first + q - 1, first + q, k, rest, kd));
-    }
+  RopeDef d;
+  d.a = r.vec2("start");
+  d.b = r.vec2("end");
+  d.N = r.integer("beads", 2, kMaxGenerated);
+  d.m = r.number("m", kPositive);
+  if (!std::isfinite(1.0 / d.m)) {
+    r.fail("m", &r.raw().at("m"), "a mass whose inverse 1/m is finite (m >= 5.6e-309)");
   }
-  if (pin != "none") pinned.push_back(first);
-  if (pin == "ends") pinned.push_back(first + N - 1);
+  d.k = r.number("k", kNonNegative);
+  d.kd = r.number_or("damping", 0.0, kNonNegative);
+  d.pin = r.string_or("pin", "start");
+  if (d.pin != "start" && d.pin != "ends" && d.pin != "none")
+    r.fail("pin", &r.raw().at("pin"), "one of: start, ends, none");
+  if (d.a == d.b) r.fail("end", &r.raw().at("end"), "a point other than \"start\"");
+  // Every bead lies on the segment and every spring is shorter than it: a
+  // finite segment length keeps positions and rest lengths finite.
+  const Vec2 ab = d.b - d.a;
+  if (!ab.allFinite() || !std::isfinite(ab.norm())) {
+    r.fail("end", &r.raw().at("end"),
+           "a point whose distance from \"start\" is finite (|end - start| overflows)");
+  }
+  return d;
 }
 
-// "cloth": a rows x cols grid hanging from its top row's corners.
-void expand_cloth(Scene& s, json& forces, json& pinned) {
-  JsonObject top(s.file, s.doc, "");
+ClothDef read_cloth(const JsonObject& top) {
   JsonObject c = top.object("cloth");
   c.only_keys(
       {"origin", "rows", "cols", "spacing", "m", "k", "k_shear", "k_bend", "damping", "pin"});
-  const Vec2 o = c.vec2("origin");
-  const std::int64_t R = c.integer("rows", 2, kMaxGenerated),
-                     C = c.integer("cols", 2, kMaxGenerated);
-  if (R * C > kMaxGenerated) {
+  ClothDef d;
+  d.o = c.vec2("origin");
+  d.R = c.integer("rows", 2, kMaxGenerated);
+  d.C = c.integer("cols", 2, kMaxGenerated);
+  if (d.R * d.C > kMaxGenerated) {
     c.fail("cols", &c.raw().at("cols"),
-           "rows x cols at most " + std::to_string(kMaxGenerated) + " particles");
+           "rows x cols at most " + std::to_string(kMaxGenerated) + " particles (rows " +
+               count_text(d.R) + " x cols " + count_text(d.C) + " = " + count_text(d.R * d.C) +
+               ")");
   }
-  const double dx = c.number("spacing", kPositive), m = c.number("m", kPositive);
-  const double k = c.number("k", kNonNegative);
-  const double ks = c.number_or("k_shear", k, kNonNegative);
-  const double kb = c.number_or("k_bend", 0.0, kNonNegative);
-  const double kd = c.number_or("damping", 0.0, kNonNegative);
-  const std::string pin = c.string_or("pin", "corners");
-  if (pin != "corners" && pin != "top" && pin != "none")
+  d.dx = c.number("spacing", kPositive);
+  d.m = c.number("m", kPositive);
+  if (!std::isfinite(1.0 / d.m)) {
+    c.fail("m", &c.raw().at("m"), "a mass whose inverse 1/m is finite (m >= 5.6e-309)");
+  }
+  d.k = c.number("k", kNonNegative);
+  d.ks = c.number_or("k_shear", d.k, kNonNegative);
+  d.kb = c.number_or("k_bend", 0.0, kNonNegative);
+  d.kd = c.number_or("damping", 0.0, kNonNegative);
+  d.pin = c.string_or("pin", "corners");
+  if (d.pin != "corners" && d.pin != "top" && d.pin != "none")
     c.fail("pin", &c.raw().at("pin"), "one of: corners, top, none");
-  const std::int64_t first = s.n();
-  reserve(s, R * C);
+  // The far corner and the longest spring (a bend spring spans 2 spacings, a
+  // shear spring sqrt(2)) finite: then every position and rest length is.
+  const Vec2 corner = d.o + Vec2(double(d.C - 1) * d.dx, -double(d.R - 1) * d.dx);
+  if (!corner.allFinite() || !std::isfinite(2.0 * d.dx) ||
+      !std::isfinite(Vec2(d.dx, d.dx).norm())) {
+    c.fail("spacing", &c.raw().at("spacing"),
+           "a spacing whose grid is finite (origin + (cols - 1) x spacing and (rows - 1) x "
+           "spacing overflow)");
+  }
+  return d;
+}
+
+// Makes room for `more` particles at the end of the scene's arrays (at rest,
+// radius 0) and returns the index of the first.
+Eigen::Index append_particles(Scene& s, std::int64_t more) {
+  const Eigen::Index n = s.x.cols(), total = n + Eigen::Index(more);
+  s.x.conservativeResize(2, total);
+  s.v.conservativeResize(2, total);
+  s.m.conservativeResize(total);
+  s.radius.conservativeResize(total);
+  s.v.rightCols(Eigen::Index(more)).setZero();
+  s.radius.tail(Eigen::Index(more)).setZero();
+  return n;
+}
+
+// One generated spring between particles i and j, at their initial distance.
+void add_spring(const Scene& s, std::vector<SpringDef>& out, Eigen::Index i, Eigen::Index j,
+                double k, double kd) {
+  SpringDef d;
+  d.i = i;
+  d.j = j;
+  d.anchor = Vec2::Zero();
+  d.k = k;
+  d.rest = (s.x.col(i) - s.x.col(j)).norm();
+  d.kd = kd;
+  out.push_back(d);
+}
+
+// "rope": N beads on the segment start -> end, joined in a chain.
+void build_rope(const RopeDef& d, Scene& s, GeneratedNetwork& g) {
+  const Eigen::Index first = g.rope_first = append_particles(s, d.N);
+  for (std::int64_t q = 0; q < d.N; ++q) {
+    s.x.col(first + q) = d.a + (d.b - d.a) * (double(q) / double(d.N - 1));
+    s.m[first + q] = d.m;
+  }
+  if (d.pin != "none") g.pinned.push_back(first);
+  if (d.pin == "ends") g.pinned.push_back(first + d.N - 1);
+}
+
+void rope_springs(const RopeDef& d, Eigen::Index first, const Scene& s,
+                  std::vector<SpringDef>& out) {
+  for (std::int64_t q = 1; q < d.N; ++q) add_spring(s, out, first + q - 1, first + q, d.k, d.kd);
+}
+
+// "cloth": a rows x cols grid hanging from its top row's corners.
+void build_cloth(const ClothDef& d, Scene& s, GeneratedNetwork& g) {
+  const Eigen::Index first = g.cloth_first = append_particles(s, d.R * d.C);
+  const std::int64_t C = d.C;
   auto id = [&](std::int64_t r, std::int64_t q) { return first + r * C + q; };
-  for (std::int64_t r = 0; r < R; ++r)
-    for (std::int64_t q = 0; q < C; ++q) add_particle(s, o + Vec2(q * dx, -r * dx), m);
-  auto spring = [&](std::int64_t i, std::int64_t j, double kk) {
-    if (kk > 0) forces.push_back(spring_json(i, j, kk, (s.x.col(i) - s.x.col(j)).norm(), kd));
-  };
-  for (std::int64_t r = 0; r < R; ++r) {
+  for (std::int64_t r = 0; r < d.R; ++r) {
     for (std::int64_t q = 0; q < C; ++q) {
-      if (q + 1 < C) spring(id(r, q), id(r, q + 1), k);  // structural
-      if (r + 1 < R) spring(id(r, q), id(r + 1, q), k);
-      if (r + 1 < R && q + 1 < C) {  // shear
-        spring(id(r, q), id(r + 1, q + 1), ks);
-        spring(id(r, q + 1), id(r + 1, q), ks);
-      }
-      if (q + 2 < C) spring(id(r, q), id(r, q + 2), kb);  // bend
-      if (r + 2 < R) spring(id(r, q), id(r + 2, q), kb);
+      s.x.col(id(r, q)) = d.o + Vec2(double(q) * d.dx, -double(r) * d.dx);
+      s.m[id(r, q)] = d.m;
     }
   }
-  if (pin == "corners") {
-    pinned.push_back(id(0, 0));
-    pinned.push_back(id(0, C - 1));
-  } else if (pin == "top") {
-    for (std::int64_t q = 0; q < C; ++q) pinned.push_back(id(0, q));
+  if (d.pin == "corners") {
+    g.pinned.push_back(id(0, 0));
+    g.pinned.push_back(id(0, C - 1));
+  } else if (d.pin == "top") {
+    for (std::int64_t q = 0; q < C; ++q) g.pinned.push_back(id(0, q));
   }
 }
 
-// The scene's pinned particle indices, checked against its particle count.
+void cloth_springs(const ClothDef& d, Eigen::Index first, const Scene& s,
+                   std::vector<SpringDef>& out) {
+  const std::int64_t R = d.R, C = d.C;
+  auto id = [&](std::int64_t r, std::int64_t q) { return first + r * C + q; };
+  auto spring = [&](std::int64_t i, std::int64_t j, double k) {
+    if (k > 0) add_spring(s, out, i, j, k, d.kd);
+  };
+  for (std::int64_t r = 0; r < R; ++r) {
+    for (std::int64_t q = 0; q < C; ++q) {
+      if (q + 1 < C) spring(id(r, q), id(r, q + 1), d.k);  // structural
+      if (r + 1 < R) spring(id(r, q), id(r + 1, q), d.k);
+      if (r + 1 < R && q + 1 < C) {  // shear
+        spring(id(r, q), id(r + 1, q + 1), d.ks);
+        spring(id(r, q + 1), id(r + 1, q), d.ks);
+      }
+      if (q + 2 < C) spring(id(r, q), id(r, q + 2), d.kb);  // bend
+      if (r + 2 < R) spring(id(r, q), id(r + 2, q), d.kb);
+    }
+  }
+}
+
+// The scene's pinned particles (its "pinned" key and the generators' pins)
+// as one flag per particle (empty: none), indices checked against the count.
 std::vector<char> read_pinned(const Scene& s) {
   JsonObject top(s.file, s.doc, "");
-  std::vector<char> flags;
   const json& list = top.array_or_empty("pinned");
-  if (list.empty()) return flags;
+  const auto* gen = std::any_cast<GeneratedNetwork>(&s.generated);
+  std::vector<char> flags;
+  if (list.empty() && (!gen || gen->pinned.empty())) return flags;
   flags.assign(std::size_t(s.n()), 0);
+  const std::string note = s.n() == 0 ? " (the scene has no particles)" : " (a particle index)";
   for (std::size_t k = 0; k < list.size(); ++k) {
-    const json& e = list[k];
-    const std::string key = "pinned[" + std::to_string(k) + "]";
-    if (!e.is_number_integer() || e.get<std::int64_t>() < 0 || e.get<std::int64_t>() >= s.n()) {
-      top.fail(key, &e,
-               "a particle index from 0 to " + std::to_string(s.n() - 1) +
-                   (s.n() == 0 ? " (the scene has no particles)" : ""));
-    }
-    flags[std::size_t(e.get<std::int64_t>())] = 1;
+    flags[std::size_t(top.integer_in("pinned", k, 0, s.n() - 1, note))] = 1;
   }
+  if (gen)
+    for (Eigen::Index i : gen->pinned) flags[std::size_t(i)] = 1;
   return flags;
 }
 
@@ -175,17 +218,48 @@ const std::vector<std::string>& implicit_scene_keys() {
 void expand_implicit_scene(Scene& scene) {
   JsonObject top(scene.file, scene.doc, "");
   top.array_or_empty("pinned");  // type checks before anything is added
-  top.array_or_empty("forces");
-  json forces = scene.doc.contains("forces") ? scene.doc["forces"] : json::array();
-  json pinned = scene.doc.contains("pinned") ? scene.doc["pinned"] : json::array();
-  if (top.has("rope")) expand_rope(scene, forces, pinned);
-  if (top.has("cloth")) expand_cloth(scene, forces, pinned);
-  scene.doc["forces"] = std::move(forces);
-  scene.doc["pinned"] = std::move(pinned);
+  // Every key read and every total checked before anything is built.
+  std::optional<RopeDef> rope;
+  std::optional<ClothDef> cloth;
+  if (top.has("rope")) rope = read_rope(top);
+  if (top.has("cloth")) cloth = read_cloth(top);
+  const std::int64_t generated = (rope ? rope->N : 0) + (cloth ? cloth->R * cloth->C : 0);
+  if (generated > kMaxGenerated) {
+    top.fail("cloth", &scene.doc.at("cloth"),
+             "a rope and a cloth of at most " + std::to_string(kMaxGenerated) +
+                 " particles together (rope.beads " + std::to_string(rope->N) +
+                 " + cloth.rows x cloth.cols " + std::to_string(cloth->R * cloth->C) + " = " +
+                 std::to_string(generated) + ")");
+  }
+  if (scene.n() + generated > kMaxParticles) {
+    top.fail(cloth ? "cloth" : "rope", &scene.doc.at(cloth ? "cloth" : "rope"),
+             "at most " + std::to_string(kMaxParticles) + " particles in a scene (" +
+                 std::to_string(scene.n()) + " declared + " + std::to_string(generated) +
+                 " generated)");
+  }
+  GeneratedNetwork g;
+  g.rope = rope;
+  g.cloth = cloth;
+  if (rope) build_rope(*rope, scene, g);
+  if (cloth) build_cloth(*cloth, scene, g);
+  scene.generated = std::move(g);
   // Pinned particles start (and stay) at rest.
   const std::vector<char> flags = read_pinned(scene);
   for (std::size_t i = 0; i < flags.size(); ++i)
     if (flags[i]) scene.v.col(Eigen::Index(i)).setZero();
+}
+
+ForceList implicit_forces(const Scene& scene, std::vector<std::string>* warnings) {
+  ForceList forces = build_forces(scene, warnings);
+  const auto* gen = std::any_cast<GeneratedNetwork>(&scene.generated);
+  if (!gen || (!gen->rope && !gen->cloth)) return forces;
+  // Made in place, in the spring term the integrators read.
+  std::vector<SpringDef>& springs = spring_term(forces).springs;
+  springs.reserve(springs.size() + std::size_t((gen->rope ? gen->rope->springs() : 0) +
+                                               (gen->cloth ? gen->cloth->springs() : 0)));
+  if (gen->rope) rope_springs(*gen->rope, gen->rope_first, scene, springs);
+  if (gen->cloth) cloth_springs(*gen->cloth, gen->cloth_first, scene, springs);
+  return forces;
 }
 
 ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
@@ -197,6 +271,7 @@ ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
   net_.pinned = read_pinned(scene);
   for (const auto& term : forces_) {
     if (const auto* springs = dynamic_cast<const Springs*>(term.get())) {
+      net_.springs.reserve(net_.springs.size() + springs->springs.size());
       for (const SpringDef& d : springs->springs) {
         NetworkSpring s;
         s.i = d.i;
@@ -269,25 +344,52 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
 }
 
 ImplicitWorld::ImplicitWorld(const Scene& scene)
-    : m_(scene.m), forces_(build_forces(scene)), dyn_(forces_, scene) {}
+    : m_(scene.m), forces_(implicit_forces(scene, &cost_warnings)), dyn_(forces_, scene) {}
 
 Energy ImplicitWorld::energy(const Mat2X& x, const Mat2X& v) const {
   return wb::energy(forces_, x, v, m_);
 }
 
-void backward_euler_1_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
+std::string backward_euler_1_check(const Integrator& self, const Dynamics& dyn) {
   const ImplicitDynamics& d = implicit_dynamics(dyn);
   const SpringNetwork& net = d.network();
   const bool ok = net.n() == 1 && net.springs.size() == 1 && net.springs[0].j < 0 &&
                   net.springs[0].rest == 0.0 && net.springs[0].kd == 0.0 && !net.is_pinned(0);
   if (!ok) {
-    throw InputError(d.file() +
-                     ": backward-euler-1 solves one free particle on one spring to an anchor "
-                     "with rest 0 and damping 0 (drag and other forces are fine); this scene "
-                     "has " +
+    throw InputError(d.file() + ": " + self.name +
+                     " solves one free particle on one spring to an anchor with rest 0 and "
+                     "damping 0 (drag and other forces are fine); this scene has " +
                      std::to_string(net.n()) + " particles and " +
                      std::to_string(net.springs.size()) + " springs: use backward-euler");
   }
+  return "";
+}
+
+std::string newton_check(const Integrator& self, const Dynamics& dyn) {
+  const ImplicitDynamics& d = implicit_dynamics(dyn);
+  const SpringNetwork& net = d.network();
+  const std::string size = std::to_string(2 * net.n()) + " unknowns (2 per particle) and " +
+                           std::to_string(net.springs.size()) + " springs";
+  if (net.n() > kMaxNewtonParticles) {
+    throw InputError(d.file() + ": " + self.name + ": each step solves a Newton system of " +
+                     size + ", expected at most " + std::to_string(2 * kMaxNewtonParticles) +
+                     " unknowns (" + std::to_string(kMaxNewtonParticles) +
+                     " particles: a cloth of that size takes minutes per step); use an "
+                     "explicit integrator or fewer particles");
+  }
+  if (net.n() > kNewtonWarnParticles) {
+    return d.file() + ": " + self.name + ": each step solves a Newton system of " + size +
+           " (a sparse factorisation per Newton iteration): expect up to seconds per step "
+           "(a cloth of 10^4 particles: about 1 s)";
+  }
+  return "";
+}
+
+void backward_euler_1_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
+  const ImplicitDynamics& d = implicit_dynamics(dyn);
+  const SpringNetwork& net = d.network();
+  static const Integrator self{"backward-euler-1", backward_euler_1_adapter, 1, 1, ""};
+  backward_euler_1_check(self, dyn);  // also when called without the run's check
   d.external_forces(x, v, s.a0);
   const NetworkSpring& sp = net.springs[0];
   Vec2 xi = x.col(0), vi = v.col(0);

@@ -171,18 +171,24 @@ ordered_json run_sweep(const LabInfo& info, const Scene& scene, double base_dt, 
   if (dts.empty()) {
     for (int k = 3; k >= -6; --k) dts.push_back(std::ldexp(base_dt, k));
   }
+  const std::string ladder = opt.dts.empty() ? "--dt" : "--dts";
   for (double h : dts) {
     if (!(std::isfinite(h) && h > 0)) {
-      throw InputError("--dts: got " + num(h) + ", expected finite numbers > 0");
+      throw InputError(ladder + ": got " + num(h) + ", expected finite numbers > 0");
     }
-    if (!(std::round(T / h) <= 1e9)) {
-      throw InputError("--dts: " + num(h) + " takes more than 1e9 steps to t_end " + num(T));
+    const double n = std::round(T / h);
+    if (!(n >= 1 && n <= double(wb::kMaxSteps))) {
+      throw InputError(ladder + ": step " + num(h) + " gives round(T/dt) = " + num(n) +
+                       " steps for T = " + num(T) + ", expected 1 to " +
+                       std::to_string(wb::kMaxSteps));
     }
   }
   if (opt.repeats < 1) {
     throw InputError("--repeats: got " + std::to_string(opt.repeats) + ", expected >= 1");
   }
   wb::AtomicFile csv(opt.csv);
+  const std::string exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
+  for (const auto& w : scene.cost_warnings) std::cerr << exe << ": warning: " << w << "\n";
   std::string buf =
       "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,"
       "status\n";
@@ -308,6 +314,7 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
     opt.every = flags->every.value_or(1);
     opt.out = flags->out;
     opt.stats = flags->stats;
+    for (const auto& w : scene.cost_warnings) std::cerr << exe << ": warning: " << w << "\n";
     std::vector<std::string> warnings;
     const ordered_json j = simulate(scene, opt, warnings);
     for (const auto& w : warnings) std::cerr << exe << ": warning: " << w << "\n";

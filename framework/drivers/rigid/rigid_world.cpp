@@ -219,6 +219,31 @@ void check_initial_totals(const Scene& s) {
                        "or size is so large that they overflow)");
 }
 
+// The contact work of one step (every contact point of every body against
+// every plane), checked before the planes are read: refused above
+// kMaxContactTests, a warning above kSlowContactTests.
+void check_contact_work(const JsonObject& top, Scene& s, std::size_t planes) {
+  double points = 0;  // contact candidates per plane (contact_points)
+  for (const BodyDef& d : s.bodies) {
+    points += d.shape == BodyDef::kSphere ? 1 : d.shape == BodyDef::kBox ? 8 : 32;
+  }
+  const double tests = points * double(planes);
+  const std::string what = std::to_string(s.bodies.size()) + " bodies (" + wb::num(points) +
+                           " contact points: 8 per box, 1 per sphere, 32 per cylinder) x " +
+                           std::to_string(planes) + " planes = " + wb::num(tests) +
+                           " point-plane tests per step";
+  if (tests > kMaxContactTests) {
+    top.fail("planes", &top.raw().at("planes"),
+             "at most " + wb::num(kMaxContactTests) +
+                 " point-plane tests per step (minutes per "
+                 "step); the scene has " +
+                 what);
+  }
+  if (tests > kSlowContactTests) {
+    s.cost_warnings.push_back(s.file + ": " + what + ": expect seconds per step");
+  }
+}
+
 }  // namespace
 
 Scene load_scene(const std::string& file) {
@@ -271,6 +296,7 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
   }
   check_initial_totals(s);
   const wb::json& planes = top.array_or_empty("planes");
+  check_contact_work(top, s, planes.size());
   for (std::size_t i = 0; i < planes.size(); ++i) {
     JsonObject p = top.element("planes", i);
     p.only_keys({"point", "normal"});

@@ -52,10 +52,18 @@ struct Scene {
   std::vector<Plane> planes;
   double restitution = 0.3, friction = 0.5;
   std::vector<Hinge> hinges;
+  // Valid but slow (docs/scenes.md, "rigid"): printed as "<lab>: warning: ..."
+  // once the scene and the flags are accepted.
+  std::vector<std::string> cost_warnings;
   bool torque_free() const {
     return g.isZero(0) && point_forces.empty() && planes.empty() && hinges.empty();
   }
 };
+
+// Contact work of one step (every body's contact points against every plane):
+// refused above kMaxContactTests, a warning above kSlowContactTests.
+constexpr double kMaxContactTests = 1e8;
+constexpr double kSlowContactTests = 1e6;
 
 // Reads and checks a scene file; throws wb::InputError naming the key.
 Scene load_scene(const std::string& file);

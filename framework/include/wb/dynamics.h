@@ -61,6 +61,12 @@ struct Integrator {
   int evals_per_step;       // force evaluations per step
   int order;                // global order of accuracy
   std::string description;  // one line for --help
+  // Optional: throws InputError when this integrator cannot run the scene
+  // (backward-euler-1 on a scene of many springs, a Newton system over its
+  // limit); returns a warning sentence when it can but slowly (empty: nothing
+  // to say). Called before the first step of a run, and for every integrator
+  // of a sweep before its first run.
+  std::string (*check)(const Integrator& self, const Dynamics& dyn) = nullptr;
 };
 
 }  // namespace wb

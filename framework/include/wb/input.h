@@ -66,6 +66,10 @@ class JsonObject {
   std::int64_t integer(const char* key, std::int64_t min, std::int64_t max) const;
   std::int64_t integer_or(const char* key, std::int64_t def, std::int64_t min,
                           std::int64_t max) const;
+  // Element i of the array at `key` as a whole number in [min, max] (same
+  // rules as integer()); a message adds `note` after the range.
+  std::int64_t integer_in(const char* key, std::size_t i, std::int64_t min, std::int64_t max,
+                          const std::string& note = "") const;
   bool boolean_or(const char* key, bool def) const;
   // The object at `key` (which must be a JSON object).
   JsonObject object(const char* key) const;

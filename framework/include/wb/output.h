@@ -8,7 +8,10 @@
 namespace wb {
 
 // Writes to "<path>.tmp-<pid>" and renames over <path> on commit(); a file
-// destroyed before commit() (an error, a crash unwinding) removes its temporary.
+// destroyed before commit() (an error, a crash unwinding) or a run stopped by
+// SIGINT, SIGTERM or SIGHUP removes its temporary. Only a regular file (or a
+// new one) is replaced: a path that is a device or a FIFO (/dev/null, a pipe)
+// is written through, and a symbolic link's target is replaced, not the link.
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path);  // throws InputError naming the path
@@ -21,8 +24,9 @@ class AtomicFile {
   void commit();  // throws std::runtime_error if the data could not be written
 
  private:
-  std::string path_, tmp_;
+  std::string path_, target_, tmp_;  // tmp_ empty: written through
   std::FILE* f_ = nullptr;
+  int slot_ = -1;  // in the table of temporaries a signal removes
 };
 
 // A CSV output, or nothing when its path is empty: opened (and so checked) at

@@ -1,6 +1,7 @@
 // A particle scene: the particles it declares or emits and its raw force list.
 // Every key is documented in docs/scenes.md.
 #pragma once
+#include <any>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -20,6 +21,9 @@ struct Scene {
   VecX m;                                 // masses (n), all > 0
   VecX radius;                            // radii (n), all >= 0
   json doc;                               // the whole document (forces and lab keys)
+  // What a lab's scene generators built besides particles (LabInfo::expand_scene)
+  // for its make_world to read: the implicit lab's rope and cloth springs and pins.
+  std::any generated;
   std::int64_t n() const { return x.cols(); }
 };
 

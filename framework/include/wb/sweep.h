@@ -42,6 +42,10 @@ struct SweepOptions {
   std::optional<double> t_end;           // --t-end (else the scene's t_end)
   int repeats = 3;                       // wall_s = fastest of this many timed loops
   bool progress = true;                  // one line per run on stderr
+  // Printed as "<exe>: warning: ..." once every option and integrator is
+  // accepted, before the first run, with the integrators' own (Integrator::check).
+  std::string exe = "sweep";
+  std::vector<std::string> warnings;
 };
 
 // What the sweep wrote, for the summary line.

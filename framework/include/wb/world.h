@@ -5,6 +5,8 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "wb/dynamics.h"
 #include "wb/scene.h"
@@ -29,6 +31,10 @@ class World {
   // Called after every integrator step of size h, before the state is
   // recorded (collision detection and response). The default does nothing.
   virtual void after_step(double /*h*/, Mat2X& /*x*/, Mat2X& /*v*/) const {}
+  // Valid but slow: one sentence per cost rule the scene crosses (docs/scenes.md,
+  // "Limits"), printed as "<lab>: warning: ..." only once the whole scene and
+  // the flags are accepted.
+  std::vector<std::string> cost_warnings;
 };
 
 // Builds a scene's World; throws InputError for bad scene entries.
