@@ -297,10 +297,19 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
   check_initial_totals(s);
   const wb::json& planes = top.array_or_empty("planes");
   check_contact_work(top, s, planes.size());
+  double heaviest = 0;
+  for (const BodyDef& d : s.bodies) heaviest = std::max(heaviest, d.body.m);
   for (std::size_t i = 0; i < planes.size(); ++i) {
     JsonObject p = top.element("planes", i);
     p.only_keys({"point", "normal"});
     s.planes.push_back({vec3_or(p, "point", Vec3::Zero()), direction(p, "normal")});
+    // A body pushed onto the plane has the potential energy of its point: the
+    // same bound as a body's own position (check_position), for the heaviest.
+    if (!within_body_limit(heaviest * s.g.dot(s.planes.back().point))) {
+      p.fail("point", value_at(p, "point"),
+             "a point whose potential energy m |g.point| for the heaviest body (m = " +
+                 wb::num(heaviest) + ") is at most " + std::string(kMaxBodyQuantityText));
+    }
   }
   if (top.has("contact")) {
     JsonObject c = top.object("contact");
