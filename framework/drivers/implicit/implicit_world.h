@@ -74,7 +74,8 @@ ForceList implicit_forces(const Scene& scene, std::vector<std::string>* warnings
 // The Newton integrators' limits (backward-euler, baraff-witkin,
 // implicit-trapezoid), from docs/benchmarks.md's CPU times per step: a
 // 10^4-particle cloth takes about 1.2 s per Newton step, a 10^5 one 23 s per
-// linear solve (the sparse factorisation of a 2D grid grows as n^1.5). Above
+// linear solve (the sparse factorisation of a 2D grid grows as n^1.5; one
+// baraff-witkin step of a 316 x 316 cloth: 34 s of CPU, 645 MB). Above
 // kNewtonWarnParticles a run warns; above kMaxNewtonParticles it is refused.
 constexpr Eigen::Index kNewtonWarnParticles = 20'000;
 constexpr Eigen::Index kMaxNewtonParticles = 100'000;
