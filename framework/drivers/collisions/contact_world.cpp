@@ -214,8 +214,9 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
     r_grown_ = r_.array() + margin;
     // grid_pairs is handed positions whose span, plus the largest diameter,
     // is finite in each coordinate. Positions near +-1e308 (or radii near it)
-    // are scaled by 1/4 first: an exact power of two, so the pairs it finds
-    // are the same (|x_i - x_j| <= r_i + r_j scales exactly for normal numbers).
+    // are scaled by 1/8 first (span / 8 + 4 radii / 8 < 1.8e308): an exact
+    // power of two, so the pairs it finds are the same (|x_i - x_j| <= r_i + r_j
+    // scales exactly for normal numbers).
     const Vec2 span = x.rowwise().maxCoeff() - x.rowwise().minCoeff();
     const double reach = 2 * r_grown_.maxCoeff();
     if ((span.array() + reach).allFinite()) {
@@ -223,8 +224,8 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
       if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
       narrow_phase(x, r_grown_, candidates_, contacts_);
     } else {
-      x_scaled_ = 0.25 * x;
-      r_scaled_ = 0.25 * r_.array() + 0.25 * margin;
+      x_scaled_ = 0.125 * x;
+      r_scaled_ = 0.125 * r_.array() + 0.125 * margin;
       grid_pairs(x_scaled_, r_scaled_, candidates_);
       if (timing) times_.broad += seconds_since(t0), t0 = Clock::now();
       narrow_phase(x_scaled_, r_scaled_, candidates_, contacts_);

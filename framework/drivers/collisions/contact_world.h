@@ -92,8 +92,8 @@ class ContactWorld : public World {
   ForceWorld forces_;
   VecX m_, r_;
   mutable VecX r_grown_;    // radii plus the contact margin of this step
-  mutable Mat2X x_scaled_;  // positions / 4, when their span overflows
-  mutable VecX r_scaled_;   // r_grown_ / 4, then
+  mutable Mat2X x_scaled_;  // positions / 8, when their span overflows
+  mutable VecX r_scaled_;   // r_grown_ / 8, then
   std::vector<PlaneDef> planes_;
   ContactSettings settings_;
   bool any_radius_ = false;
