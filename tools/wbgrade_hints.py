@@ -1,0 +1,124 @@
+"""Names the likely mistake behind a set of failed tests, from the catalogue of known mistakes.
+
+Pure standard library, no grader internals: the grader (or any tool) passes in what failed
+and the lab's stored signatures (tests/mutants/<lab>/signatures.json, written by
+`tools/mutants --signatures`), and gets back zero to three sentences for the student.
+
+    import wbgrade_hints
+    sigs = wbgrade_hints.load_signatures(repo, "forces")        # None when the lab has none
+    lines = wbgrade_hints.hints_for("forces", failed, all_tests, sigs)
+
+`failed` is the list of failed test case names, or a dict {name: one-line reason} (the
+reason is used to tell apart mistakes that fail the same tests at different assertions).
+`all_tests` is every test case name of the lab (passed or failed).
+
+The closeness rule (docs/grading.md, "Hints"): each known mistake m has a signature S_m,
+the set of tests it fails, each with the class of its first failed assertion (the reason's
+first clause, numbers blanked). The submission's failures F are compared with each S_m by
+the Jaccard index over the failed test names, J = |F & S_m| / |F | S_m|, plus
+ASSERTION_BONUS times the share of the common tests that failed at the same assertion.
+A mistake is close when J >= CLOSE (every failed test of the submission is among the
+mistake's and at least CLOSE of the union agrees). The closest one is named, with any
+other whose score is within TIE of it, up to MAX_HINTS sentences with different text.
+Nothing is said when nothing is close, when no test failed, or when every test failed
+(a skeleton, a build error, a crash at start: no pattern to match).
+"""
+import json
+import os
+import re
+
+SIGNATURES_VERSION = 1
+CLOSE = 0.6          # the least Jaccard index over failed test names to name a mistake
+TIE = 0.05           # scores within TIE of the best are named together
+MAX_HINTS = 3        # at most this many mistakes are named
+ASSERTION_BONUS = 0.1  # weight of "the same assertion failed" among the common tests
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+
+
+def assertion_class(reason):
+    """The class of a failure reason: its first clause (up to the first '; ' or newline),
+    numbers blanked, so that the same assertion failing with other values is the same class."""
+    first = re.split(r"; |\n", reason or "", maxsplit=1)[0]
+    return " ".join(_NUMBER.sub("#", first).split())[:160]
+
+
+def signatures_path(repo, lab):
+    return os.path.join(repo, "tests", "mutants", lab, "signatures.json")
+
+
+def load_signatures(repo, lab):
+    """The lab's stored signatures (the parsed JSON), or None when there are none or the file
+    cannot be read (then no hints: a missing catalogue must never break grading)."""
+    try:
+        with open(signatures_path(repo, lab), encoding="utf-8") as f:
+            data = json.load(f)
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("version") != SIGNATURES_VERSION \
+            or not isinstance(data.get("mutants"), dict):
+        return None
+    return data
+
+
+def _failed_map(failed):
+    if isinstance(failed, dict):
+        return {str(k): assertion_class(str(v)) for k, v in failed.items()}
+    return {str(k): None for k in failed}
+
+
+def scores(failed, all_tests, signatures, exclude=()):
+    """[(score, jaccard, mutant name, hint)] for every known mistake, best first.
+    `exclude`: mutant names to leave out (leave-one-out)."""
+    tests = set(all_tests)
+    F = _failed_map(failed)
+    Fset = set(F) & tests
+    out = []
+    mutants = (signatures or {}).get("mutants", {})
+    for name in sorted(mutants):
+        m = mutants[name]
+        if name in exclude or not isinstance(m, dict):
+            continue
+        S = {t: c for t, c in (m.get("failed") or {}).items() if t in tests}
+        if not S or not Fset:
+            continue
+        common = Fset & set(S)
+        j = len(common) / len(Fset | set(S))
+        same = [t for t in common if F[t] is not None and F[t] == S[t]]
+        bonus = ASSERTION_BONUS * len(same) / len(common) if common else 0.0
+        out.append((j + bonus, j, name, str(m.get("hint", "")).strip()))
+    out.sort(key=lambda r: (-r[0], r[2]))
+    return out
+
+
+def matches(failed, all_tests, signatures, exclude=()):
+    """The mutants whose hints would be shown: [(score, jaccard, name, hint)]."""
+    F = set(_failed_map(failed)) & set(all_tests)
+    if not F or F >= set(all_tests):
+        return []
+    ranked = [r for r in scores(failed, all_tests, signatures, exclude) if r[1] >= CLOSE and r[3]]
+    if not ranked:
+        return []
+    best = ranked[0][0]
+    chosen, texts = [], set()
+    for r in ranked:
+        if r[0] < best - TIE or len(texts) >= MAX_HINTS:
+            break
+        if r[3] not in texts:
+            texts.add(r[3])
+            chosen.append(r)
+    return chosen
+
+
+def hints_for(lab, failed, all_tests, signatures):
+    """Zero to MAX_HINTS sentences for the student; never certain, never solution code.
+    `signatures`: load_signatures(repo, lab) (None: no hints)."""
+    if not signatures or signatures.get("lab", lab) != lab:
+        return []
+    chosen = matches(failed, all_tests, signatures)
+    if not chosen:
+        return []
+    if len(chosen) == 1:
+        return [f"These failures match a known mistake: {chosen[0][3]}"]
+    return ["These failures match one of these known mistakes (check each):"] + \
+        [f"- {r[3]}" for r in chosen]
