@@ -8,8 +8,9 @@ and the lab's stored signatures (tests/mutants/<lab>/signatures.json, written by
     sigs = wbgrade_hints.load_signatures(repo, "forces")        # None when the lab has none
     lines = wbgrade_hints.hints_for("forces", failed, all_tests, sigs)
 
-`failed` is the list of failed test case names, or a dict {name: one-line reason} (the
-reason is used to tell apart mistakes that fail the same tests at different assertions).
+`failed` is the list of failed test case names, or a dict {name: the grader's output for
+that test} (its first paragraph, the failure reason, tells apart mistakes that fail the same
+tests at different assertions: failure_text()).
 `all_tests` is every test case name of the lab (passed or failed).
 
 The closeness rule (docs/grading.md, "Hints"): each known mistake m has a signature S_m,
@@ -36,11 +37,22 @@ ASSERTION_BONUS = 0.1  # weight of "the same assertion failed" among the common 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 
 
-def assertion_class(reason):
-    """The class of a failure reason: its first clause (up to the first '; ' or newline),
-    numbers blanked, so that the same assertion failing with other values is the same class."""
-    first = re.split(r"; |\n", reason or "", maxsplit=1)[0]
-    return " ".join(_NUMBER.sub("#", first).split())[:160]
+CLASS_CHARS = 300   # characters of a blanked failure text kept in a signature
+CLASS_PREFIX = 300  # characters of it compared ("the same assertion")
+
+
+def failure_text(output):
+    """What a signature keeps of a failed test: the first paragraph of the grader's output for
+    it (the whole failure reason: the assertion's message, expected and actual values), every
+    number blanked to '#' (values differ from run to run of a wrong program, the assertion
+    does not), whitespace collapsed, at most CLASS_CHARS characters."""
+    first = (output or "").split("\n\n", 1)[0]
+    return " ".join(_NUMBER.sub("#", first).split())[:CLASS_CHARS]
+
+
+def assertion_class(text):
+    """The class compared between a submission's failure and a signature's."""
+    return failure_text(text)[:CLASS_PREFIX]
 
 
 def signatures_path(repo, lab):
