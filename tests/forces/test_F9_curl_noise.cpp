@@ -86,16 +86,18 @@ TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the dif
     }
     CAPTURE(with_obstacles, u_max, vort_max);
     {
-      INFO("the flow must not be zero: u = (dpsi/dy, -dpsi/dx) of a noise potential has "
-           "speeds of about 1.5 m/s");
+      INFO(
+          "the flow must not be zero: u = (dpsi/dy, -dpsi/dx) of a noise potential has "
+          "speeds of about 1.5 m/s");
       REQUIRE(u_max > 0.1);
     }
     const double tol = kDivRoundoffFactor * kEps * u_max / p.h;
-    INFO("div u measured by central differences with the flow's own step h must cancel to "
-         "rounding: u = (dpsi/dy, -dpsi/dx) exactly (a swapped sign in one component, or the "
-         "gradient (dpsi/dx, dpsi/dy) instead of the curl, leaves a divergence as large as the "
-         "vorticity)\n  largest |div u| "
-         << div_max << " 1/s, allowed " << tol << " (largest |vorticity| " << vort_max << ")");
+    INFO(
+        "div u measured by central differences with the flow's own step h must cancel to "
+        "rounding: u = (dpsi/dy, -dpsi/dx) exactly (a swapped sign in one component, or the "
+        "gradient (dpsi/dx, dpsi/dy) instead of the curl, leaves a divergence as large as the "
+        "vorticity)\n  largest |div u| "
+        << div_max << " 1/s, allowed " << tol << " (largest |vorticity| " << vort_max << ")");
     REQUIRE(div_max <= tol);
   }
 }
@@ -171,14 +173,16 @@ TEST_CASE("F9 curl noise: the flow is tangent to an obstacle and slips along it"
     const Vec2 u = curl_noise_flow(x, p);
     CAPTURE(k, wbtest::str(x));
     {
-      INFO("the flow must not cross the edge of an obstacle: u . n = dpsi_c/dtangent = 0 "
-           "there, since psi_c = 0 all along the edge\n  u . n = "
-           << u.dot(n) << " m/s, u = " << wbtest::str(u));
+      INFO(
+          "the flow must not cross the edge of an obstacle: u . n = dpsi_c/dtangent = 0 "
+          "there, since psi_c = 0 all along the edge\n  u . n = "
+          << u.dot(n) << " m/s, u = " << wbtest::str(u));
       REQUIRE(std::abs(u.dot(n)) <= kFlowTol);
     }
-    wbtest::require_near(u, (15.0 / 8) * p.psi(x) / p.ramp * Vec2(n.y(), -n.x()), kFlowTol,
-                         "on the edge the flow slips along it with u = 15/8 psi / d0 (n_y, -n_x): "
-                         "ramp psi itself (not the velocity) so the edge is a streamline");
+    wbtest::require_near(
+        u, (15.0 / 8) * p.psi(x) / p.ramp * Vec2(n.y(), -n.x()), kFlowTol,
+        "on the edge the flow slips along it with u = 15/8 psi / d0 (n_y, -n_x): "
+        "ramp psi itself (not the velocity) so the edge is a streamline");
   }
 }
 
@@ -221,9 +225,10 @@ TEST_CASE("F9 curl noise: the same seed gives the same forces and another seed a
   const Mat2X a = forces(11), b = forces(11), c = forces(12);
   wbtest::require_finite(a, "curl-noise drag on 50 particles");
   {
-    INFO("two fields built from the same seed must give bit-identical forces (no hidden "
-         "state, no randomness of your own): largest difference "
-         << (a - b).cwiseAbs().maxCoeff() << " N");
+    INFO(
+        "two fields built from the same seed must give bit-identical forces (no hidden "
+        "state, no randomness of your own): largest difference "
+        << (a - b).cwiseAbs().maxCoeff() << " N");
     REQUIRE((a - b).cwiseAbs().maxCoeff() == 0.0);
   }
   {

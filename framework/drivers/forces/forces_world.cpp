@@ -180,8 +180,7 @@ double Springs::potential(const Mat2X& x, const VecX&) const {
 
 const std::vector<std::string>& force_types() {
   static const std::vector<std::string> types = {"gravity", "newton", "attractor", "damping",
-                                                 "spring",  "boids",  "vortex",
-                                                 "curl-noise"};
+                                                 "spring",  "boids",  "vortex",    "curl-noise"};
   return types;
 }
 

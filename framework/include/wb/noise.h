@@ -32,13 +32,22 @@ inline double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 
 // The unit gradient at lattice point (i, j): one of 16 directions.
 inline Vec2 lattice_gradient(std::int64_t i, std::int64_t j, std::uint64_t seed) {
-  static const double kDir[16][2] = {
-      {1.0, 0.0},           {0.9238795325, 0.3826834324},   {0.7071067812, 0.7071067812},
-      {0.3826834324, 0.9238795325},   {0.0, 1.0},           {-0.3826834324, 0.9238795325},
-      {-0.7071067812, 0.7071067812},  {-0.9238795325, 0.3826834324},  {-1.0, 0.0},
-      {-0.9238795325, -0.3826834324}, {-0.7071067812, -0.7071067812}, {-0.3826834324, -0.9238795325},
-      {0.0, -1.0},          {0.3826834324, -0.9238795325},  {0.7071067812, -0.7071067812},
-      {0.9238795325, -0.3826834324}};
+  static const double kDir[16][2] = {{1.0, 0.0},
+                                     {0.9238795325, 0.3826834324},
+                                     {0.7071067812, 0.7071067812},
+                                     {0.3826834324, 0.9238795325},
+                                     {0.0, 1.0},
+                                     {-0.3826834324, 0.9238795325},
+                                     {-0.7071067812, 0.7071067812},
+                                     {-0.9238795325, 0.3826834324},
+                                     {-1.0, 0.0},
+                                     {-0.9238795325, -0.3826834324},
+                                     {-0.7071067812, -0.7071067812},
+                                     {-0.3826834324, -0.9238795325},
+                                     {0.0, -1.0},
+                                     {0.3826834324, -0.9238795325},
+                                     {0.7071067812, -0.7071067812},
+                                     {0.9238795325, -0.3826834324}};
   const std::uint64_t h =
       mix(mix(seed ^ 0x9e3779b97f4a7c15ULL) ^ mix(std::uint64_t(i) * 0xd1b54a32d192ed03ULL) ^
           std::uint64_t(j) * 0x8cb92ba72f3d8dd7ULL);
@@ -55,7 +64,8 @@ inline double gradient_noise(const Vec2& p, std::uint64_t seed) {
   const auto i = std::int64_t(fx), j = std::int64_t(fy);
   const double tx = p.x() - fx, ty = p.y() - fy;  // position inside the cell, in [0, 1)
   auto corner = [&](std::int64_t di, std::int64_t dj) {
-    return noise_detail::lattice_gradient(i + di, j + dj, seed).dot(Vec2(tx - double(di), ty - double(dj)));
+    return noise_detail::lattice_gradient(i + di, j + dj, seed)
+        .dot(Vec2(tx - double(di), ty - double(dj)));
   };
   const double sx = noise_detail::fade(tx), sy = noise_detail::fade(ty);
   const double bottom = corner(0, 0) + sx * (corner(1, 0) - corner(0, 0));
