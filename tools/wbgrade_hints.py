@@ -32,7 +32,7 @@ SIGNATURES_VERSION = 1
 CLOSE = 0.6          # the least Jaccard index over failed test names to name a mistake
 TIE = 0.05           # scores within TIE of the best are named together
 MAX_HINTS = 3        # at most this many mistakes are named
-ASSERTION_BONUS = 0.1  # weight of "the same assertion failed" among the common tests
+ASSERTION_WEIGHT = 0.5  # weight of the (test, failure text) Jaccard index in the score
 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 
@@ -80,35 +80,34 @@ def _failed_map(failed):
 
 
 def scores(failed, all_tests, signatures, exclude=()):
-    """[(score, jaccard, mutant name, hint)] for every known mistake, best first.
+    """[(score, mutant name, hint)] for every known mistake, best first.
     `exclude`: mutant names to leave out (leave-one-out)."""
     tests = set(all_tests)
-    F = _failed_map(failed)
-    Fset = set(F) & tests
+    F = {t: c for t, c in _failed_map(failed).items() if t in tests}
     out = []
     mutants = (signatures or {}).get("mutants", {})
     for name in sorted(mutants):
         m = mutants[name]
         if name in exclude or not isinstance(m, dict):
             continue
-        S = {t: c for t, c in (m.get("failed") or {}).items() if t in tests}
-        if not S or not Fset:
+        S = {t: assertion_class(c) for t, c in (m.get("failed") or {}).items() if t in tests}
+        if not S or not F:
             continue
-        common = Fset & set(S)
-        j = len(common) / len(Fset | set(S))
-        same = [t for t in common if F[t] is not None and F[t] == S[t]]
-        bonus = ASSERTION_BONUS * len(same) / len(common) if common else 0.0
-        out.append((j + bonus, j, name, str(m.get("hint", "")).strip()))
-    out.sort(key=lambda r: (-r[0], r[2]))
+        names = len(set(F) & set(S)) / len(set(F) | set(S))
+        same = sum(1 for t in set(F) & set(S) if F[t] is not None and F[t] == S[t])
+        pairs = same / len(set(F) | set(S))  # Jaccard over (test, failure text) pairs
+        score = (1 - ASSERTION_WEIGHT) * names + ASSERTION_WEIGHT * pairs
+        out.append((score, name, str(m.get("hint", "")).strip()))
+    out.sort(key=lambda r: (-r[0], r[1]))
     return out
 
 
 def matches(failed, all_tests, signatures, exclude=()):
-    """The mutants whose hints would be shown: [(score, jaccard, name, hint)]."""
+    """The known mistakes whose hints would be shown: [(score, name, hint)]."""
     F = set(_failed_map(failed)) & set(all_tests)
     if not F or F >= set(all_tests):
         return []
-    ranked = [r for r in scores(failed, all_tests, signatures, exclude) if r[1] >= CLOSE and r[3]]
+    ranked = [r for r in scores(failed, all_tests, signatures, exclude) if r[0] >= CLOSE and r[2]]
     if not ranked:
         return []
     best = ranked[0][0]
@@ -116,8 +115,8 @@ def matches(failed, all_tests, signatures, exclude=()):
     for r in ranked:
         if r[0] < best - TIE or len(texts) >= MAX_HINTS:
             break
-        if r[3] not in texts:
-            texts.add(r[3])
+        if r[2] not in texts:
+            texts.add(r[2])
             chosen.append(r)
     return chosen
 
@@ -131,6 +130,6 @@ def hints_for(lab, failed, all_tests, signatures):
     if not chosen:
         return []
     if len(chosen) == 1:
-        return [f"These failures match a known mistake: {chosen[0][3]}"]
-    return ["These failures match one of these known mistakes (check each):"] + \
-        [f"- {r[3]}" for r in chosen]
+        return [f"These failures match a known mistake: {chosen[0][2]}"]
+    return ["These failures match known mistakes; check each of:"] + \
+        [f"- {r[2]}" for r in chosen]

@@ -272,6 +272,11 @@ ForceList build_forces(const Scene& scene) {
         p.obstacles.push_back({d.vec2("center"), d.number("radius", kPositive)});
       }
       p.h = kCurlStepFraction * std::min(scale, p.ramp);
+      if (!(p.h > 0)) {
+        o.fail(scale <= p.ramp ? "scale" : "ramp",
+               &o.raw().at(scale <= p.ramp ? "scale" : "ramp"),
+               "a length whose 10^-4 (the curl's difference step) is still a positive number");
+      }
       out.push_back(std::make_unique<CurlNoise>(std::move(p)));
     } else {
       std::string known;
