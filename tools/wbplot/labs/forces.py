@@ -262,7 +262,7 @@ def plot_smoke(trace, scene, out, fps=20, title=None):
         raise InputError(f"{trace}: no rows (expected a trace CSV t,id,x,y,vx,vy)")
     ids = sorted(data)
     rows = min(len(data[i]["t"]) for i in ids)
-    step = max(1, math.ceil(rows / MAX_FRAMES))
+    step = max(1, math.ceil((rows - 1) / MAX_FRAMES))
     frames = list(range(0, rows, step))
     if frames[-1] != rows - 1:
         frames.append(rows - 1)
@@ -277,8 +277,8 @@ def plot_smoke(trace, scene, out, fps=20, title=None):
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    dots = ax.scatter([data[i]["x"][0] for i in ids], [data[i]["y"][0] for i in ids], s=1.5,
-                      color="0.25", alpha=0.35, lw=0, zorder=2)
+    dots = ax.scatter([data[i]["x"][0] for i in ids], [data[i]["y"][0] for i in ids], s=4,
+                      color="0.15", alpha=0.4, lw=0, zorder=2)
     label = ax.set_title("")
 
     def draw(k):
@@ -389,4 +389,4 @@ def scene_figures(ctx):
     a = ["smoke", trace, "--scene", ctx.scene_path, "-o", gif, "--title", ctx.stem]
     if ctx.plot(a):
         ctx.figure(gif, f"Animation of {ctx.stem}: every particle as a grey dot (every "
-                   f"recorded frame up to {MAX_FRAMES}).", a)
+                   f"recorded frame, at most {MAX_FRAMES + 1}).", a)
