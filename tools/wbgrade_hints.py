@@ -33,7 +33,7 @@ import os
 import re
 
 SIGNATURES_VERSION = 1
-CLOSE = 0.8          # the least score (below) to name a mistake
+CLOSE = 0.7          # the least score (below) to name a mistake
 TIE = 0.1            # scores within TIE of the best are named together
 MAX_HINTS = 3        # at most this many mistakes are named
 RARITY_WEIGHTS = True  # weigh each test by how few known mistakes fail it
