@@ -15,7 +15,7 @@ namespace {
 constexpr double kTol = 1e-12;
 }  // namespace
 
-TEST_CASE("F1 uniform gravity: each particle gets m_i g", "[forces][F1][4pts]") {
+TEST_CASE("F1 uniform gravity: each particle gets m_i g", "[forces][F1][3pts]") {
   // Distinct masses (one below 1, so m^2 != m) and a g with both components
   // non-zero and different, so a missing or squared mass or swapped x/y shows.
   VecX m(3);

@@ -68,7 +68,7 @@ TEST_CASE("F2 newton gravity: two bodies attract with G m_i m_j d / r^3", "[forc
                        kTol);
 }
 
-TEST_CASE("F2 newton gravity: softening replaces r^2 by r^2 + eps^2", "[forces][F2][3pts]") {
+TEST_CASE("F2 newton gravity: softening replaces r^2 by r^2 + eps^2", "[forces][F2][2pts]") {
   // x_0 = (-1, 0.5), x_1 = (2, 4.5): d = (3, 4), r^2 = 25. eps = sqrt(11), so
   // r^2 + eps^2 = 36 and (r^2 + eps^2)^(3/2) = 216.
   // m = (0.5, 4), G = 3: G m_0 m_1 = 6, f_0 = 6 (3, 4) / 216 = (1/12, 1/9), f_1 = -f_0.
@@ -84,7 +84,7 @@ TEST_CASE("F2 newton gravity: softening replaces r^2 by r^2 + eps^2", "[forces][
                        "softened gravity on body 1: equal and opposite (third law)", kTol);
 }
 
-TEST_CASE("F2 newton gravity: adds to the forces already there", "[forces][F2][2pts]") {
+TEST_CASE("F2 newton gravity: adds to the forces already there", "[forces][F2][1pts]") {
   // The pair of the first test (f_0 = (0.072, 0.096)) on top of existing forces.
   const Mat2X x = two(Vec2(1, 2), Vec2(4, 6));
   VecX m(2);

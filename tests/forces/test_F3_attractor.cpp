@@ -41,7 +41,7 @@ TEST_CASE("F3 attractor: pull of -GM m_i d_i / r^3 towards a centre off the orig
                        kTol);
 }
 
-TEST_CASE("F3 attractor: adds to the forces already there", "[forces][F3][2pts]") {
+TEST_CASE("F3 attractor: adds to the forces already there", "[forces][F3][1pts]") {
   // Particle 0 of the first test: (-0.144, -0.192) on top of (1, 2).
   Mat2X x(2, 1);
   x << 4.0, 2.0;

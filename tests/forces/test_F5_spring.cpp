@@ -35,7 +35,7 @@ TEST_CASE("F5 spring: a stretched spring pulls i towards j with k (L - rest)",
 }
 
 TEST_CASE("F5 spring: a compressed spring pushes apart and a spring at rest length does nothing",
-          "[forces][F5][3pts]") {
+          "[forces][F5][2pts]") {
   // Same ends as above (L = 5, u = (-0.6, -0.8)), k = 10.
   // rest = 7: tension 10 (5 - 7) = -20, f_i = 20 u = (-12, -16), away from j.
   const Vec2 xi(1, 2), xj(4, 6), zero(0, 0);
@@ -108,7 +108,7 @@ TEST_CASE("F5 spring: the damper acts only along the spring", "[forces][F5][4pts
 }
 
 TEST_CASE("F5 spring: anchored form and equal and opposite forces between particles",
-          "[forces][F5][2pts]") {
+          "[forces][F5][1pts]") {
   // Anchor (2, 1), x_i = (0.5, -1), v_i = (1, 2): d = (-1.5, -2), L = 2.5,
   // u = (-0.6, -0.8), (v_i - 0) . u = -2.2. k = 4, rest = 1, kd = 0.3:
   // tension 4 * 1.5 + 0.3 * (-2.2) = 5.34, f_i = -5.34 u = (3.204, 4.272).

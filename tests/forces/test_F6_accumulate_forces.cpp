@@ -121,7 +121,7 @@ TEST_CASE("F6 accumulate forces: the total is the sum of every term", "[forces][
 }
 
 TEST_CASE("F6 accumulate forces: f of the wrong size or full of garbage still gives the sum",
-          "[forces][F6][3pts]") {
+          "[forces][F6][2pts]") {
   const System s = four();
   const Terms terms = three_terms();
   const Mat2X expected = expected_sum(s);

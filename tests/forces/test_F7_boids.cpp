@@ -42,7 +42,7 @@ Vec2 mean_of(const Mat2X& a, std::initializer_list<Eigen::Index> idx) {
 }  // namespace
 
 TEST_CASE("F7 boids: a lone boid is pulled to its goal with magnitude m w_g",
-          "[forces][F7][3pts]") {
+          "[forces][F7][2pts]") {
   // Boid at (1, 2), goal (4, 6): goal - x = (3, 4), distance 5, unit (0.6, 0.8).
   // w_g = 0.5, m = 2: f = 2 * 0.5 (0.6, 0.8) = (0.6, 0.8), magnitude m w_g = 1
   // whatever the distance. All the rules are on, but a lone boid has no
@@ -116,7 +116,7 @@ TEST_CASE("F7 boids: alignment steers to the neighbours' mean velocity", "[force
       "alignment: w_a m_i (mean of the neighbours' v_j - v_i), neighbours j != i", kTol);
 }
 
-TEST_CASE("F7 boids: cohesion steers to the neighbours' centre", "[forces][F7][3pts]") {
+TEST_CASE("F7 boids: cohesion steers to the neighbours' centre", "[forces][F7][2pts]") {
   // Three boids within the cohesion radius, w_c = 0.3, m = (2, 1, 0.5).
   // x = (0.2, 0.1), (1.4, 0.7), (0.5, 1.6).
   //   i = 0: mean of x_1 x_2 = (0.95, 1.15), minus x_0 = (0.75, 1.05),  f = 2 * 0.3 * that   =

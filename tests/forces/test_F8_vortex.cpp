@@ -58,7 +58,7 @@ TEST_CASE("F8 vortex: outside the core the speed falls off as omega R^2 / r",
 }
 
 TEST_CASE("F8 vortex: the flow is continuous at the core radius and zero at the centre",
-          "[forces][F8][2pts]") {
+          "[forces][F8][1pts]") {
   const VortexParams p = vortex();
   // Along the unit direction (0.6, -0.8), just inside and just outside r = R = 2.
   // Both formulas give omega R perp(unit) = 4 (0.8, 0.6) = (3.2, 2.4) at r = R; a

@@ -1,11 +1,14 @@
 // Scene force terms: JSON -> Force objects that call the forces lab's functions.
 #include "forces_world.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "accumulate_forces.h"
 #include "attractor.h"
 #include "boids.h"
+#include "curl_noise.h"
 #include "damping.h"
 #include "newton_gravity.h"
 #include "spring.h"
@@ -115,6 +118,23 @@ class Vortex : public Force {
   VortexParams p_;
 };
 
+class CurlNoise : public Force {
+ public:
+  explicit CurlNoise(CurlNoiseParams p) : p_(std::move(p)) {}
+  void add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const override {
+    add_curl_noise(x, v, p_, f);
+  }
+  std::string type() const override { return "curl-noise"; }
+
+ private:
+  CurlNoiseParams p_;
+};
+
+// The central-difference step of curl noise, as a fraction of the smallest
+// length of the field (its scale, the ramp width): truncation (h/L)^2 ~ 1e-8
+// and rounding eps L/h ~ 1e-12, both far below what a run can see.
+constexpr double kCurlStepFraction = 1e-4;
+
 Eigen::Index particle_index(const JsonObject& o, const char* key, std::int64_t n) {
   if (n == 0)
     o.fail(key, o.has(key) ? &o.raw().at(key) : nullptr,
@@ -159,7 +179,7 @@ double Springs::potential(const Mat2X& x, const VecX&) const {
 
 const std::vector<std::string>& force_types() {
   static const std::vector<std::string> types = {"gravity", "newton", "attractor", "damping",
-                                                 "spring",  "boids",  "vortex"};
+                                                 "spring",  "boids",  "vortex",    "curl-noise"};
   return types;
 }
 
@@ -236,6 +256,28 @@ ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
       p.core = o.number("core", kPositive);
       p.drag = o.number("drag", kNonNegative);
       out.push_back(std::make_unique<Vortex>(p));
+    } else if (type == "curl-noise") {
+      o.only_keys({"type", "b", "amplitude", "scale", "seed", "wind", "obstacles", "ramp"});
+      CurlNoiseParams p;
+      p.b = o.number("b", kNonNegative);
+      const double amplitude = o.number("amplitude", kNonNegative);
+      const double scale = o.number("scale", kPositive);
+      const auto seed = std::uint64_t(o.integer("seed", 0, std::int64_t(1) << 53));
+      p.psi = noise_potential(seed, amplitude, scale, o.vec2_or("wind", Vec2::Zero()));
+      p.ramp = o.number_or("ramp", scale, kPositive);
+      const json& discs = o.array_or_empty("obstacles");
+      for (std::size_t k = 0; k < discs.size(); ++k) {
+        JsonObject d = o.element("obstacles", k);
+        d.only_keys({"center", "radius"});
+        p.obstacles.push_back({d.vec2("center"), d.number("radius", kPositive)});
+      }
+      p.h = kCurlStepFraction * std::min(scale, p.ramp);
+      if (!(p.h > 0)) {
+        o.fail(scale <= p.ramp ? "scale" : "ramp",
+               &o.raw().at(scale <= p.ramp ? "scale" : "ramp"),
+               "a length whose 10^-4 (the curl's difference step) is still a positive number");
+      }
+      out.push_back(std::make_unique<CurlNoise>(std::move(p)));
     } else {
       std::string known;
       for (const auto& t : force_types()) known += (known.empty() ? "" : ", ") + t;
