@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env -S sh -c 'exec "${0%/*}/../tools/lib/start-python" "$0" "$@"'
 """Summarize a bench_integrators JSON run as a table of throughputs and ratios to its baselines."""
 import argparse
 import json

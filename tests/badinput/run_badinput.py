@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/env -S sh -c 'exec "${0%/*}/../../tools/lib/start-python" "$0" "$@"'
 """Bad-input regression cases: every case must end in one clear line.
 
 Runs each case of tests/badinput/cases.json against the lab executables in

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env -S sh -c 'exec "${0%/*}/../lib/start-python" "$0" "$@"'
 """Builds the Gradescope autograder zip of one lab (what `tools/pack --gradescope LAB` runs).
 
 The zip holds setup.sh and run_autograder at its root, and the pristine
