@@ -259,7 +259,8 @@ void ContactWorld::pair_response(double h, int i, double mj, int j, double e, Ma
 // solve_contact; the impulses act before this step's position update (x0 + h dv);
 // then what overlap is left beyond the slop is removed by moving positions only.
 void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
-  const std::uint64_t n = std::uint64_t(x.cols());
+  // Keys: a * M + b for a pair, a * M + n + k for particle a and plane k.
+  const std::uint64_t n = std::uint64_t(x.cols()), M = n + planes_.size();
   solved_.clear();
   keys_.clear();
   restitution_.clear();
@@ -277,14 +278,14 @@ void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
     solved_.push_back(c);
     keys_.push_back(k);
     restitution_.push_back(e);
-    plane_.push_back(b >= 0 ? -1 : int(k % (n + 64) - n));
+    plane_.push_back(b >= 0 ? -1 : int(k % M - n));
   };
   for (const auto& [i, j] : contacts_) {
     const Vec2 d = x.col(i) - x.col(j);
     const double dist = d.norm();
     const Vec2 normal = dist > 0 ? Vec2(d / dist) : Vec2(0.0, 1.0);
     add(i, j, normal, dist - r_[i] - r_[j], kSlopFraction * std::min(r_[i], r_[j]), 0.0,
-        settings_.restitution, std::uint64_t(i) * (n + 64) + std::uint64_t(j));
+        settings_.restitution, std::uint64_t(i) * M + std::uint64_t(j));
   }
   for (Eigen::Index i = 0; i < x.cols(); ++i) {
     for (std::size_t k = 0; k < planes_.size(); ++k) {
@@ -292,7 +293,7 @@ void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
       const double gap = (x.col(i) - p.point).dot(p.n) - r_[i];
       if (gap + r_[i] < -p.thickness) continue;  // beyond a thin wall's back face
       add(int(i), -1, p.n, gap, kSlopFraction * r_[i], p.friction, p.restitution,
-          std::uint64_t(i) * (n + 64) + n + k);
+          std::uint64_t(i) * M + n + k);
     }
   }
   const Mat2X v0 = v;
