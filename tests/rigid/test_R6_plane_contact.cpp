@@ -97,6 +97,7 @@ TEST_CASE("R6 prepare: effective mass along n and the restitution target above t
   Vec3 p;
   const Body b0 = tilted_box(p);
   const double vn = point_velocity(b0, p).dot(kUp);  // -2.4: approaching
+  INFO("the test's own set-up: the corner approaches the floor, u.n = " << vn);
   REQUIRE(vn < 0);
   // The test's own K: the velocity change of p per unit impulse along each axis.
   Mat3 K;
@@ -239,6 +240,7 @@ TEST_CASE("R6 friction: the bound is mu times the accumulated normal total and o
     Contact c = contact_at(p, 1.0, Vec3(0.0, 0.4, 0));  // stored pushing along +y
     prepare_contact(s, kUp, 0.0, 1.0, c);
     solve_contact(s, c, kUp, 0.3);
+    INFO("friction total Pt = " << str(c.Pt) << ", expected |Pt| <= mu Pn = 0.3");
     REQUIRE(c.Pt.norm() <= 0.3 * 1.0 * (1 + 1e-12));
     require_near(c.Pt.norm(), 0.3, kImpulseTol, "sliding: |Pt| = mu Pn exactly");
     require_near(c.Pt.z(), 0.0, kImpulseTol, "Pt lies in the plane");
