@@ -441,7 +441,7 @@ def _creep_figure(ctx):
             return
         traces.append(trace)
     fig = ctx.path("column-creep.png")
-    a = ["creep"] + traces + ["--labels", "passes (one-shot, 10 per step),accumulated (10 "
+    a = ["creep"] + traces + ["--labels", "passes (one-shot: 10 per step),accumulated (10 "
                               "iterations)", "--after", "1", "-o", fig]
     if ctx.plot(a):
         ctx.figure(fig, "The largest speed of any disc of the column against time (log "
