@@ -1,29 +1,46 @@
 #include "plane_contact.h"
 
-// TODO(R6) contact impulse with restitution and Coulomb friction (see plane_contact.h).
-// Plan: 1. r = p - x, v_rel = v + omega x r, vn = v_rel . n; return 0 if vn >= 0;
-//       2. I^-1 in the world frame (R2); jn from the formula; apply J = jn n;
-//       3. recompute v_rel, its tangential part vt; if |vt| > 0, jt = min(..., mu jn);
-//          apply -jt t; return jn.
-double contact_impulse(rigid::Body& b, const rigid::Vec3& p, const rigid::Vec3& n, double e,
-                       double mu) {
+#include <Eigen/Dense>
+
+// TODO(R6) effective masses and the restitution target (see plane_contact.h).
+// Plan: 1. c.r = c.p - x; I^-1 in the world frame (R2); c.K = E/m - [r]x I^-1 [r]x;
+//       2. c.mass_n = 1 / (n^T K n);
+//       3. vn = (v + omega x r).n; c.bias = -e vn if -vn > threshold, else 0.
+void prepare_contact(const rigid::Body& b, const rigid::Vec3& n, double e, double threshold,
+                     Contact& c) {
   // ---- Replace with your code ----
-  (void)b, (void)p, (void)n, (void)e, (void)mu;
+  (void)b, (void)n, (void)e, (void)threshold, (void)c;
+  // ---- end ----
+}
+
+// TODO(R6) apply the totals kept from the previous step (see plane_contact.h).
+// Plan: J = Pn n + Pt; v += J / m; omega += I^-1 (r x J).
+void warm_start_contact(rigid::Body& b, const Contact& c, const rigid::Vec3& n) {
+  // ---- Replace with your code ----
+  (void)b, (void)c, (void)n;
+  // ---- end ----
+}
+
+// TODO(R6) one iteration on one contact: accumulate, clamp the totals (see plane_contact.h).
+// Plan: 1. lambda = mass_n (bias - u.n); new total max(Pn + lambda, 0); apply the CHANGE of
+//          the total along n; store the total;
+//       2. u again, ut = its part in the plane; if |ut| > 0: d = ut / |ut|,
+//          Pt' = Pt - |ut| / (d^T K d) d; clamp |Pt'| <= mu * (the new total Pn);
+//          apply the CHANGE Pt' - Pt; store Pt'; return the normal change.
+double solve_contact(rigid::Body& b, Contact& c, const rigid::Vec3& n, double mu) {
+  // ---- Replace with your code ----
+  (void)b, (void)c, (void)n, (void)mu;
   return 0.0;
   // ---- end ----
 }
 
-// TODO(R6) every point of a body against a plane (see plane_contact.h).
-// Plan: 1. up to kContactPasses passes: contact_impulse on each point touching the plane
-//          ((p - point) . n < kContactSlop)
-//          (recompute nothing else: the points move only in step 2), stop after a pass
-//          that applied no impulse;
-//       2. d = the largest (point - p) . n over the points; if d > 0, x += d n.
-double resolve_plane_contact(rigid::Body& b, const std::vector<rigid::Vec3>& points,
-                             const rigid::Vec3& point, const rigid::Vec3& n, double e,
-                             double mu) {
+// TODO(R6) every contact of a body with a plane, together (see plane_contact.h).
+// Plan: prepare every contact; warm start every contact; `iterations` passes of
+//       solve_contact over them; return the sum of the Pn.
+double solve_plane_contacts(rigid::Body& b, std::vector<Contact>& contacts, const rigid::Vec3& n,
+                            double e, double threshold, double mu, int iterations) {
   // ---- Replace with your code ----
-  (void)b, (void)points, (void)point, (void)n, (void)e, (void)mu;
+  (void)b, (void)contacts, (void)n, (void)e, (void)threshold, (void)mu, (void)iterations;
   return 0.0;
   // ---- end ----
 }

@@ -1,5 +1,6 @@
-// TODO(R6) contact of a body with a plane: the impulse at a contact point, with
-// restitution and Coulomb friction. Handout: handouts/rigid.md#r6. Tests: [R6].
+// TODO(R6) contact with a plane by accumulated impulses: restitution above a
+// closing speed, Coulomb friction, warm starting. Handout: handouts/rigid.md#r6.
+// Tests: [R6].
 #pragma once
 #include <vector>
 
@@ -8,37 +9,73 @@
 //                 omega
 //          +-------(.)----+
 //          |       x      |       r = p - x        (centre -> contact point)
-//          |        \ r   |       v_rel = v + omega x r
+//          |        \ r   |       u = v + omega x r  (velocity of the point)
 //   _______|_________\p___|____   n (plane normal, unit, out of the plane)
 //
-// contact_impulse: ONE point p of the body touching the plane of normal n.
-//   vn = v_rel . n; when vn >= 0 the point is not approaching: nothing, return 0.
-//   Otherwise the normal impulse
-//     jn = -(1 + e) vn / (1/m + n . ((I^-1 (r x n)) x r))      (I^-1 world, R2)
-//   is applied (J = jn n:  v += J / m,  omega += I^-1 (r x J)). Then friction,
-//   from the tangential part of the NEW v_rel, vt = v_rel - (v_rel . n) n, when |vt| > 0:
-//     t = vt / |vt|,  jt = min(|vt| / (1/m + t . ((I^-1 (r x t)) x r)),  mu jn)
-//   applied as J = -jt t (stops the sliding, or takes at most mu jn: Coulomb).
-//   Returns jn (N s).
+// An impulse J at p changes v by J / m and omega by I^-1 (r x J) (I^-1 in the world
+// frame, R2), so u by K J with the 3x3 matrix
 //
-// resolve_plane_contact: every candidate point of the body (box vertices, the
-// lowest point of a sphere...) against one plane through `point`:
-//   1. passes over the points touching the plane ((p - point) . n < kContactSlop:
-//      below it, or above by less than the slop), calling contact_impulse on
-//      each, until a pass applies no impulse (at most kContactPasses passes);
-//   2. then pushes the body out: x += d n, d the deepest penetration (if any).
+//   K = E / m - [r]x I^-1 [r]x          (symmetric positive definite; [r]x = skew(r))
+//
+// Along a unit direction d alone, u.d changes by d^T K d per unit impulse: the
+// EFFECTIVE MASS along d is 1 / (d^T K d) (kg); along n it is mass_n = 1 / (n^T K n).
+//
+// A contact keeps its impulses as TOTALS: Pn along n, and Pt (a vector in the plane,
+// Pt . n = 0): everything the body has received from this contact in this step
+// (and, to start the next step, in the last one: warm starting). Coulomb's law and
+// "the plane pushes, never pulls" bound the TOTALS, never one iteration's increment:
+//
+//   Pn >= 0,     |Pt| <= mu Pn
+//
+// prepare_contact: r = p - x, K, mass_n as above, and the normal velocity the
+//   contact aims for, from the approach speed u.n BEFORE any impulse of this step:
+//     bias = -e (u.n)   when -(u.n) > threshold  (a real impact bounces)
+//     bias = 0          otherwise                (resting: no micro-bounce)
+//   Pn, Pt are left as they are (the caller keeps them from the previous step).
+//
+// warm_start_contact: applies the stored totals at p, J = Pn n + Pt.
+//
+// solve_contact: ONE iteration on one contact, from the body's current v, omega:
+//   1. normal:   lambda = mass_n (bias - u.n);  Pn' = max(Pn + lambda, 0);
+//                apply (Pn' - Pn) n at p;  Pn = Pn'
+//   2. friction: with u AFTER step 1, its sliding part ut = u - (u.n) n; when |ut| > 0
+//                (else nothing: no NaN), d = ut / |ut| and
+//                  Pt' = Pt - |ut| / (d^T K d) d;   if |Pt'| > mu Pn, scale Pt' to length mu Pn
+//                (Pn the new total of step 1); apply Pt' - Pt at p; Pt = Pt'
+//                (at the end the friction opposes the sliding, as Coulomb's law says)
+//   Returns Pn' - Pn of step 1, the normal impulse this iteration added (N s).
+//
+// solve_plane_contacts: the contacts of one body with one plane (every point that
+//   touches it), resolved TOGETHER: prepare each, warm start each, then
+//   `iterations` passes of solve_contact over the contacts in order.
+//   Returns the sum of the contacts' Pn (N s).
+//
+// Penetration is not the solver's business: the caller pushes the body out after
+// the velocities are solved, without changing them (split impulses, handout §R6).
 //
 // Inputs:
-//   b       the body (m, I_body, x, v, q, omega)
-//   p       contact point (m), world;  points  candidate points (m), world
-//   point   a point of the plane (m);  n  its unit normal
-//   e       restitution in [0, 1];  mu  friction coefficient >= 0
+//   b          the body (m, I_body, x, v, q, omega)
+//   c.p        contact point (m), world;  c.Pn, c.Pt  totals from the previous step
+//   n          the plane's unit normal;  e  restitution in [0, 1]
+//   threshold  closing speed (m/s, >= 0) below which a contact does not bounce
+//   mu         friction coefficient >= 0;  iterations  >= 1
 // Outputs:
-//   b.v, b.omega (impulses), b.x (push-out); returns the normal impulse jn (N s)
-//   of contact_impulse, or the sum of them for resolve_plane_contact
-constexpr int kContactPasses = 10;
-constexpr double kContactSlop = 1e-3;  // m: points this close count as touching
-double contact_impulse(rigid::Body& b, const rigid::Vec3& p, const rigid::Vec3& n, double e,
-                       double mu);
-double resolve_plane_contact(rigid::Body& b, const std::vector<rigid::Vec3>& points,
-                             const rigid::Vec3& point, const rigid::Vec3& n, double e, double mu);
+//   b.v, b.omega (impulses); c.r, c.K, c.mass_n, c.bias (prepare_contact);
+//   c.Pn, c.Pt (solve_contact)
+struct Contact {
+  rigid::Vec3 p = rigid::Vec3::Zero();   // contact point, world (m)
+  double Pn = 0;                         // accumulated normal impulse (N s), >= 0
+  rigid::Vec3 Pt = rigid::Vec3::Zero();  // accumulated friction impulse, in the plane (N s)
+  // Set by prepare_contact:
+  rigid::Vec3 r = rigid::Vec3::Zero();  // centre of mass -> p, world (m)
+  rigid::Mat3 K = rigid::Mat3::Zero();  // velocity change of p per unit impulse at p (1/kg)
+  double mass_n = 0;                    // effective mass along n (kg)
+  double bias = 0;                      // normal velocity aimed for (m/s)
+};
+
+void prepare_contact(const rigid::Body& b, const rigid::Vec3& n, double e, double threshold,
+                     Contact& c);
+void warm_start_contact(rigid::Body& b, const Contact& c, const rigid::Vec3& n);
+double solve_contact(rigid::Body& b, Contact& c, const rigid::Vec3& n, double mu);
+double solve_plane_contacts(rigid::Body& b, std::vector<Contact>& contacts, const rigid::Vec3& n,
+                            double e, double threshold, double mu, int iterations);

@@ -14,13 +14,17 @@
 //     | +------+      L = m x.cross(v) + I omega,  I = R I_body R^T
 //     +------------> x
 #pragma once
+#include <cmath>
+
 #include <Eigen/Geometry>
 
 #include "wb/types.h"
 
 namespace rigid {
 
+using wb::Mat2;
 using wb::Mat3;
+using wb::Vec2;
 using wb::Vec3;
 
 struct Body {
@@ -39,6 +43,16 @@ inline Mat3 skew(const Vec3& a) {
   Mat3 s;
   s << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
   return s;
+}
+
+// Two unit vectors t1, t2 that make (t1, t2, n) a right-handed orthonormal frame,
+// for a unit n: the same n always gives the same t1, t2 (contacts and hinges keep
+// impulses along them from one step to the next).
+inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  // Start from the world axis least aligned with n (far from parallel to it).
+  const Vec3 a = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
+  t1 = a.cross(n).normalized();
+  t2 = n.cross(t1);
 }
 
 }  // namespace rigid

@@ -1,64 +1,76 @@
 #include "plane_contact.h"
 
 #include <algorithm>
-#include <cmath>
+
+#include <Eigen/Dense>
 
 namespace {
 
-// The change of velocity at a point r from the centre, per unit impulse along u:
-// 1/m + u . ((I^-1 (r x u)) x r).
-double inverse_effective_mass(const rigid::Body& b, const rigid::Mat3& I_inv,
-                              const rigid::Vec3& r, const rigid::Vec3& u) {
-  return 1.0 / b.m + u.dot((I_inv * r.cross(u)).cross(r));
+rigid::Mat3 inverse_inertia(const rigid::Body& b) {
+  const rigid::Mat3 R = b.q.toRotationMatrix();
+  return R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
 }
 
-void apply_impulse(rigid::Body& b, const rigid::Mat3& I_inv, const rigid::Vec3& r,
-                   const rigid::Vec3& J) {
+// An impulse J at the point r from the centre.
+void apply_impulse(rigid::Body& b, const rigid::Vec3& r, const rigid::Vec3& J) {
   b.v += J / b.m;
-  b.omega += I_inv * r.cross(J);
+  b.omega += inverse_inertia(b) * r.cross(J);
+}
+
+rigid::Vec3 point_velocity(const rigid::Body& b, const rigid::Vec3& r) {
+  return b.v + b.omega.cross(r);
 }
 
 }  // namespace
 
-// TODO(R6) contact impulse with restitution and Coulomb friction (see plane_contact.h).
-double contact_impulse(rigid::Body& b, const rigid::Vec3& p, const rigid::Vec3& n, double e,
-                       double mu) {
-  const rigid::Vec3 r = p - b.x;
-  const double vn = (b.v + b.omega.cross(r)).dot(n);
-  if (vn >= 0.0) return 0.0;  // separating or resting: no impulse
-  const rigid::Mat3 R = b.q.toRotationMatrix();
-  const rigid::Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
-  // Normal impulse.
-  const double jn = -(1.0 + e) * vn / inverse_effective_mass(b, I_inv, r, n);
-  apply_impulse(b, I_inv, r, jn * n);
-  // Friction, against the sliding that is left.
-  const rigid::Vec3 v_rel = b.v + b.omega.cross(r);
-  const rigid::Vec3 vt = v_rel - v_rel.dot(n) * n;
-  const double speed = vt.norm();
-  if (speed > 0.0) {
-    const rigid::Vec3 t = vt / speed;
-    const double jt = std::min(speed / inverse_effective_mass(b, I_inv, r, t), mu * jn);
-    apply_impulse(b, I_inv, r, -jt * t);
-  }
-  return jn;
+// TODO(R6) effective masses and the restitution target (see plane_contact.h).
+void prepare_contact(const rigid::Body& b, const rigid::Vec3& n, double e, double threshold,
+                     Contact& c) {
+  c.r = c.p - b.x;
+  const rigid::Mat3 rx = rigid::skew(c.r);
+  c.K = rigid::Mat3::Identity() / b.m - rx * inverse_inertia(b) * rx;
+  c.mass_n = 1.0 / n.dot(c.K * n);
+  const double vn = point_velocity(b, c.r).dot(n);  // approach speed, before any impulse
+  c.bias = -vn > threshold ? -e * vn : 0.0;
 }
 
-// TODO(R6) every point of a body against a plane (see plane_contact.h).
-double resolve_plane_contact(rigid::Body& b, const std::vector<rigid::Vec3>& points,
-                             const rigid::Vec3& point, const rigid::Vec3& n, double e,
-                             double mu) {
-  double total = 0.0;
-  for (int pass = 0; pass < kContactPasses; ++pass) {
-    double applied = 0.0;
-    for (const rigid::Vec3& p : points) {
-      if ((p - point).dot(n) < kContactSlop) applied += contact_impulse(b, p, n, e, mu);
-    }
-    total += applied;
-    if (applied == 0.0) break;
+// TODO(R6) apply the totals kept from the previous step (see plane_contact.h).
+void warm_start_contact(rigid::Body& b, const Contact& c, const rigid::Vec3& n) {
+  apply_impulse(b, c.r, c.Pn * n + c.Pt);
+}
+
+// TODO(R6) one iteration on one contact: accumulate, clamp the totals (see plane_contact.h).
+double solve_contact(rigid::Body& b, Contact& c, const rigid::Vec3& n, double mu) {
+  // Normal: the total stays >= 0.
+  const double lambda = c.mass_n * (c.bias - point_velocity(b, c.r).dot(n));
+  const double Pn = std::max(c.Pn + lambda, 0.0);
+  const double dPn = Pn - c.Pn;
+  c.Pn = Pn;
+  apply_impulse(b, c.r, dPn * n);
+  // Friction: against the sliding, the total within the disc of radius mu Pn.
+  const rigid::Vec3 u = point_velocity(b, c.r);
+  const rigid::Vec3 ut = u - u.dot(n) * n;
+  const double slip = ut.norm();
+  if (slip > 0) {
+    const rigid::Vec3 d = ut / slip;
+    rigid::Vec3 Pt = c.Pt - slip / d.dot(c.K * d) * d;
+    const double bound = mu * c.Pn;
+    if (Pt.norm() > bound) Pt *= bound / Pt.norm();
+    apply_impulse(b, c.r, Pt - c.Pt);
+    c.Pt = Pt;
   }
-  // Push the body out of the plane by the deepest penetration.
-  double depth = 0.0;
-  for (const rigid::Vec3& p : points) depth = std::max(depth, (point - p).dot(n));
-  b.x += depth * n;
+  return dPn;
+}
+
+// TODO(R6) every contact of a body with a plane, together (see plane_contact.h).
+double solve_plane_contacts(rigid::Body& b, std::vector<Contact>& contacts, const rigid::Vec3& n,
+                            double e, double threshold, double mu, int iterations) {
+  for (Contact& c : contacts) prepare_contact(b, n, e, threshold, c);
+  for (const Contact& c : contacts) warm_start_contact(b, c, n);
+  for (int it = 0; it < iterations; ++it) {
+    for (Contact& c : contacts) solve_contact(b, c, n, mu);
+  }
+  double total = 0;
+  for (const Contact& c : contacts) total += c.Pn;
   return total;
 }

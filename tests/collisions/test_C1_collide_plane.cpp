@@ -32,7 +32,7 @@ Vec2 at_gap(double d, double s, double r) { return kP + (r + d) * kN + s * kT; }
 TEST_CASE(
     "C1 collide_plane: tilted plane reverses the normal velocity times e and keeps the "
     "tangential one",
-    "[collisions][C1][8pts]") {
+    "[collisions][C1][7pts]") {
   const double r = 0.1, m = 2.5, e = 0.5;
   Vec2 x = at_gap(-0.02, 0.7, r);
   Vec2 v = -1.5 * kN + 0.9 * kT;
@@ -47,7 +47,7 @@ TEST_CASE(
 TEST_CASE(
     "C1 collide_plane: the impulse j = -(1 + e) m v.n is positive and changes the "
     "momentum by j n",
-    "[collisions][C1][5pts]") {
+    "[collisions][C1][4pts]") {
   const double r = 0.05, e = 0.8;
   for (double m : {0.5, 4.0}) {
     Vec2 x = at_gap(-0.001, -0.3, r);
@@ -96,7 +96,7 @@ TEST_CASE(
 TEST_CASE(
     "C1 collide_plane: below rest_speed the contact is resting and a ball on a floor "
     "stays put for 10^5 steps",
-    "[collisions][C1][5pts]") {
+    "[collisions][C1][4pts]") {
   const Vec2 p(0, 0), n(0, 1);
   const double r = 0.1, m = 3.0, e = 0.9, rest = 0.05;
   {
@@ -127,7 +127,7 @@ TEST_CASE(
 }
 
 TEST_CASE("C1 collide_plane: the rebound height of a dropped ball is e^2 times the drop height",
-          "[collisions][C1][5pts]") {
+          "[collisions][C1][3pts]") {
   const Vec2 p(0, 0), n(0, 1);
   const double r = 0.05, m = 0.7, g = 9.81, h = 1e-4, H = 1.0;
   for (double e : {1.0, 0.7}) {

@@ -32,7 +32,7 @@ const Vec2 kX1 = kX2 + 0.35 * kN;
 }  // namespace
 
 TEST_CASE("C2 collide_particles: equal masses head-on with e = 1 exchange normal velocities",
-          "[collisions][C2][5pts]") {
+          "[collisions][C2][4pts]") {
   Vec2 x1(0.0, 0.0), x2(0.19, 0.0);  // radii 0.1: overlap 0.01 along x
   Vec2 v1(2.0, 0.3), v2(-1.0, -0.4);
   const double J = collide_particles(1.2, 0.1, 1.2, 0.1, 1.0, x1, v1, x2, v2);
@@ -47,7 +47,7 @@ TEST_CASE("C2 collide_particles: equal masses head-on with e = 1 exchange normal
 TEST_CASE(
     "C2 collide_particles: momentum conserved to rounding and kinetic energy lost by "
     "(1 - e^2)/2 mu v_n^2",
-    "[collisions][C2][6pts]") {
+    "[collisions][C2][5pts]") {
   const double m1 = 1.5, m2 = 4.0, mu = m1 * m2 / (m1 + m2);
   for (double e : {1.0, 0.6, 0.0}) {
     Vec2 x1 = kX1, x2 = kX2;
@@ -98,7 +98,7 @@ TEST_CASE("C2 collide_particles: a 1 to 10^6 mass ratio behaves like a wall",
 TEST_CASE(
     "C2 collide_particles: receding particles get no impulse but are separated without "
     "moving the centre of mass",
-    "[collisions][C2][4pts]") {
+    "[collisions][C2][3pts]") {
   const double m1 = 2.0, m2 = 0.5;
   Vec2 x1 = kX1, x2 = kX2;
   const Vec2 v1_0 = 0.4 * kN + Vec2(0.1, 0.2), v2_0(-0.3, 0.05);  // (v1 - v2).n > 0
@@ -116,7 +116,7 @@ TEST_CASE(
 }
 
 TEST_CASE("C2 collide_particles: coincident centres use the fallback normal +y without NaN",
-          "[collisions][C2][4pts]") {
+          "[collisions][C2][3pts]") {
   const Vec2 c(0.5, -0.3);
   Vec2 x1 = c, x2 = c;
   Vec2 v1(0.2, -1.0), v2(0.1, 1.0);  // (v1 - v2).(0, 1) = -2: approaching along the fallback
@@ -133,7 +133,7 @@ TEST_CASE("C2 collide_particles: coincident centres use the fallback normal +y w
 }
 
 TEST_CASE("C2 collide_particles: discs apart get nothing and touching discs are in contact",
-          "[collisions][C2][3pts]") {
+          "[collisions][C2][2pts]") {
   {
     Vec2 x1(0.0, 0.0), x2(0.51, 0.0), v1(1.0, 0.0), v2(-1.0, 0.0);  // gap 0.01
     const double J = collide_particles(1.0, 0.25, 1.0, 0.25, 1.0, x1, v1, x2, v2);

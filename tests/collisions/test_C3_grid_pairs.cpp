@@ -78,7 +78,7 @@ wb::VecX random_radii(Eigen::Index n, std::uint64_t seed, double lo, double hi) 
 }  // namespace
 
 TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed radii",
-          "[collisions][C3][8pts]") {
+          "[collisions][C3][6pts]") {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
     const Eigen::Index n = 400;
     const wb::Mat2X x = wbtest::random_points(n, seed, -3.0, 2.0);  // negative coordinates too
@@ -93,7 +93,7 @@ TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed
 }
 
 TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
-          "[collisions][C3][6pts]") {
+          "[collisions][C3][5pts]") {
   // k x k centres 2r apart (exact in binary), from -1 upwards: every disc
   // touches its neighbours and each box touches its diagonal neighbours'
   // corners, so the pairs are the lattice's 8-neighbour links:
@@ -114,7 +114,7 @@ TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
 }
 
 TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far outliers",
-          "[collisions][C3][6pts]") {
+          "[collisions][C3][4pts]") {
   {
     // Points (radius 0): only coincident ones pair up; none, one and two particles.
     wb::Mat2X x(2, 6);

@@ -43,7 +43,7 @@ Vec2 slide(double theta, double mu, int steps, double h, Vec2& x) {
 }  // namespace
 
 TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity stops",
-          "[collisions][C4][5pts]") {
+          "[collisions][C4][4pts]") {
   Vec2 v = -0.5 * kN + 0.2 * kT;
   const double jt = friction_impulse(kN, 3.0, 0.5, 2.0, v);  // needs 2 * 0.2 = 0.4 <= 1.5
   require_near(v, Vec2(-0.5 * kN), kRound, "static friction: tangential velocity 0, normal kept");
@@ -51,7 +51,7 @@ TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity
 }
 
 TEST_CASE("C4 friction_impulse: outside the cone the impulse is mu jn against the sliding",
-          "[collisions][C4][5pts]") {
+          "[collisions][C4][4pts]") {
   Vec2 v = 0.1 * kN + 3.0 * kT;
   const double jt = friction_impulse(kN, 1.0, 0.4, 2.0, v);  // would need 6 > mu jn = 0.4
   require_near(v, Vec2(0.1 * kN + 2.8 * kT), kRound,
@@ -60,7 +60,7 @@ TEST_CASE("C4 friction_impulse: outside the cone the impulse is mu jn against th
 }
 
 TEST_CASE("C4 friction_impulse: a block on a slope sticks when tan theta < mu",
-          "[collisions][C4][4pts]") {
+          "[collisions][C4][3pts]") {
   const double theta = 20.0 * M_PI / 180.0;  // tan = 0.364 < 0.5
   Vec2 x(0.25, -0.5);
   const Vec2 v = slide(theta, 0.5, 2000, 1e-3, x);
@@ -72,7 +72,7 @@ TEST_CASE("C4 friction_impulse: a block on a slope sticks when tan theta < mu",
 TEST_CASE(
     "C4 friction_impulse: on a steeper slope it slides with a = g (sin theta - mu cos "
     "theta)",
-    "[collisions][C4][4pts]") {
+    "[collisions][C4][3pts]") {
   const double theta = 35.0 * M_PI / 180.0, mu = 0.3, g = 9.81, h = 1e-3;
   const int steps = 1000;
   Vec2 x(0, 0);
@@ -89,7 +89,7 @@ TEST_CASE(
 TEST_CASE(
     "C4 friction_impulse: the impulse opposes the sliding in both directions and no "
     "sliding gives no NaN",
-    "[collisions][C4][2pts]") {
+    "[collisions][C4][1pts]") {
   for (double s : {1.0, -1.0}) {
     Vec2 v = -0.2 * kN + s * 1.5 * kT;
     friction_impulse(kN, 2.0, 0.25, 1.0, v);  // bound 0.5 < 1.5: sliding

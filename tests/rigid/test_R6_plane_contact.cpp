@@ -1,8 +1,12 @@
-// Graded tests for TODO(R6), contact impulses against a plane
-// (labs/rigid/plane_contact.cpp). Expected values: Newton's restitution law at
-// the contact point, conservation of angular momentum about the point where an
-// impulse acts, the classic 5/7 rolling speed of a sphere, Coulomb's bound.
+// Graded tests for TODO(R6), contact with a plane by accumulated, warm-started
+// impulses (labs/rigid/plane_contact.cpp). Expected values: the velocity change of a
+// point per unit impulse (the test's own K), Newton's restitution law above the
+// threshold, the totals' bounds (Pn >= 0, |Pt| <= mu Pn) and what they imply
+// (an impulse taken back when a contact is over-pushed), Coulomb's sliding
+// acceleration g (sin - mu cos) on a slope, rest on a floor to rounding.
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "plane_contact.h"
@@ -16,14 +20,21 @@ using namespace rigidtest;
 
 namespace {
 
-// One impulse: a few products of numbers ~1-10.
+// One impulse or one 3x3 product: a few operations on numbers ~0.1-10.
 constexpr double kImpulseTol = 1e-12;
+constexpr double kG = 9.81;
 
 const Vec3 kUp(0, 0, 1);
 
 Vec3 point_velocity(const Body& b, const Vec3& p) { return b.v + b.omega.cross(p - b.x); }
 
-// A tilted box above the floor, its lowest corner p touching it.
+// The test's own impulse: J at the world point p.
+void impulse_at(Body& b, const Vec3& p, const Vec3& J) {
+  b.v += J / b.m;
+  b.omega += inverse_inertia(b) * (p - b.x).cross(J);
+}
+
+// A tilted, spinning box and its lowest corner p, approaching the floor.
 Body tilted_box(Vec3& p) {
   Body b = make_body(3.0, Vec3(0.5, 1.25, 1.5), quat(0.9, 0.25, -0.3, 0.1), Vec3(0.7, -1.2, 0.4),
                      Vec3(0.2, -0.1, 1.0), Vec3(0.5, 0.25, -2.0));
@@ -41,115 +52,262 @@ std::vector<Vec3> corners(const Body& b, const Vec3& size) {
   return c;
 }
 
+Contact contact_at(const Vec3& p, double Pn = 0, const Vec3& Pt = Vec3::Zero()) {
+  Contact c;
+  c.p = p;
+  c.Pn = Pn;
+  c.Pt = Pt;
+  return c;
+}
+
+// A box of edges `size` (mass m) resting flat on a plane of normal n through the
+// origin, its body z along n; its four lower corners are the contacts.
+Body box_on_plane(double m, const Vec3& size, const Vec3& n, const Eigen::Quaterniond& spin) {
+  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(kUp, n) * spin;
+  const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
+               m / 12 * (size.x() * size.x() + size.z() * size.z()),
+               m / 12 * (size.x() * size.x() + size.y() * size.y()));
+  return make_body(m, I, q, Vec3::Zero(), 0.5 * size.z() * n);
+}
+
+// Steps a box on a plane: gravity, the student's solve_plane_contacts on the four
+// lower corners with their totals kept from step to step, the reference position
+// update. Returns the sum of the normal totals of the last step.
+double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double h, int steps,
+                    int iterations = 10) {
+  std::vector<Contact> kept(4);
+  double total = 0;
+  for (int k = 0; k < steps; ++k) {
+    b.v += h * Vec3(0, 0, -kG);
+    const std::vector<Vec3> c = corners(b, size);
+    int j = 0;
+    for (const Vec3& p : c) {
+      if ((p - b.x).dot(n) < 0) kept[std::size_t(j++)].p = p;  // the four lower corners
+    }
+    total = solve_plane_contacts(b, kept, n, 0.0, 0.05, mu, iterations);
+    ref_position(b, h);
+  }
+  return total;
+}
+
 }  // namespace
 
-TEST_CASE("R6 normal impulse: the contact point leaves at -e times its approach speed",
-          "[rigid][R6][5pts]") {
-  for (double e : {0.0, 0.4, 1.0}) {
-    INFO("restitution e = " << e);
-    Vec3 p;
+TEST_CASE("R6 prepare: effective mass along n and the restitution target above the threshold",
+          "[rigid][R6][3pts]") {
+  Vec3 p;
+  const Body b0 = tilted_box(p);
+  const double vn = point_velocity(b0, p).dot(kUp);  // -2.4: approaching
+  INFO("the test's own set-up: the corner approaches the floor, u.n = " << vn);
+  REQUIRE(vn < 0);
+  // The test's own K: the velocity change of p per unit impulse along each axis.
+  Mat3 K;
+  for (int k = 0; k < 3; ++k) {
+    Body probe = b0;
+    impulse_at(probe, p, Vec3::Unit(k));
+    K.col(k) = point_velocity(probe, p) - point_velocity(b0, p);
+  }
+  for (double e : {0.0, 0.5}) {
+    // Both sides of the threshold, close to it: a closing speed just above bounces,
+    // just below does not (resting).
+    for (double factor : {0.99, 1.01}) {
+      const double threshold = -vn * factor;
+      const bool bounces = factor < 1;
+      INFO("e = " << e << ", closing speed " << -vn << ", threshold " << threshold);
+      Body b = b0;
+      Contact c = contact_at(p, 1.5, Vec3(0.25, -0.5, 0));
+      prepare_contact(b, kUp, e, threshold, c);
+      require_near(c.r, p - b0.x, kImpulseTol, "r = p - x");
+      require_near(c.K, K, kImpulseTol, "K: velocity change of p per unit impulse at p");
+      require_near(c.mass_n, 1.0 / kUp.dot(K * kUp), 0.0,
+                   "mass_n = 1 / (n^T K n), the effective mass along n", kImpulseTol);
+      require_near(c.bias, bounces ? -e * vn : 0.0, kImpulseTol,
+                   bounces ? "above the threshold the contact aims at -e vn"
+                           : "below the threshold the contact does not bounce: bias 0");
+      require_near(c.Pn, 1.5, 0.0, "prepare leaves the stored Pn as it is");
+      require_near(c.Pt, Vec3(0.25, -0.5, 0), 0.0, "prepare leaves the stored Pt as it is");
+      require_near(b.v, b0.v, 0.0, "prepare applies nothing: v unchanged");
+      require_near(b.omega, b0.omega, 0.0, "prepare applies nothing: omega unchanged");
+    }
+  }
+}
+
+TEST_CASE("R6 warm start: the stored totals are applied at the point with their own sign",
+          "[rigid][R6][3pts]") {
+  Vec3 p;
+  const Body b0 = tilted_box(p);
+  Contact c = contact_at(p, 2.0, Vec3(0.3, -0.4, 0.0));
+  Body b = b0;
+  prepare_contact(b, kUp, 0.0, 0.0, c);
+  warm_start_contact(b, c, kUp);
+  Body expected = b0;
+  impulse_at(expected, p, 2.0 * kUp + Vec3(0.3, -0.4, 0.0));
+  require_near(b.v, expected.v, kImpulseTol,
+               "v += (Pn n + Pt) / m: the totals of the last step, pushing out of the plane");
+  require_near(b.omega, expected.omega, kImpulseTol, "omega += I^-1 (r x (Pn n + Pt))");
+  require_near(c.Pn, 2.0, 0.0, "warm starting keeps the totals (they are already applied)");
+}
+
+TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be taken back",
+          "[rigid][R6][4pts]") {
+  // A point moving INTO the plane with nothing stored: the iteration adds the impulse
+  // that makes u.n = bias, and returns it.
+  Vec3 p;
+  for (double e : {0.0, 0.6}) {
+    INFO("e = " << e << ", threshold 0.1 m/s, below the closing speed");
     Body b = tilted_box(p);
     const double vn = point_velocity(b, p).dot(kUp);
-    REQUIRE(vn < 0);  // the corner approaches the floor
+    Contact c = contact_at(p);
+    prepare_contact(b, kUp, e, 0.1, c);
     const Vec3 mv0 = b.m * b.v;
-    const double jn = contact_impulse(b, p, kUp, e, 0.0);
+    const double added = solve_contact(b, c, kUp, 0.0);
     require_near(point_velocity(b, p).dot(kUp), -e * vn, kImpulseTol,
-                 "Newton's law: normal velocity of the contact point after = -e * before");
-    require_near(jn, (b.m * b.v - mv0).dot(kUp), kImpulseTol,
-                 "the returned jn is the change of momentum along n");
+                 "after one iteration u.n = bias = -e vn (Newton's restitution law)");
+    require_near(c.Pn, (b.m * b.v - mv0).dot(kUp), kImpulseTol,
+                 "the total Pn is the momentum the contact gave along n");
+    require_near(added, c.Pn, kImpulseTol, "returned: the impulse this iteration added");
   }
-  // The same corner moving away from the floor: no impulse.
-  Vec3 p;
-  Body b = tilted_box(p);
-  b.v = -b.v;
-  b.omega = -b.omega;
-  const Body before = b;
-  require_near(contact_impulse(b, p, kUp, 0.5, 0.5), 0.0, 0.0,
-               "a separating point gets no impulse");
-  require_near(b.v, before.v, 0.0, "separating: v unchanged");
-  require_near(b.omega, before.omega, 0.0, "separating: omega unchanged");
-}
-
-TEST_CASE("R6 frictionless impulse: angular momentum about the contact point is conserved",
-          "[rigid][R6][4pts]") {
-  // An impulse J at p changes m v by J and I omega by (p - x) x J: the angular
-  // momentum about p, I omega + (x - p) x m v, does not change; without friction
-  // J is along n, so the tangential momentum does not change either.
-  Vec3 p;
-  Body b = tilted_box(p);
-  const Vec3 L0 = momentum_about(b, p), mv0 = b.m * b.v;
-  contact_impulse(b, p, kUp, 0.3, 0.0);
-  require_near(momentum_about(b, p), L0, kImpulseTol,
-               "angular momentum about the contact point I omega + (x - p) x m v");
-  const Vec3 dmv = b.m * b.v - mv0;
-  require_near(Vec3(dmv.x(), dmv.y(), 0.0), Vec3::Zero(), kImpulseTol,
-               "no friction: momentum changes only along the normal");
-  REQUIRE(dmv.z() > 0);
-}
-
-TEST_CASE("R6 friction: a sliding sphere rolls at 5/7 of its speed or loses mu jn / m",
-          "[rigid][R6][4pts]") {
-  // A sphere (I = 2/5 m r^2) lands with tangential speed u and no spin. The normal
-  // impulse is jn = (1 + e) m |vn| (r is along n: no turning). Sticking needs
-  // jt = u / (1/m + r^2 / I) = 2/7 m u, leaving v = 5/7 u and a rolling contact;
-  // when mu jn is smaller, the sphere slides and loses mu jn / m of its speed.
-  const double m = 2.0, r = 0.5, u = 3.0, vn = -2.0, e = 0.5;
-  const double jn = (1 + e) * m * -vn;
-  const Vec3 I = Vec3::Constant(0.4 * m * r * r);
-  {
-    Body s = make_body(m, I, quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, r), Vec3(u, 0, vn));
-    const Vec3 p(0, 0, 0);
-    require_near(contact_impulse(s, p, kUp, e, 1.0), jn, kImpulseTol, "jn = (1 + e) m |vn|");
-    require_near(s.v, Vec3(5.0 / 7.0 * u, 0.0, -e * vn), kImpulseTol,
-                 "mu = 1 is enough to stick: v = 5/7 u along the floor, -e vn up");
-    require_near(point_velocity(s, p), Vec3(0.0, 0.0, -e * vn), kImpulseTol,
-                 "sticking: the contact point no longer slides");
-  }
-  {
-    const double mu = 0.1;
-    Body s = make_body(m, I, quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, r), Vec3(u, 0, vn));
-    contact_impulse(s, Vec3(0, 0, 0), kUp, e, mu);
-    require_near(s.v, Vec3(u - mu * jn / m, 0.0, -e * vn), kImpulseTol,
-                 "mu = 0.1: Coulomb's bound |jt| <= mu jn, the sphere slides on");
+  // The same point after a warm start that pushed too hard: it now leaves the plane.
+  // The total comes down (a NEGATIVE increment), to exactly u.n = 0, while it stays
+  // >= 0. Clamping each iteration's increment to >= 0 instead would leave it moving
+  // away; forgetting the total would push once more.
+  for (double stored : {6.0, 0.5}) {
+    INFO("stored Pn = " << stored);
+    Body b = tilted_box(p);
+    b.v.z() = -0.05;  // approaching slowly
+    b.omega.setZero();
+    Contact c = contact_at(p, stored);
+    prepare_contact(b, kUp, 0.0, 10.0, c);
+    warm_start_contact(b, c, kUp);
+    const double un = point_velocity(b, p).dot(kUp);
+    REQUIRE(un > 0);                               // over-pushed
+    const double needed = stored - c.mass_n * un;  // the total that gives u.n = 0
+    const Body before = b;
+    const double added = solve_contact(b, c, kUp, 0.0);
+    if (needed > 0) {
+      require_near(c.Pn, needed, kImpulseTol, "total Pn + mass_n (bias - u.n): above 0, kept");
+      require_near(point_velocity(b, p).dot(kUp), 0.0, kImpulseTol,
+                   "taking back part of the total stops the point: u.n = 0");
+    } else {
+      require_near(c.Pn, 0.0, 0.0, "the total would go below 0: clamped to 0 (never pulls)");
+      require_near(point_velocity(b, p).dot(kUp), un - stored / c.mass_n, kImpulseTol,
+                   "the whole stored impulse taken back, no more: the point leaves");
+      REQUIRE(point_velocity(b, p).dot(kUp) > 0);
+    }
+    require_near(added, c.Pn - stored, kImpulseTol, "returned: new total minus old total");
+    require_near(Vec3(b.m * (b.v - before.v)), Vec3(added * kUp), kImpulseTol,
+                 "the body receives exactly the change of the total, along n");
   }
 }
 
-TEST_CASE("R6 resolve: a penetrating body is pushed out by its deepest point",
-          "[rigid][R6][2pts]") {
-  // A box 1 m high, 0.25 m into the floor and already moving up: no impulse, but
-  // the deepest corner comes back to the plane.
-  const Vec3 size(2.0, 1.5, 1.0);
-  Body b = make_body(1.0, Vec3(1, 2, 3), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, 0.25),
-                     Vec3(0.0, 0.0, 1.0));
-  resolve_plane_contact(b, corners(b, size), Vec3::Zero(), kUp, 0.5, 0.5);
-  require_near(b.x, Vec3(0, 0, 0.5), kImpulseTol, "x moves up by the deepest penetration 0.25 m");
-  require_near(b.v, Vec3(0, 0, 1), 0.0, "a separating body keeps its velocity");
-}
-
-TEST_CASE("R6 resolve: a box landing flat with e = 0 stops without sinking through the floor",
+TEST_CASE("R6 friction: the bound is mu times the accumulated normal total and opposes the slip",
           "[rigid][R6][3pts]") {
-  // Dropped flat from 1 m above its resting height: it hits at ~4.4 m/s and, with
-  // e = 0, stays. Between two detections it can go at most h |v| into the floor.
-  const Vec3 size(1.0, 2.0, 0.5);
-  const double h = 1e-3, g = 9.81, rest = 0.25, v_hit = std::sqrt(2 * g * 1.0);
-  Body b = make_body(2.0, Vec3(2.0 / 12 * 4.25, 2.0 / 12 * 1.25, 2.0 / 12 * 5.0),
-                     quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, rest + 1.0));
-  double lowest = b.x.z();
-  for (int k = 0; k < 2000; ++k) {  // 2 s
-    b.v += h * Vec3(0, 0, -g);
-    resolve_plane_contact(b, corners(b, size), Vec3::Zero(), kUp, 0.0, 0.5);
-    ref_position(b, h);
-    lowest = std::min(lowest, b.x.z());
+  // A sphere (r along -n: no turning from the normal impulse) sliding along x.
+  const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
+  const Vec3 p(0, 0, 0);
+  auto sphere = [&](const Vec3& v) {
+    return make_body(m, Vec3::Constant(I), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, R), v);
+  };
+  // Sticking needs |Pt| = 2/7 m u (the 5/7 rolling speed).
+  const double u = 3.0, stick = 2.0 / 7.0 * m * u;
+  // 1. Pn stored large from earlier iterations; this iteration adds almost nothing
+  //    along n. The bound mu * 10 = 5 N s is enough to stick; the increment's own
+  //    mu * dPn is not.
+  {
+    Body s = sphere(Vec3(u, 0, -0.001));
+    Contact c = contact_at(p, 10.0);
+    prepare_contact(s, kUp, 0.0, 1.0, c);
+    solve_contact(s, c, kUp, 0.5);
+    require_near(point_velocity(s, p), Vec3::Zero(), kImpulseTol,
+                 "mu Pn (the total, 5 N s) > 2/7 m u: the point stops sliding");
+    require_near(c.Pt, Vec3(-stick, 0, 0), kImpulseTol, "Pt = -2/7 m u, against the slip");
   }
-  // Resting, the box stays within the contact slop above the plane (or one step of
-  // free fall g h^2 below it); one-shot sequential impulses (no accumulated
-  // impulses, handout) leave a residual motion far below one step of gravity g h.
-  require_near(b.x.z(), rest + 0.5 * kContactSlop, 0.5 * kContactSlop + g * h * h,
-               "resting height: half the box's 0.5 m height, within the contact slop");
-  INFO("lowest centre height " << lowest << ", allowed " << rest - 1.01 * h * v_hit);
-  REQUIRE(lowest >= rest - 1.01 * h * v_hit);
-  require_near(b.v, Vec3::Zero(), 0.1 * g * h, "at rest: the velocity is gone (e = 0)");
-  require_near(b.omega, Vec3::Zero(), 0.1 * g * h / 0.25, "at rest: no spin (it landed flat)");
+  // 2. The cone's boundary, both sides: mu Pn just above and just below 2/7 m u.
+  for (double f : {1.02, 0.98}) {
+    const double Pn = 4.0, mu = f * stick / Pn;
+    INFO("mu Pn / (2/7 m u) = " << f);
+    Body s = sphere(Vec3(u, 0, 0));
+    Contact c = contact_at(p, Pn);
+    prepare_contact(s, kUp, 0.0, 1.0, c);
+    solve_contact(s, c, kUp, mu);
+    const double jt = std::min(stick, mu * Pn);
+    require_near(c.Pt, Vec3(-jt, 0, 0), kImpulseTol, "|Pt| = min(2/7 m u, mu Pn)");
+    require_near(s.v.x(), u - jt / m, kImpulseTol, "v.x loses |Pt| / m");
+  }
+  // 3. A stored friction total the slip has reversed: the total is corrected, and its
+  //    direction ends against the new slip (x), clamped to mu Pn as a total.
+  {
+    Body s = sphere(Vec3(u, 0.5, 0));
+    Contact c = contact_at(p, 1.0, Vec3(0.0, 0.4, 0));  // stored pushing along +y
+    prepare_contact(s, kUp, 0.0, 1.0, c);
+    solve_contact(s, c, kUp, 0.3);
+    INFO("friction total Pt = " << str(c.Pt) << ", expected |Pt| <= mu Pn = 0.3");
+    REQUIRE(c.Pt.norm() <= 0.3 * 1.0 * (1 + 1e-12));
+    require_near(c.Pt.norm(), 0.3, kImpulseTol, "sliding: |Pt| = mu Pn exactly");
+    require_near(c.Pt.z(), 0.0, kImpulseTol, "Pt lies in the plane");
+  }
+  // 4. Degenerate cases the header names: no slip, mu = 0, Pn = 0: no NaN, no friction.
+  for (const auto& [v, mu, Pn] :
+       {std::tuple{Vec3(0, 0, 0), 0.5, 1.0}, std::tuple{Vec3(u, 0, 0), 0.0, 1.0},
+        std::tuple{Vec3(u, 0, 0.5), 0.5, 0.0}}) {
+    INFO("v = " << str(v) << ", mu = " << mu << ", stored Pn = " << Pn);
+    Body s = sphere(v);
+    Contact c = contact_at(p, Pn);
+    prepare_contact(s, kUp, 0.0, 1.0, c);
+    solve_contact(s, c, kUp, mu);
+    REQUIRE(s.v.allFinite());
+    REQUIRE(s.omega.allFinite());
+    require_near(c.Pt, Vec3::Zero(), 0.0, "no slip, mu = 0 or no normal total: Pt stays 0");
+    require_near(s.v.x(), v.x(), kImpulseTol, "no friction: v.x unchanged");
+  }
+}
+
+TEST_CASE("R6 together and warm-started: a box on the floor rests to rounding",
+          "[rigid][R6][3pts]") {
+  // Four corners on the floor, 10 iterations per step, totals kept between steps.
+  // After a few steps each corner carries a quarter of the weight, m g h / 4 per step,
+  // and nothing moves. Without accumulated totals or without the warm start the
+  // iterations start from zero each step and leave a residual motion (the creep of
+  // the one-shot passes, handout) far above this bound.
+  constexpr double kRestTol = 1e-12;  // m/s, rad/s: rounding of ~10^3 steps of g h
+  const Vec3 size(1.0, 0.6, 0.4);
+  const double m = 2.0, h = 1e-3;
+  Body b = box_on_plane(m, size, kUp, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, kUp)));
+  const Vec3 x0 = b.x;
+  const double total = run_on_plane(b, size, kUp, 0.5, h, 1000);
+  require_near(total, m * kG * h, 0.0, "sum of Pn = m g h: the floor holds the weight", 1e-9);
+  require_near(b.v, Vec3::Zero(), kRestTol, "at rest: v = 0 after 1000 steps");
+  require_near(b.omega, Vec3::Zero(), kRestTol, "at rest: omega = 0");
+  require_near(b.x, x0, 1e-9, "the box has not crept from where it was set down");
+}
+
+TEST_CASE("R6 slope: static friction holds when mu > tan theta and else a = g (sin - mu cos)",
+          "[rigid][R6][2pts]") {
+  // A 30 degree slope whose fall line is along neither world axis, and a box turned
+  // about the normal: the friction must oppose the slip in whatever direction it is.
+  const double theta = M_PI / 6, h = 1e-3;
+  const Vec3 fall = Vec3(std::cos(0.7), std::sin(0.7), 0);  // horizontal, downhill
+  const Vec3 n = (std::cos(theta) * kUp + std::sin(theta) * fall).normalized();
+  const Vec3 down = (Vec3(0, 0, -1) - Vec3(0, 0, -1).dot(n) * n).normalized();
+  const Vec3 size(0.4, 0.4, 0.2);
+  const auto spin = Eigen::Quaterniond(Eigen::AngleAxisd(0.4, kUp));
+  {
+    Body b = box_on_plane(1.0, size, n, spin);
+    run_on_plane(b, size, n, 0.7, h, 200);
+    const Vec3 x1 = b.x;
+    run_on_plane(b, size, n, 0.7, h, 2000);
+    require_near((b.x - x1).dot(down), 0.0, 1e-9,
+                 "mu = 0.7 > tan 30 = 0.58: held still over 2 s (static friction)");
+  }
+  {
+    const double mu = 0.3, T = 0.5;
+    Body b = box_on_plane(1.0, size, n, spin);
+    run_on_plane(b, size, n, mu, h, int(T / h));
+    const double a = kG * (std::sin(theta) - mu * std::cos(theta));
+    require_near(b.v.dot(down), a * T, 0.0,
+                 "mu = 0.3 < tan 30: speed along the fall line a T, a = g (sin - mu cos)", 1e-6);
+    require_near((b.v - b.v.dot(down) * down).norm(), 0.0, 1e-9,
+                 "it slides straight down the fall line (friction opposes the slip)");
+  }
 }
 
 }  // namespace test_R6_plane_contact

@@ -9,6 +9,7 @@
 
 #include "collide_particles.h"
 #include "collide_plane.h"
+#include "contact_solver.h"
 #include "friction_impulse.h"
 #include "grid_pairs.h"
 
@@ -26,6 +27,14 @@ using Clock = std::chrono::steady_clock;
 // contact a previous pass left exactly touching is still a contact when
 // rounding puts it a hair apart (else its approach would not be stopped).
 constexpr double kSkin = 1e-9;
+
+// The accumulated solver: a contact that pushed in the last step (Pn > 0) lasts while
+// its gap is below this fraction of the smaller radius, so that a resting contact is
+// not lost to rounding; overlap beyond the same slop is removed by moving positions,
+// kPushBeta of it per step.
+constexpr double kSlopFraction = 0.01;
+constexpr double kPushBeta = 0.2;
+constexpr int kAccumulatedIterations = 10;  // default "iterations" of the accumulated solver
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -61,11 +70,21 @@ std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings)
   settings = ContactSettings{};
   if (top.has("contact")) {
     JsonObject c = top.object("contact");
-    c.only_keys(
-        {"restitution", "friction", "iterations", "ccd", "resting_speed", "shock_propagation"});
+    c.only_keys({"restitution", "friction", "iterations", "ccd", "resting_speed",
+                 "shock_propagation", "solver"});
     settings.restitution = c.number_or("restitution", 1.0, kUnit);
     settings.friction = c.number_or("friction", 0.0, kNonNegative);
-    settings.iterations = int(c.integer_or("iterations", 1, 1, 1000));
+    settings.solver = Solver::kAccumulated;
+    if (c.has("solver")) {
+      const std::string name = c.string("solver");
+      if (name == "passes") {
+        settings.solver = Solver::kPasses;
+      } else if (name != "accumulated") {
+        c.fail("solver", &c.raw()["solver"], "one of: accumulated, passes");
+      }
+    }
+    const int iterations = settings.solver == Solver::kPasses ? 1 : kAccumulatedIterations;
+    settings.iterations = int(c.integer_or("iterations", iterations, 1, 1000));
     settings.ccd = c.boolean_or("ccd", false);
     settings.rest_speed = c.number_or("resting_speed", 0.0, kNonNegative);
     settings.shock = c.boolean_or("shock_propagation", false);
@@ -135,6 +154,7 @@ ContactWorld::ContactWorld(const Scene& scene)
     : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
   cost_warnings = forces_.cost_warnings;
   planes_ = read_planes(scene, settings_);
+  w_ = m_.cwiseInverse();
   any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
   // The work of one step, estimated before the first: every particle against
   // every plane in every pass, and the broad phase's candidate pairs.
@@ -235,6 +255,12 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
 
   // Response: a fixed number of passes over the contacts, then the planes.
   if (timing) t0 = Clock::now();
+  if (settings_.solver == Solver::kAccumulated) {
+    accumulated(h, x, v);
+    if (timing) times_.response += seconds_since(t0);
+    x_prev_ = x;
+    return;
+  }
   const double e = settings_.restitution;
   for (int it = 0; it < settings_.iterations; ++it) {
     for (const auto& [i, j] : contacts_) pair_response(h, i, m_[j], j, e, x, v);
@@ -315,6 +341,91 @@ void ContactWorld::pair_response(double h, int i, double mj, int j, double e, Ma
   x.col(i) = x1, v.col(i) = v1, x.col(j) = x2, v.col(j) = v2;
 }
 
+// The accumulated solver (C5): this step's contacts, each with the totals it kept
+// from the last step; prepare and warm start every contact, `iterations` passes of
+// solve_contact; the impulses act before this step's position update (x0 + h dv);
+// then what overlap is left beyond the slop is removed by moving positions only.
+void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
+  // Keys: a * M + b for a pair, a * M + n + k for particle a and plane k.
+  const std::uint64_t n = std::uint64_t(x.cols()), M = n + planes_.size();
+  solved_.clear();
+  keys_.clear();
+  restitution_.clear();
+  plane_.clear();
+  // A contact is new when the discs overlap (or touch), and lasts while it pushed in the
+  // last step and the gap is below the slop.
+  const auto add = [&](int a, int b, const Vec2& normal, double gap, double slop, double mu,
+                       double e, std::uint64_t k) {
+    const auto it = kept_.find(k);
+    const bool held = it != kept_.end() && it->second.first > 0;
+    if (!(gap <= kSkin || (held && gap < slop))) return;
+    Contact c;
+    c.a = a, c.b = b, c.n = normal, c.mu = mu;
+    if (it != kept_.end()) c.Pn = it->second.first, c.Pt = it->second.second;
+    solved_.push_back(c);
+    keys_.push_back(k);
+    restitution_.push_back(e);
+    plane_.push_back(b >= 0 ? -1 : int(k % M - n));
+  };
+  for (const auto& [i, j] : contacts_) {
+    const Vec2 d = x.col(i) - x.col(j);
+    const double dist = d.norm();
+    const Vec2 normal = dist > 0 ? Vec2(d / dist) : Vec2(0.0, 1.0);
+    add(i, j, normal, dist - r_[i] - r_[j], kSlopFraction * std::min(r_[i], r_[j]), 0.0,
+        settings_.restitution, std::uint64_t(i) * M + std::uint64_t(j));
+  }
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    for (std::size_t k = 0; k < planes_.size(); ++k) {
+      const PlaneDef& p = planes_[k];
+      const double gap = (x.col(i) - p.point).dot(p.n) - r_[i];
+      if (gap + r_[i] < -p.thickness) continue;  // beyond a thin wall's back face
+      add(int(i), -1, p.n, gap, kSlopFraction * r_[i], p.friction, p.restitution,
+          std::uint64_t(i) * M + n + k);
+    }
+  }
+  const Mat2X v0 = v;
+  for (std::size_t c = 0; c < solved_.size(); ++c) {
+    prepare_contact(w_, v, restitution_[c], settings_.rest_speed, solved_[c]);
+  }
+  for (const Contact& c : solved_) warm_start_contact(w_, c, v);
+  for (int it = 0; it < settings_.iterations; ++it) {
+    for (Contact& c : solved_) solve_contact(w_, c, v);
+  }
+  x += h * (v - v0);
+  // The totals, for the next step's warm start.
+  kept_.clear();
+  for (std::size_t c = 0; c < solved_.size(); ++c) {
+    kept_[keys_[c]] = {solved_[c].Pn, solved_[c].Pt};
+  }
+  push_apart(x);
+}
+
+// Overlap beyond the slop, removed by moving positions only (no velocity changes, so no
+// energy is added): kPushBeta of it per contact, shared in proportion to 1/m, a few
+// Gauss-Seidel passes.
+void ContactWorld::push_apart(Mat2X& x) const {
+  for (int pass = 0; pass < 4; ++pass) {
+    for (std::size_t k = 0; k < solved_.size(); ++k) {
+      const Contact& c = solved_[k];
+      if (c.b >= 0) {
+        const Vec2 d = x.col(c.a) - x.col(c.b);
+        const double dist = d.norm();
+        const double slop = kSlopFraction * std::min(r_[c.a], r_[c.b]);
+        const double s = r_[c.a] + r_[c.b] - dist - slop;
+        if (!(s > 0) || !(dist > 0)) continue;
+        const Vec2 nn = d / dist;
+        const double wa = w_[c.a], wb = w_[c.b];
+        x.col(c.a) += kPushBeta * s * wa / (wa + wb) * nn;
+        x.col(c.b) -= kPushBeta * s * wb / (wa + wb) * nn;
+      } else {
+        const PlaneDef& p = planes_[std::size_t(plane_[k])];
+        const double s = r_[c.a] - (x.col(c.a) - p.point).dot(p.n) - kSlopFraction * r_[c.a];
+        if (s > 0) x.col(c.a) += kPushBeta * s * p.n;
+      }
+    }
+  }
+}
+
 void use_collisions(LabInfo& info) {
   use_forces(info);
   info.scene_keys.push_back("planes");
@@ -332,8 +443,10 @@ void use_collisions(LabInfo& info) {
       "mu,\n"
       "            \"thickness\": t}]   (normal is normalised; solid side behind it)\n"
       "  contact: {\"restitution\": e, \"friction\": mu, \"iterations\": k, \"ccd\": bool,\n"
-      "            \"resting_speed\": s, \"shock_propagation\": bool}\n"
-      "           (defaults 1, 0, 1, false, 0, false)\n"
+      "            \"resting_speed\": s, \"shock_propagation\": bool,\n"
+      "            \"solver\": \"accumulated\" | \"passes\"}\n"
+      "           (defaults 1, 0, 10 (accumulated) or 1 (passes), false, 0, false,\n"
+      "           accumulated: C5's warm-started impulses; passes: C1, C2, C4 pass after pass)\n"
       "  particles and emitters take \"radius\" (default 0). Without planes or contact, no\n"
       "  collisions are computed.\n");
 }

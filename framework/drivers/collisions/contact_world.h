@@ -1,15 +1,20 @@
 // The collisions lab's glue: a scene's "planes" and "contact" keys -> the
 // collision phase that runs after every integrator step (wb::World::after_step),
-// calling the student's functions: grid_pairs (C3, broad phase), then, for a
-// fixed number of iterations, collide_particles (C2) on the contacts and
-// collide_plane (C1) + friction_impulse (C4) on every particle and plane.
+// calling the student's functions: grid_pairs (C3, broad phase), then either the
+// accumulated, warm-started solver (C5: prepare_contact, warm_start_contact,
+// solve_contact on every contact together), or, for a fixed number of passes,
+// collide_particles (C2) on the contacts and collide_plane (C1) + friction_impulse
+// (C4) on every particle and plane.
 // The forces are the forces lab's (ForceWorld). Keys: docs/scenes.md#collisions.
 #pragma once
+#include <cstdint>
 #include <limits>
 #include <memory>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "contact_solver.h"
 #include "forces_world.h"
 #include "wb/run.h"
 #include "wb/world.h"
@@ -37,14 +42,22 @@ struct PlaneDef {
   double thickness = std::numeric_limits<double>::infinity();  // m
 };
 
+// How the contacts are resolved ("contact": {"solver": ...}).
+enum class Solver {
+  kPasses,       // one-shot impulses (C1, C2, C4) in passes, then overlap removed
+  kAccumulated,  // accumulated, warm-started impulses (C5), then overlap removed
+};
+
 // The scene's "contact" block (defaults when it is left out).
 struct ContactSettings {
   double restitution = 1;  // e for particle pairs and the default for planes
   double friction = 0;     // mu at planes (default for planes)
-  int iterations = 1;      // impulse passes per step
-  bool ccd = false;        // continuous check of fast particles against planes
-  double rest_speed = 0;   // "resting_speed": slower approaches do not bounce (m/s)
-  bool shock = false;      // "shock_propagation": a last, bottom-up pass for stacks
+  // The accumulated solver whenever the scene has a "contact" block.
+  Solver solver = Solver::kPasses;
+  int iterations = 1;     // impulse passes (iterations) per step; 10 for accumulated
+  bool ccd = false;       // continuous check of fast particles against planes
+  double rest_speed = 0;  // "resting_speed": slower approaches do not bounce (m/s)
+  bool shock = false;     // "shock_propagation": a last, bottom-up pass for stacks
 };
 
 // Limits of one collision step, checked on the initial state before the first
@@ -89,6 +102,8 @@ class ContactWorld : public World {
   void planes_pass(double h, Mat2X& x, Mat2X& v) const;
   void shock_pass(double h, Mat2X& x, Mat2X& v) const;
   void pair_response(double h, int i, double mj, int j, double e, Mat2X& x, Mat2X& v) const;
+  void accumulated(double h, Mat2X& x, Mat2X& v) const;
+  void push_apart(Mat2X& x) const;
   ForceWorld forces_;
   VecX m_, r_;
   mutable VecX r_grown_;    // radii plus the contact margin of this step
@@ -103,6 +118,14 @@ class ContactWorld : public World {
   mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
   mutable Pairs candidates_, contacts_, sorted_;
   mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
+  // The accumulated solver: this step's contacts, and every contact's totals (Pn, Pt)
+  // from the last step by key (a, b or plane), for warm starting.
+  VecX w_;  // inverse masses
+  mutable std::vector<Contact> solved_;
+  mutable std::vector<std::uint64_t> keys_;
+  mutable std::vector<double> restitution_;
+  mutable std::vector<int> plane_;  // the plane of each contact, -1 for a pair
+  mutable std::unordered_map<std::uint64_t, std::pair<double, double>> kept_, next_;
 };
 
 // Makes the lab run its scenes with the forces lab's forces, plus collisions

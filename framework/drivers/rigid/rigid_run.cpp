@@ -1,6 +1,7 @@
 // The run contract for the rigid lab (docs/run-contract.md, "The rigid lab"):
 // the same flags, rules, atomic outputs and summary line as the particle labs,
 // with a 3D state. Sweep mode: work-precision on a torque-free body.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -104,9 +105,12 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
   long k = 0;
   bool diverged = false, moved = false;
   double drift = 0;
+  StepState state;   // contacts' impulses, kept from step to step
+  double angle = 0;  // largest angle of a revolute hinge's body axis from its axis
   const Body first = bodies.front();
   while (k < opt.steps) {
-    drift = std::max(drift, step(scene, *opt.integrator, opt.dt, bodies));
+    drift = std::max(drift, step(scene, *opt.integrator, opt.dt, bodies, state));
+    angle = std::max(angle, state.hinge_angle);
     ++k;
     const double t = double(k) * opt.dt;
     diverged = !finite(bodies);
@@ -137,6 +141,9 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
   j["angular_momentum0"] = vec_json(t0.L);
   j["angular_momentum"] = vec_json(t1.L);
   if (!scene.hinges.empty()) j["hinge_drift"] = number_or_null(drift);
+  const bool revolute = std::any_of(scene.hinges.begin(), scene.hinges.end(),
+                                    [](const Hinge& hg) { return hg.revolute; });
+  if (revolute) j["hinge_angle"] = number_or_null(angle);
   if (!warnings.empty()) j["warnings"] = warnings;
   return j;
 }
@@ -260,7 +267,9 @@ std::string help_footer(const LabInfo& info) {
   s +=
       "\nScene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
       "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"
-      "contact (restitution, friction), hinges (body, anchor, beta). See docs/scenes.md.\n";
+      "contact (restitution, friction, solver accumulated|passes, iterations, resting_speed),\n"
+      "hinges (body, anchor, beta; with axis: revolute, without: a point (ball) joint).\n"
+      "See docs/scenes.md.\n";
   s += "\nTrace (--out): t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (omega in the world frame).\n"
        "Stats (--stats): step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz (L about the "
        "origin).\n";

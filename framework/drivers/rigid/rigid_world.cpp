@@ -9,7 +9,6 @@
 #include "body_inertia.h"
 #include "hinge.h"
 #include "integrate_position.h"
-#include "plane_contact.h"
 #include "wb/run.h"
 
 namespace rigid {
@@ -313,20 +312,36 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
   }
   if (top.has("contact")) {
     JsonObject c = top.object("contact");
-    c.only_keys({"restitution", "friction"});
+    c.only_keys({"restitution", "friction", "solver", "iterations", "resting_speed"});
     s.restitution = c.number_or("restitution", s.restitution, {.min = 0, .max = 1});
     s.friction = c.number_or("friction", s.friction, {.min = 0});
+    s.solver = Solver::kAccumulated;
+    if (c.has("solver")) {
+      const std::string name = c.string("solver");
+      if (name == "passes") {
+        s.solver = Solver::kPasses;
+      } else if (name != "accumulated") {
+        c.fail("solver", &c.raw().at("solver"), "one of: accumulated, passes");
+      }
+    }
+    s.iterations = int(c.integer_or("iterations", s.iterations, 1, 1000));
+    s.rest_speed = c.number_or("resting_speed", s.rest_speed, {.min = 0});
   }
   const wb::json& hinges = top.array_or_empty("hinges");
   for (std::size_t i = 0; i < hinges.size(); ++i) {
     JsonObject o = top.element("hinges", i);
-    o.only_keys({"body", "anchor", "beta"});
+    o.only_keys({"body", "anchor", "beta", "axis"});
     Hinge hg;
     hg.body = body_index(o, s);
     hg.anchor = vec3(o, "anchor");
     hg.beta = o.number_or("beta", hg.beta, {.min = 0, .max = 1});
     const Body& b = s.bodies[hg.body].body;
     hg.r_body = b.q.toRotationMatrix().transpose() * (hg.anchor - b.x);
+    if (o.has("axis")) {  // a revolute hinge: the body turns about this world axis only
+      hg.revolute = true;
+      hg.axis = direction(o, "axis");
+      hg.axis_body = b.q.toRotationMatrix().transpose() * hg.axis;
+    }
     if (!hg.r_body.allFinite()) {
       o.fail("anchor", &o.raw().at("anchor"),
              "a point whose offset from body " + std::to_string(hg.body) + "'s centre is finite");
@@ -366,7 +381,86 @@ std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane&
   return pts;
 }
 
+double resolve_plane_passes(Body& b, const std::vector<Vec3>& points, const Vec3& point,
+                            const Vec3& n, double e, double mu) {
+  // One impulse at one point, with restitution and friction: the sliding left
+  // after the normal impulse is stopped, or takes at most mu jn (Coulomb).
+  const auto impulse = [&](const Vec3& p) {
+    const Vec3 r = p - b.x;
+    const double vn = (b.v + b.omega.cross(r)).dot(n);
+    if (vn >= 0.0) return 0.0;  // separating or resting: no impulse
+    const Mat3 R = b.q.toRotationMatrix();
+    const Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+    const auto inv_mass = [&](const Vec3& u) {
+      return 1.0 / b.m + u.dot((I_inv * r.cross(u)).cross(r));
+    };
+    const double jn = -(1.0 + e) * vn / inv_mass(n);
+    b.v += jn * n / b.m;
+    b.omega += I_inv * r.cross(jn * n);
+    const Vec3 u = b.v + b.omega.cross(r);
+    const Vec3 vt = u - u.dot(n) * n;
+    const double speed = vt.norm();
+    if (speed > 0.0) {
+      const Vec3 t = vt / speed;
+      const double jt = std::min(speed / inv_mass(t), mu * jn);
+      b.v -= jt * t / b.m;
+      b.omega -= I_inv * r.cross(jt * t);
+    }
+    return jn;
+  };
+  double total = 0.0;
+  for (int pass = 0; pass < kContactPasses; ++pass) {
+    double applied = 0.0;
+    for (const Vec3& p : points) {
+      if ((p - point).dot(n) < kContactSlop) applied += impulse(p);
+    }
+    total += applied;
+    if (applied == 0.0) break;
+  }
+  // Push the body out of the plane by the deepest penetration.
+  double depth = 0.0;
+  for (const Vec3& p : points) depth = std::max(depth, (point - p).dot(n));
+  b.x += depth * n;
+  return total;
+}
+
+namespace {
+
+// Split impulses (the position part of the accumulated solver): "push" impulses,
+// accumulated and >= 0 like the normal ones, on a pseudo-velocity (vp, wp) that
+// starts at 0 each step, aiming at a normal pseudo-velocity of kPushBeta / h times
+// each point's penetration. The position update uses v + vp and omega + wp, and the
+// body keeps its v and omega: the push moves the body out and adds no velocity.
+void push_out(const Body& b, const std::vector<Contact>& contacts,
+              const std::vector<double>& depth, const Vec3& n, double h, int iterations, Vec3& vp,
+              Vec3& wp) {
+  const Mat3 R = b.q.toRotationMatrix();
+  const Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  std::vector<double> total(contacts.size(), 0.0);
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      if (!(depth[k] > 0)) continue;
+      const Vec3& r = contacts[k].r;
+      const double inv_mass = 1.0 / b.m + n.dot((I_inv * r.cross(n)).cross(r));
+      const double un = (vp + wp.cross(r)).dot(n);
+      const double next = std::max(total[k] + (kPushBeta / h * depth[k] - un) / inv_mass, 0.0);
+      const Vec3 J = (next - total[k]) * n;
+      total[k] = next;
+      vp += J / b.m;
+      wp += I_inv * r.cross(J);
+    }
+  }
+}
+
+}  // namespace
+
 double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies) {
+  StepState fresh;
+  return step(scene, integ, h, bodies, fresh);
+}
+
+double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies,
+            StepState& state) {
   // Accumulate forces.
   for (Body& b : bodies) {
     b.f.setZero();
@@ -381,20 +475,72 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
   for (Body& b : bodies) integ.velocity(b, h);
   // Constraint impulses: hinges, then contacts.
   for (const Hinge& hg : scene.hinges) {
-    apply_hinge(bodies[hg.body], hg.r_body, hg.anchor, h, hg.beta);
-  }
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    for (const Plane& pl : scene.planes) {
-      resolve_plane_contact(bodies[i], contact_points(scene.bodies[i], bodies[i], pl), pl.point,
-                            pl.normal, scene.restitution, scene.friction);
+    if (hg.revolute) {
+      apply_revolute(bodies[hg.body], hg.r_body, hg.anchor, hg.axis_body, hg.axis, h, hg.beta);
+    } else {
+      apply_hinge(bodies[hg.body], hg.r_body, hg.anchor, h, hg.beta);
     }
   }
-  // Integrate positions.
-  for (Body& b : bodies) integrate_position(b, h);
+  const std::size_t np = scene.planes.size();
+  std::vector<Vec3> vp(bodies.size(), Vec3::Zero()), wp(bodies.size(), Vec3::Zero());
+  if (scene.solver == Solver::kAccumulated) state.contacts.resize(bodies.size() * np);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (std::size_t k = 0; k < np; ++k) {
+      const Plane& pl = scene.planes[k];
+      const std::vector<Vec3> points = contact_points(scene.bodies[i], bodies[i], pl);
+      if (scene.solver == Solver::kPasses) {
+        resolve_plane_passes(bodies[i], points, pl.point, pl.normal, scene.restitution,
+                             scene.friction);
+        continue;
+      }
+      // The points touching the plane, with the totals they kept from the last step
+      // (a point that stopped touching starts again from zero).
+      std::vector<Contact>& kept = state.contacts[i * np + k];
+      kept.resize(points.size());
+      std::vector<Contact> touching;
+      std::vector<std::size_t> which;
+      std::vector<double> depth;
+      for (std::size_t j = 0; j < points.size(); ++j) {
+        // A new contact needs the point in the plane; one that held the body in the
+        // last step (Pn > 0) lasts while the point is less than the slop above it.
+        const double d = (pl.point - points[j]).dot(pl.normal);
+        if (d >= 0 || (kept[j].Pn > 0 && -d < kContactSlop)) {
+          kept[j].p = points[j];
+          touching.push_back(kept[j]);
+          which.push_back(j);
+          depth.push_back(d);
+        } else {
+          kept[j] = Contact{};
+        }
+      }
+      if (touching.empty()) continue;
+      solve_plane_contacts(bodies[i], touching, pl.normal, scene.restitution, scene.rest_speed,
+                           scene.friction, scene.iterations);
+      for (std::size_t j = 0; j < touching.size(); ++j) kept[which[j]] = touching[j];
+      push_out(bodies[i], touching, depth, pl.normal, h, scene.iterations, vp[i], wp[i]);
+    }
+  }
+  // Integrate positions (with the push-out's pseudo-velocities, which are not kept).
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    const Vec3 v = b.v, omega = b.omega;
+    b.v += vp[i];
+    b.omega += wp[i];
+    integrate_position(b, h);
+    b.v = v;
+    b.omega = omega;
+  }
   double drift = 0;
+  state.hinge_angle = 0;
   for (const Hinge& hg : scene.hinges) {
     const Body& b = bodies[hg.body];
-    drift = std::max(drift, (b.x + b.q.toRotationMatrix() * hg.r_body - hg.anchor).norm());
+    const Mat3 R = b.q.toRotationMatrix();
+    drift = std::max(drift, (b.x + R * hg.r_body - hg.anchor).norm());
+    if (hg.revolute) {
+      const Vec3 u = R * hg.axis_body;
+      state.hinge_angle =
+          std::max(state.hinge_angle, std::atan2(u.cross(hg.axis).norm(), u.dot(hg.axis)));
+    }
   }
   return drift;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "plane_contact.h"
 #include "rigid_body.h"
 #include "wb/input.h"
 
@@ -28,11 +29,21 @@ struct Plane {
   Vec3 normal = Vec3::UnitZ();  // unit
 };
 
+// A joint to the world: a point (ball) joint, or, with "axis", a revolute hinge.
 struct Hinge {
   int body = 0;
-  Vec3 anchor = Vec3::Zero();  // world point (m)
-  Vec3 r_body = Vec3::Zero();  // the pinned point of the body, body frame (m)
-  double beta = 0.2;           // drift correction per step
+  Vec3 anchor = Vec3::Zero();      // world point (m)
+  Vec3 r_body = Vec3::Zero();      // the pinned point of the body, body frame (m)
+  double beta = 0.2;               // drift correction per step
+  bool revolute = false;           // true when the scene gives "axis"
+  Vec3 axis = Vec3::UnitZ();       // revolute: the hinge axis, world (unit)
+  Vec3 axis_body = Vec3::UnitZ();  // revolute: the same axis in the body frame at the start
+};
+
+// How contacts with planes are solved ("contact": {"solver": ...}).
+enum class Solver {
+  kPasses,       // one-shot impulses, passes until none applies, then a push-out (provided)
+  kAccumulated,  // accumulated, warm-started impulses (R6) and split-impulse push-out
 };
 
 // A constant world force applied at a point fixed in a body.
@@ -51,6 +62,10 @@ struct Scene {
   std::vector<PointForce> point_forces;
   std::vector<Plane> planes;
   double restitution = 0.3, friction = 0.5;
+  // The new solver whenever the scene has a "contact" block, the passes otherwise.
+  Solver solver = Solver::kPasses;
+  int iterations = 10;       // accumulated: iterations per step
+  double rest_speed = 0.05;  // accumulated: closing speeds (m/s) below this do not bounce
   std::vector<Hinge> hinges;
   // Valid but slow (docs/scenes.md, "rigid"): printed as "<lab>: warning: ..."
   // once the scene and the flags are accepted.
@@ -80,9 +95,34 @@ struct Integrator {
   std::string description;
 };
 
+// A point that pushed on a plane in the last step still counts as touching it while it
+// is less than this above it (m), so that a resting contact is not lost to rounding.
+// The passes solver counts every point this close as touching.
+constexpr double kContactSlop = 1e-3;
+constexpr int kContactPasses = 10;  // the passes solver: at most this many passes
+// Split impulses: the push-out removes this fraction of the penetration per step.
+constexpr double kPushBeta = 0.2;
+
+// What a run keeps from one step to the next: every body's contacts with every plane,
+// indexed by candidate point, with their accumulated impulses (warm starting).
+struct StepState {
+  std::vector<std::vector<Contact>> contacts;  // [body * planes + plane][point]
+  double hinge_angle = 0;  // after the last step: the largest angle between a revolute
+                           // hinge's body axis and its axis (rad)
+};
+
 // One whole step of every body: forces, velocities, hinges, contacts, positions.
 // Returns the largest hinge drift |x + R r_body - anchor| after the step (m).
+double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies,
+            StepState& state);
+// The same without warm starting across calls (a fresh state each time).
 double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies);
+
+// The provided one-shot solver ("solver": "passes"): an impulse at each approaching
+// point with restitution and friction, passes until none applies, then the body is
+// pushed out by its deepest penetration. Returns the sum of the normal impulses.
+double resolve_plane_passes(Body& b, const std::vector<Vec3>& points, const Vec3& point,
+                            const Vec3& n, double e, double mu);
 
 // Diagnostics (the glue's own formulas, not the student's).
 struct Totals {

@@ -7,11 +7,13 @@ tools/plot subcommands (work on a student's own runs of build/bin/rigid):
   rigid-frames  TRACE.csv [--scene S.json] [--count N] -o FIG.png
   rigid-animate TRACE.csv [--scene S.json] [--frames N] [--fps F] -o FIG.gif
   rigid-sweep   SWEEP.csv -o FIG.png
+  rigid-creep   TRACE.csv [TRACE.csv ...] --labels a,b [--after T] -o FIG.png
 """
 import json
 import math
 import os
 
+from .. import creep
 from ..common import (InputError, column, finite, integrator_style, new_figure, parse_list,
                       read_csv, save_figure)
 
@@ -557,6 +559,7 @@ def add_commands(sub):
     s.add_argument("--fps", type=int, default=20, help="frames per second (default 20)")
     s.add_argument("-o", "--out", required=True, metavar="FIG.gif")
     s.add_argument("--title")
+    creep.add_command(sub, "rigid-creep", "rigid lab")
     s = sub.add_parser("rigid-sweep", help="rigid lab: work-precision from a --sweep CSV")
     s.add_argument("sweep", metavar="SWEEP.csv")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
@@ -565,7 +568,10 @@ def add_commands(sub):
 
 def run(args):
     cmd = args.command
-    if cmd == "rigid-momenta":
+    if cmd == "rigid-creep":
+        creep.plot_creep(args.traces, parse_list(args.labels, "--labels"), args.out,
+                         after=args.after, title=args.title)
+    elif cmd == "rigid-momenta":
         labels = parse_list(args.labels, "--labels") if args.labels else None
         plot_momenta(args.stats, labels, args.out, title=args.title)
     elif cmd == "rigid-polhode":
@@ -626,7 +632,8 @@ def scene_figures(ctx):
         argv = ["--scene", ctx.scene_path, "--integrator", integ, "--stats", st]
         if integ == default:
             argv += ["--out", trace]
-        s = ctx.run(argv + ["--every", every], f"{stem} ({integ})", label=integ)
+        s = ctx.run(argv + ["--every", every], f"{stem} ({integ})", label=integ,
+                    save=stem if integ == default else None)
         if s is None:
             continue
         if s.get("status") == "diverged" and every != "1" and s.get("steps", 0) <= 10**6:
@@ -667,6 +674,8 @@ def scene_figures(ctx):
     args = ["rigid-animate", trace, "--scene", ctx.scene_path, "--frames", "48", "-o", out]
     if ctx.plot(args):
         ctx.figure(out, f"Animation of the run ({default}, 48 frames).", args)
+    if stem in CREEP:
+        _creep_figure(ctx, default)
     if _torque_free(doc) and stem == "dzhanibekov":
         csv = ctx.path(f"sweep-{stem}.csv")
         s = ctx.run(["--scene", ctx.scene_path, "--sweep", csv, "--t-end", "10", "--repeats",
@@ -679,3 +688,32 @@ def scene_figures(ctx):
                                 "torque-free flip: relative error of the angular momentum at "
                                 "the end, and the largest relative energy error, against the "
                                 "number of steps.", args)
+
+
+# Scenes whose resting contacts the report runs with both solvers (handouts/rigid.md#r6).
+CREEP = {"box-rest": 1.1}  # scene: the time from which it should rest (s)
+
+
+def _creep_figure(ctx, integ):
+    stem = ctx.stem
+    traces = []
+    for solver in ("passes", "accumulated"):
+        doc = json.loads(json.dumps(ctx.doc))
+        doc.setdefault("contact", {})["solver"] = solver
+        scene = ctx.path(f"{stem}-{solver}.json")
+        with open(scene, "w", encoding="utf-8") as f:
+            json.dump(doc, f, indent=1)
+        trace = ctx.path(f"{stem}-{solver}-trace.csv")
+        s = ctx.run(["--scene", scene, "--integrator", integ, "--out", trace, "--every", "10"],
+                    f"{stem} (solver {solver})", label=solver)
+        if s is None:
+            return
+        traces.append(trace)
+    out = ctx.path(f"{stem}-creep.png")
+    args = ["rigid-creep"] + traces + ["--labels", "passes (one-shot),accumulated",
+                                       "--after", str(CREEP[stem]), "-o", out]
+    if ctx.plot(args):
+        ctx.figure(out, "The largest speed of the box against time (log scale), the same "
+                        "scene solved by the one-shot passes and by the accumulated, "
+                        "warm-started impulses (R6); the dotted line is 1 s after landing.",
+                   args)

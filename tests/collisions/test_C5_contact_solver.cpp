@@ -1,0 +1,241 @@
+// Graded tests for TODO(C5), contacts by accumulated, warm-started impulses
+// (labs/collisions/contact_solver.cpp). Expected values: the effective mass of two
+// particles 1 / (1/m_a + 1/m_b), Newton's restitution law above the threshold,
+// the totals' bounds (Pn >= 0, |Pt| <= mu Pn) and what they imply (an over-pushed
+// contact takes impulse back), momentum conservation, and a column of discs that
+// rests to rounding because the totals carry the weight from step to step.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "contact_solver.h"
+#include "test_helpers.h"
+
+// A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
+// helpers in a namespace of its own.
+namespace test_C5_contact_solver {
+
+using wb::Mat2X;
+using wb::Vec2;
+using wb::VecX;
+
+namespace {
+
+constexpr double kTol = 1e-12;  // a few products of numbers ~0.1-10
+constexpr double kG = 9.81;
+
+Contact make_contact(int a, int b, const Vec2& n, double mu = 0, double Pn = 0, double Pt = 0) {
+  Contact c;
+  c.a = a, c.b = b, c.n = n.normalized(), c.mu = mu, c.Pn = Pn, c.Pt = Pt;
+  return c;
+}
+
+void require_vec(const Vec2& got, const Vec2& expected, double tol, const std::string& what) {
+  INFO(what << "\n  expected (" << expected.x() << ", " << expected.y() << ")\n  got      ("
+            << got.x() << ", " << got.y() << ")\n  tolerance " << tol);
+  REQUIRE(wbtest::near(got.x(), expected.x(), tol, 0.0));
+  REQUIRE(wbtest::near(got.y(), expected.y(), tol, 0.0));
+}
+
+// Three particles: 0 and 1 a pair (masses 2 and 0.5), 2 a bystander.
+VecX inverse_masses() { return (VecX(3) << 0.5, 2.0, 1.0).finished(); }
+
+}  // namespace
+
+TEST_CASE("C5 prepare: effective mass and the restitution target on both sides of the threshold",
+          "[collisions][C5][4pts]") {
+  const VecX w = inverse_masses();
+  Mat2X v(2, 3);
+  v << 1.0, -0.5, 7.0, -2.0, 1.0, 7.0;             // columns: v0 = (1, -2), v1 = (-0.5, 1), v2
+  const Vec2 n = Vec2(0.6, 0.8);                   // from 1 to 0
+  const double un = (v.col(0) - v.col(1)).dot(n);  // -1.5: closing
+  for (double e : {0.0, 0.7}) {
+    for (double f : {0.99, 1.01}) {
+      const double threshold = -un * f;
+      const bool bounces = f < 1;
+      INFO("pair, e = " << e << ", closing speed " << -un << ", threshold " << threshold);
+      Contact c = make_contact(0, 1, n, 0.4, 1.25, -0.5);
+      const Mat2X v0 = v;
+      prepare_contact(w, v, e, threshold, c);
+      wbtest::require_near(c.mass_n, 1.0 / (0.5 + 2.0), 0.0, "mass_n = 1 / (1/m_a + 1/m_b)",
+                           kTol);
+      wbtest::require_near(c.bias, bounces ? -e * un : 0.0, kTol,
+                           bounces ? "above the threshold the contact aims at -e un"
+                                   : "below the threshold: resting, bias 0 (no micro-bounce)");
+      wbtest::require_near(c.Pn, 1.25, 0.0, "prepare keeps the stored Pn");
+      wbtest::require_near(c.Pt, -0.5, 0.0, "prepare keeps the stored Pt");
+      INFO("prepare applies no impulse");
+      REQUIRE(v == v0);
+    }
+  }
+  // A plane (b = -1): only particle a's mass, only its velocity.
+  Contact c = make_contact(1, -1, Vec2(0, 1));
+  prepare_contact(w, v, 0.5, 0.1, c);
+  wbtest::require_near(c.mass_n, 1.0 / 2.0, 0.0, "at a plane mass_n = m_a", kTol);
+  wbtest::require_near(c.bias, 0.0, kTol, "particle 1 moves away from the floor: bias 0");
+}
+
+TEST_CASE("C5 warm start: the stored totals are applied again with their own sign",
+          "[collisions][C5][3pts]") {
+  const VecX w = inverse_masses();
+  Mat2X v = Mat2X::Zero(2, 3);
+  const Vec2 n(0.6, 0.8), t(-0.8, 0.6);  // t = perp(n)
+  Contact c = make_contact(0, 1, n, 0.5, 2.0, 0.3);
+  prepare_contact(w, v, 0.0, 0.0, c);
+  warm_start_contact(w, c, v);
+  const Vec2 J = 2.0 * n + 0.3 * t;
+  require_vec(v.col(0), 0.5 * J, kTol, "v_a += w_a (Pn n + Pt perp(n)): pushed away from b");
+  require_vec(v.col(1), -2.0 * J, kTol, "v_b -= w_b J: equal and opposite");
+  require_vec(v.col(2), Vec2::Zero(), 0.0, "a particle not in the contact is untouched");
+  Mat2X u = Mat2X::Zero(2, 3);
+  Contact floor = make_contact(2, -1, Vec2(0, 1), 0.5, 1.5, -0.25);
+  prepare_contact(w, u, 0.0, 0.0, floor);
+  warm_start_contact(w, floor, u);
+  // perp((0, 1)) = (-1, 0): J = 1.5 (0, 1) - 0.25 (-1, 0) = (0.25, 1.5); w_a = 1.
+  require_vec(u.col(2), Vec2(0.25, 1.5), kTol,
+              "at a plane only v_a changes: w_a (Pn n + Pt perp(n))");
+}
+
+TEST_CASE("C5 one iteration: the normal impulse is a clamped total that can be taken back",
+          "[collisions][C5][5pts]") {
+  const VecX w = inverse_masses();
+  const Vec2 n(0.6, 0.8);
+  // Closing with nothing stored: the iteration makes un = bias and returns what it added;
+  // the total momentum of the pair does not change.
+  for (double e : {0.0, 0.7}) {
+    INFO("e = " << e);
+    Mat2X v(2, 3);
+    v << 1.0, -0.5, 0.0, -2.0, 1.0, 0.0;
+    const double un0 = (v.col(0) - v.col(1)).dot(n);
+    const Vec2 p0 = v.col(0) / w[0] + v.col(1) / w[1];
+    Contact c = make_contact(0, 1, n);
+    prepare_contact(w, v, e, 0.1, c);
+    const double added = solve_contact(w, c, v);
+    wbtest::require_near((v.col(0) - v.col(1)).dot(n), -e * un0, kTol,
+                         "after one iteration un = -e un0 (Newton's restitution law)");
+    wbtest::require_near(added, c.Pn, kTol, "returned: the impulse this iteration added");
+    wbtest::require_near(c.Pn, (1 + e) * -un0 / (0.5 + 2.0), kTol,
+                         "Pn = (1 + e) |un| / (w_a + w_b)");
+    require_vec(Vec2(v.col(0) / w[0] + v.col(1) / w[1]), p0, kTol,
+                "the pair's total momentum is unchanged");
+  }
+  // Over-pushed by a warm start: the total comes DOWN (a negative increment) to exactly
+  // un = 0 while it stays >= 0, or to 0 when even that is too much. Clamping the
+  // increment instead, or forgetting the total, gets this wrong.
+  for (const auto& [stored, vy] : {std::pair{3.0, -0.1}, std::pair{0.05, 0.1}}) {
+    INFO("stored Pn = " << stored << ", particle 0 moving at " << vy << " m/s along n");
+    Mat2X v(2, 3);
+    v << 0.0, 0.0, 0.0, vy, 0.0, 0.0;  // particle 0 on the floor, falling or leaving
+    Contact c = make_contact(0, -1, Vec2(0, 1), 0.0, stored);
+    prepare_contact(w, v, 0.0, 0.5, c);
+    warm_start_contact(w, c, v);
+    const double up = v(1, 0);
+    REQUIRE(up > 0);
+    const double added = solve_contact(w, c, v);
+    const double needed = stored - up / w[0];
+    if (needed > 0) {
+      wbtest::require_near(c.Pn, needed, kTol, "total Pn + mass_n (bias - un): above 0, kept");
+      wbtest::require_near(v(1, 0), 0.0, kTol, "part of the total taken back: un = 0");
+    } else {
+      wbtest::require_near(c.Pn, 0.0, 0.0, "the total would go below 0: clamped to 0");
+      wbtest::require_near(v(1, 0), up - stored * w[0], kTol,
+                           "the whole stored impulse taken back, no more");
+    }
+    wbtest::require_near(added, c.Pn - stored, kTol, "returned: new total minus old total");
+  }
+}
+
+TEST_CASE("C5 friction: the bound is mu times the accumulated normal total",
+          "[collisions][C5][4pts]") {
+  const VecX w = (VecX(1) << 0.5).finished();  // 2 kg
+  const Vec2 up(0, 1);
+  // perp((0, 1)) = (-1, 0): sliding along +x is ut = -u.x.
+  // 1. A large stored Pn, an iteration that adds almost nothing along n: the bound is
+  //    mu times the total (enough to stop the slide), not mu times the increment.
+  {
+    Mat2X v(2, 1);
+    v << 1.0, -0.001;
+    Contact c = make_contact(0, -1, up, 0.5, 10.0);
+    prepare_contact(w, v, 0.0, 1.0, c);
+    solve_contact(w, c, v);
+    require_vec(v.col(0), Vec2::Zero(), kTol, "mu Pn (5 N s) > m |ut| (2 N s): the slide stops");
+    wbtest::require_near(c.Pt, 2.0, kTol, "Pt = m ut along perp(n), against the slide");
+  }
+  // 2. Both sides of the cone's boundary: mu Pn just above and below m |ut|.
+  for (double f : {1.02, 0.98}) {
+    const double Pn = 4.0, mu = f * 2.0 / Pn;
+    INFO("mu Pn / (m |ut|) = " << f);
+    Mat2X v(2, 1);
+    v << 1.0, 0.0;
+    Contact c = make_contact(0, -1, up, mu, Pn);
+    prepare_contact(w, v, 0.0, 1.0, c);
+    solve_contact(w, c, v);
+    const double jt = std::min(2.0, mu * Pn);
+    wbtest::require_near(c.Pt, jt, kTol, "|Pt| = min(m |ut|, mu Pn)");
+    wbtest::require_near(v(0, 0), 1.0 - jt * 0.5, kTol, "v.x loses |Pt| / m");
+  }
+  // 3. A stored friction total beyond what the slide needs is taken back, clamped as a
+  //    total to mu Pn.
+  {
+    Mat2X v(2, 1);
+    v << -0.25, 0.0;
+    Contact c = make_contact(0, -1, up, 0.2, 1.0, 0.9);  // stored 0.9 > mu Pn = 0.2
+    prepare_contact(w, v, 0.0, 1.0, c);
+    solve_contact(w, c, v);
+    wbtest::require_near(c.Pt, 0.2, kTol,
+                         "the total 0.9 - m |ut| = 0.4 is clamped to mu Pn = 0.2 as a total");
+  }
+  // 4. The degenerate cases: no slide, mu = 0, no normal total left (the disc moves
+  //    away, so the stored 1 N s is taken back to 0): no friction, and no NaN.
+  for (const auto& [vx, mu, Pn] :
+       {std::tuple{0.0, 0.5, 1.0}, std::tuple{1.0, 0.0, 1.0}, std::tuple{1.0, 0.5, 0.0}}) {
+    INFO("v.x = " << vx << ", mu = " << mu << ", stored Pn = " << Pn);
+    Mat2X v(2, 1);
+    v << vx, 0.5;  // moving away from the floor
+    Contact c = make_contact(0, -1, up, mu, Pn);
+    prepare_contact(w, v, 0.0, 1.0, c);
+    solve_contact(w, c, v);
+    INFO("the velocities must stay finite");
+    REQUIRE(v.allFinite());
+    wbtest::require_near(c.Pn, 0.0, 0.0, "the disc leaves the floor: the normal total is 0");
+    wbtest::require_near(c.Pt, 0.0, 0.0, "no slide, mu = 0 or Pn = 0: Pt = 0");
+    wbtest::require_near(v(0, 0), vx, kTol, "no friction: v.x unchanged");
+  }
+}
+
+TEST_CASE("C5 a column of five discs on a floor rests to rounding with the totals kept",
+          "[collisions][C5][4pts]") {
+  // Five touching 1 kg discs; each step gravity, then prepare and warm start every
+  // contact and 10 iterations, the totals kept to the next step. The floor carries the
+  // weight of five, each disc-disc contact the weight of those above; nothing moves.
+  // Starting every step from zero (no totals, no warm start) leaves a residual motion
+  // far above this bound after 10 iterations.
+  constexpr double kRestTol = 1e-12;  // m/s: rounding of ~500 steps of g h
+  const int n = 5;
+  const double h = 1e-3;
+  const VecX w = VecX::Ones(n);
+  Mat2X v = Mat2X::Zero(2, n);
+  std::vector<Contact> contacts;
+  contacts.push_back(make_contact(0, -1, Vec2(0, 1)));
+  for (int k = 1; k < n; ++k) contacts.push_back(make_contact(k, k - 1, Vec2(0, 1)));
+  for (int step = 0; step < 500; ++step) {
+    v.row(1).array() -= kG * h;
+    for (Contact& c : contacts) prepare_contact(w, v, 0.0, 0.05, c);
+    for (const Contact& c : contacts) warm_start_contact(w, c, v);
+    for (int it = 0; it < 10; ++it) {
+      for (Contact& c : contacts) solve_contact(w, c, v);
+    }
+  }
+  INFO("largest speed after 500 steps " << v.colwise().norm().maxCoeff() << " m/s");
+  REQUIRE(v.colwise().norm().maxCoeff() <= kRestTol);
+  for (int k = 0; k < n; ++k) {
+    wbtest::require_near(contacts[std::size_t(k)].Pn, (n - k) * kG * h, 0.0,
+                         "contact k carries the weight of the n - k discs above it, per step",
+                         1e-9);
+  }
+}
+
+}  // namespace test_C5_contact_solver
