@@ -122,10 +122,15 @@ TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far
     require_same_pairs(x, wb::VecX::Zero(6), "points with coincident copies");
     Pairs got;
     grid_pairs(x, wb::VecX::Zero(6), got);
+    INFO("points of radius 0 pair only where they coincide: {0, 2, 5} give 3 pairs and "
+         "{1, 4} one, 4 in all; got "
+         << got.size() << " (a pair listed twice, or a point paired with itself?)");
     REQUIRE(got.size() == 4);  // {0, 2, 5} coincide (3 pairs), {1, 4} (1 pair)
     grid_pairs(wb::Mat2X(2, 0), wb::VecX(0), got);
+    INFO("no particles give no pairs, and `pairs` is cleared first; got " << got.size());
     REQUIRE(got.empty());
     grid_pairs(x.leftCols(1), wb::VecX::Constant(1, 0.3), got);
+    INFO("one particle gives no pairs (never a particle with itself); got " << got.size());
     REQUIRE(got.empty());
   }
   {

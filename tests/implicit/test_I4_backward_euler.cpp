@@ -33,6 +33,8 @@ NewtonOptions options(NewtonOptions::Solver solver = NewtonOptions::kLDLT) {
 void require_solves_be(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
                        const Mat2X& f_ext, double h, const Mat2X& x1, const Mat2X& v1,
                        const std::string& what) {
+  INFO(what << ": the step left a non-finite x' or v' (a solve that failed or divided by "
+               "zero must stop with the last good iterate and solver_failed, never a NaN)");
   REQUIRE(x1.allFinite());
   REQUIRE(v1.allFinite());
   const double r = imtest::be_residual(net, x0, v0, f_ext, h, x1, v1);
