@@ -62,6 +62,9 @@ class ContactWorld : public World {
   const Dynamics& dynamics() const override { return forces_.dynamics(); }
   Energy energy(const Mat2X& x, const Mat2X& v) const override { return forces_.energy(x, v); }
   void after_step(double h, Mat2X& x, Mat2X& v) const override;
+  // A stub's signature: contacts that approached and got no impulse from C1,
+  // C2 or C4 in the whole run, a broad phase (C3) that misses pairs.
+  std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
 
   const std::vector<PlaneDef>& planes() const { return planes_; }
   const ContactSettings& settings() const { return settings_; }
@@ -86,6 +89,12 @@ class ContactWorld : public World {
   mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
   mutable Pairs candidates_, contacts_, sorted_;
   mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
+  // Approaching contacts seen, and those the student's function answered
+  // with an impulse: planes (C1), pairs (C2), sliding with friction (C4).
+  struct Answered {
+    long seen = 0, answered = 0;
+  };
+  mutable Answered plane_hits_, pair_hits_, friction_hits_;
 };
 
 // Makes the lab run its scenes with the forces lab's forces, plus collisions

@@ -5,6 +5,8 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "wb/dynamics.h"
 #include "wb/scene.h"
@@ -29,6 +31,12 @@ class World {
   // Called after every integrator step of size h, before the state is
   // recorded (collision detection and response). The default does nothing.
   virtual void after_step(double /*h*/, Mat2X& /*x*/, Mat2X& /*v*/) const {}
+  // Plain sentences for the summary's "warnings" at the end of a run, ending
+  // in (x, v): what a stub of the lab's functions did that would otherwise
+  // pass for a result (a contact no function answered). The default: none.
+  virtual std::vector<std::string> warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
+    return {};
+  }
 };
 
 // Builds a scene's World; throws InputError for bad scene entries.

@@ -12,6 +12,7 @@ import math
 import os
 
 from ..common import InputError, new_figure, parse_list, save_figure
+from ..recipes import fmt_dt
 from ..runs import choose_ids, read_trace
 
 REPLACES_GENERIC = True  # discs to scale replace the generic dot trajectories
@@ -329,7 +330,7 @@ def scene_figures(ctx):
                  "--every", str(_every(doc, n))], ctx.scene_path, "scene as shipped")
     if s is None:
         return
-    setting = f"semi-implicit Euler, dt = {doc.get('dt')} s"
+    setting = f"semi-implicit Euler, dt = {fmt_dt(doc.get('dt'))} s"
     fig = ctx.path(f"{ctx.stem}-discs.png")
     a = ["discs", trace, "--scene", ctx.scene_path, "-o", fig, "--title",
          f"{ctx.stem}: discs at the end ({setting})"]
