@@ -292,6 +292,9 @@ def measure(claim, data):
             return _reduce(vals, args[2])
         q = args[1]
         vals = []
+        if q.endswith(":end"):  # each particle's last row only
+            q = q[:-len(":end")]
+            tr = {pid: {c: col[-1:] for c, col in d.items()} for pid, d in tr.items()}
         if q == "rchange":  # one value per particle: |x| at the end minus |x| at the start
             vals = [math.hypot(d["x"][-1], d["y"][-1]) - math.hypot(d["x"][0], d["y"][0])
                     for d in tr.values()]

@@ -17,6 +17,12 @@ from ..runs import choose_ids, read_trace
 
 REPLACES_GENERIC = True  # discs to scale replace the generic dot trajectories
 
+# The pack README's plot commands for a run of this lab (tools/pack): out/run.csv, its stats.
+PACK_PLOTS = [("tools/plot discs out/run.csv --scene {scene} -o out/run.png",
+               "the discs to scale, with the planes"),
+              ("tools/plot stats out/run-stats.csv -o out/run-energy.png",
+               "energy and momentum against time")]
+
 MAX_PATHS = 60        # particle paths drawn under the discs
 MAX_FRAMES = 80       # frames of an animation
 MAX_TRACE_ROWS = 2_000_000

@@ -18,6 +18,12 @@ from ..common import (InputError, column, finite, integrator_style, new_figure, 
 # The generic particle figures read 2D traces: they do not apply to the rigid lab's.
 REPLACES_GENERIC = True
 
+# The pack README's plot commands for a run of this lab (tools/pack): out/run.csv, its stats.
+PACK_PLOTS = [("tools/plot rigid-frames out/run.csv --scene {scene} -o out/run.png",
+               "the bodies at sampled times, in 3D"),
+              ("tools/plot rigid-momenta out/run-stats.csv -o out/run-energy.png",
+               "energy, momentum, angular momentum against time")]
+
 TRACE_COLUMNS = ["t", "id", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx",
                  "wy", "wz"]
 STATS_COLUMNS = ["step", "t", "energy", "kinetic", "potential", "px", "py", "pz", "Lx", "Ly",
