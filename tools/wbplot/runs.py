@@ -18,6 +18,10 @@ MAX_DRAWN = 300  # particles drawn in a trajectory figure when --ids is not give
 def read_trace(path):
     """{id: {"t": [...], "x": [...], ...}} from a trace CSV, rows in file order."""
     rows = read_csv(path, TRACE_COLUMNS, "trace CSV (t,id,x,y,vx,vy)")
+    if rows and "qw" in rows[0]:
+        raise InputError(f"{path}: a rigid-body trace (3D, with orientations), expected a "
+                         "particle trace t,id,x,y,vx,vy: draw it with tools/plot rigid-frames, "
+                         "rigid-polhode or rigid-animate")
     by_id = {}
     for i, r in enumerate(rows):
         s = r["id"].strip()

@@ -393,9 +393,11 @@ def plot_polhode(path, out, body=0, title=None):
         ax3.legend(loc="upper left")
     ax3.set_xlabel("ω_x (rad/s)")
     ax3.set_ylabel("ω_y (rad/s)")
-    ax3.set_zlabel("ω_z (rad/s)", labelpad=6)
-    # Shrink the box inside its axes so that the z label is not cut at the figure's edge.
-    ax3.set_box_aspect(None, zoom=0.82)
+    ax3.set_zlabel("ω_z (rad/s)", labelpad=4)
+    # Shrink the box inside its axes, and keep the axes off the figure's right edge, so
+    # that the z label is not cut.
+    ax3.set_box_aspect(None, zoom=0.78)
+    fig.subplots_adjust(left=0.07, right=0.9, wspace=0.3)
     ax3.set_title("polhode: the tip of ω in the body frame")
     fig.suptitle(title or f"body {body}" + (" (diverged)" if diverged else ""))
     save_figure(fig, out)
@@ -418,6 +420,20 @@ def plot_frames(path, out, scene=None, count=8, title=None):
     pts = []
     note = ""
     strip = False
+    # Bodies whose centres all stay within their own size (spinning in place) would stack
+    # their outlines into one tangle: the samples are then drawn side by side along x, a
+    # film strip, `gap` apart (the bodies' spread in x plus 1.6 of the largest size).
+    sizes, travels, xs0 = [], [], []
+    for b, d in data.items():
+        end = min(last_finite(d[c]) for c in ("x", "y", "z", "qw"))
+        if end < 0:
+            continue
+        sizes.append(body_size(bodies.get(b, {})) if shape_edges(bodies.get(b, {})) else 0.5)
+        travels.append(max(math.dist((d["x"][k], d["y"][k], d["z"][k]),
+                                     (d["x"][0], d["y"][0], d["z"][0])) for k in range(end + 1)))
+        xs0.append(d["x"][0])
+    in_place = bool(sizes) and all(t < sz for t, sz in zip(travels, sizes))
+    gap = (max(xs0) - min(xs0) + 1.6 * max(sizes)) if in_place else 0.0
     for b, d in sorted(data.items()):
         end = min(last_finite(d[c]) for c in ("x", "y", "z", "qw"))
         if end < 0:
@@ -428,11 +444,7 @@ def plot_frames(path, out, scene=None, count=8, title=None):
         segs = shape_edges(bodies.get(b, {}))
         size = body_size(bodies.get(b, {})) if segs else 0.5
         n = max(1, min(count, end + 1))
-        # A body whose centre stays within its own size (a spinning body) would stack its
-        # outlines into one tangle: they are drawn side by side along x instead, a film
-        # strip, and the title says so.
-        travel = max(math.dist((x, y, z), (xs[0], ys[0], zs[0])) for x, y, z in zip(xs, ys, zs))
-        step = 1.6 * size if len(data) == 1 and n > 1 and travel < size else 0.0
+        step = gap if n > 1 else 0.0
         strip = strip or step > 0
         if not step:
             ax.plot(xs, ys, zs, color="#888", lw=0.7)
@@ -450,8 +462,8 @@ def plot_frames(path, out, scene=None, count=8, title=None):
             for j, (p, q) in enumerate(axes):
                 ax.plot(*zip(p, q), color=AXIS_COLORS[j], lw=1.2)
     if strip:
-        note += ("\nthe body stays in place: its outlines are drawn side by side along x, "
-                 f"{1.6:g} sizes apart, earliest on the left")
+        note += ("\nthe bodies stay in place: each sampled time is drawn side by side along "
+                 f"x, {gap:.3g} m apart, earliest on the left")
     draw_planes(ax, scene, pts)
     equal_axes(ax, pts)
     ts = [d["t"] for d in data.values()]
@@ -718,8 +730,9 @@ def scene_figures(ctx):
     args = ["rigid-frames", trace, "--scene", ctx.scene_path, "-o", out]
     if ctx.plot(args):
         ctx.figure(out, f"The bodies at 8 sampled times ({default}), coloured by time, with "
-                        "their axes and the path of their centre (a single body that stays in "
-                        "place is drawn side by side along x, as the title says).", args)
+                        "their axes and the path of their centre (bodies that stay in place are "
+                        "drawn side by side along x, one sampled time after the other, as the "
+                        "title says).", args)
     out = ctx.path(f"{stem}.gif")
     args = ["rigid-animate", trace, "--scene", ctx.scene_path, "--frames", "48", "-o", out]
     if ctx.plot(args):
