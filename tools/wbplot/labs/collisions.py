@@ -347,6 +347,8 @@ def scene_figures(ctx):
                    + extra, a)
     fig = ctx.path(f"{ctx.stem}-energy.png")
     a = ["stats", stats, "-o", fig, "--title", f"{ctx.stem}: energy and momentum ({setting})"]
+    if s.get("status") == "diverged":  # the step the run contract says it diverged at
+        a += ["--diverged", str(s["steps"])]
     if ctx.plot(a):
         e0, e1 = s.get("energy0"), s.get("energy")
         trend = ""
