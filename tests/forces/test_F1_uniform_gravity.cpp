@@ -30,7 +30,7 @@ TEST_CASE("F1 uniform gravity: each particle gets m_i g", "[forces][F1][4pts]") 
   wbtest::require_near(f, expected, kTol, "uniform gravity: f_i = m_i g (weight is mass times g)",
                        kTol);
   INFO("f keeps one column per particle (3); got " << f.cols()
-                                                  << ": add into f, never resize it");
+                                                   << ": add into f, never resize it");
   REQUIRE(f.cols() == 3);
 }
 

@@ -86,7 +86,7 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
   Eigen::VectorXd b;
   assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, A, b);
   INFO("A is " << A.rows() << " x " << A.cols()
-                << ", expected 8 x 8 (2n for the 4 particles, pinned ones included)");
+               << ", expected 8 x 8 (2n for the 4 particles, pinned ones included)");
   REQUIRE(A.rows() == 8);
   REQUIRE(A.cols() == 8);
   const Eigen::MatrixXd Ad = A;

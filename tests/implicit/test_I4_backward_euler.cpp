@@ -140,8 +140,8 @@ TEST_CASE("I4 backward Euler: Newton's residual roughly squares from one iterati
   }
   {
     INFO("relative residuals after 1 to 6 solves:"
-         << seen.str() << ". After 6 solves it is " << e.back() << ", expected <= "
-         << kResidualTol
+         << seen.str() << ". After 6 solves it is " << e.back()
+         << ", expected <= " << kResidualTol
          << ": Newton did not converge (does each iteration assemble at (x + h y, y) and add "
             "its dv to y? A step that never updates y keeps the first residual)");
     REQUIRE(e.back() <= kResidualTol);

@@ -85,8 +85,8 @@ TEST_CASE("R6 frictionless impulse: angular momentum about the contact point is 
   require_near(Vec3(dmv.x(), dmv.y(), 0.0), Vec3::Zero(), kImpulseTol,
                "no friction: momentum changes only along the normal");
   INFO("the impulse changed m v along the normal (up) by " << dmv.z()
-                                                          << ", expected > 0: a contact only "
-                                                             "pushes, along +n (a sign error?)");
+                                                           << ", expected > 0: a contact only "
+                                                              "pushes, along +n (a sign error?)");
   REQUIRE(dmv.z() > 0);
 }
 

@@ -77,8 +77,7 @@ TEST_CASE("R7 hinged pendulum: small swings have period 2 pi sqrt(I_p / (m g d))
     x_prev = x;
   }
   INFO("the pendulum's centre crossed below the hinge moving to -x "
-       << crossings.size()
-       << " times in 8 s, expected 4 (about 5 periods of " << T0
+       << crossings.size() << " times in 8 s, expected 4 (about 5 periods of " << T0
        << " s): a body that never swings is held still (a hinge impulse that also stops the "
           "swing?) or never feels gravity");
   REQUIRE(crossings.size() == 4);
