@@ -333,7 +333,8 @@ def scene_figures(ctx):
     desc = doc.get("description", f"Scene {ctx.stem}.")
     trace, stats = ctx.path(f"{ctx.stem}.csv"), ctx.path(f"{ctx.stem}-stats.csv")
     s = ctx.run(["--scene", ctx.scene_path, "--out", trace, "--stats", stats,
-                 "--every", str(_every(doc, n))], ctx.scene_path, "scene as shipped")
+                 "--every", str(_every(doc, n))], ctx.scene_path, "scene as shipped",
+                save=ctx.stem)
     if s is None:
         return
     setting = f"semi-implicit Euler, dt = {fmt_dt(doc.get('dt'))} s"

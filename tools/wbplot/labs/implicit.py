@@ -146,7 +146,7 @@ def scene_figures(ctx):
     # The scene as shipped.
     trace, stats = ctx.path(f"{stem}.csv"), ctx.path(f"{stem}-stats.csv")
     s = ctx.run(["--scene", ctx.scene_path, "--out", trace, "--stats", stats, "--every", k],
-                ctx.scene_path, f"{default} (scene default)")
+                ctx.scene_path, f"{default} (scene default)", save=stem)
     if s is not None:
         fig = ctx.path(f"{stem}-trajectory.png")
         a = ["trace", trace, "-o", fig, "--title", f"{name}: trajectories ({default}, dt = {dt} s)"]
@@ -166,7 +166,8 @@ def scene_figures(ctx):
     for n in names:
         st = ctx.path(f"{stem}-{n}-stats.csv")
         s = ctx.run(["--scene", ctx.scene_path, "--integrator", n, "--stats", st,
-                     "--every", k], f"{ctx.scene_path} --integrator {n}", n)
+                     "--every", k], f"{ctx.scene_path} --integrator {n}", n,
+                    save=f"{stem}-{n}")  # the summary `summary` claims read
         if s is not None:
             files.append(st)
             labels.append(n)

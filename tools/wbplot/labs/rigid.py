@@ -688,13 +688,14 @@ def scene_figures(ctx):
         argv = ["--scene", ctx.scene_path, "--integrator", integ, "--stats", st]
         if integ == default:
             argv += ["--out", trace]
-        s = ctx.run(argv + ["--every", every], f"{stem} ({integ})", label=integ)
+        s = ctx.run(argv + ["--every", every], f"{stem} ({integ})", label=integ,
+                    save=f"{stem}-{integ}")  # the summary `summary` claims read
         if s is None:
             continue
         if s.get("status") == "diverged" and every != "1" and s.get("steps", 0) <= 10**6:
             # Every step up to the blow-up, for the figure's zoomed column.
             s = ctx.run(argv + ["--every", "1"], f"{stem} ({integ}, every step)", label=integ,
-                        again=True)
+                        again=True, save=f"{stem}-{integ}")
             if s is None:
                 continue
         summaries[integ] = s
