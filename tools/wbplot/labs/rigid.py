@@ -419,11 +419,13 @@ def plot_frames(path, out, scene=None, count=8, title=None):
     cmap = matplotlib.colormaps["viridis"]
     pts = []
     note = ""
-    strip = False
+    strip = column = False
     # Bodies whose centres all stay within their own size (spinning in place) would stack
     # their outlines into one tangle: the samples are then drawn side by side along x, a
     # film strip, `gap` apart (the bodies' spread in x plus 1.6 of the largest size).
-    sizes, travels, xs0 = [], [], []
+    # When some bodies move and others stay, each body that stays is drawn as a strip of its
+    # own along z (1.6 of its size apart), so that it neither tangles nor meets the others.
+    sizes, travels, xs0, still = [], [], [], {}
     for b, d in data.items():
         end = min(last_finite(d[c]) for c in ("x", "y", "z", "qw"))
         if end < 0:
@@ -432,7 +434,8 @@ def plot_frames(path, out, scene=None, count=8, title=None):
         travels.append(max(math.dist((d["x"][k], d["y"][k], d["z"][k]),
                                      (d["x"][0], d["y"][0], d["z"][0])) for k in range(end + 1)))
         xs0.append(d["x"][0])
-    in_place = bool(sizes) and all(t < sz for t, sz in zip(travels, sizes))
+        still[b] = travels[-1] < sizes[-1]
+    in_place = bool(sizes) and all(still.values())
     gap = (max(xs0) - min(xs0) + 1.6 * max(sizes)) if in_place else 0.0
     for b, d in sorted(data.items()):
         end = min(last_finite(d[c]) for c in ("x", "y", "z", "qw"))
@@ -445,15 +448,17 @@ def plot_frames(path, out, scene=None, count=8, title=None):
         size = body_size(bodies.get(b, {})) if segs else 0.5
         n = max(1, min(count, end + 1))
         step = gap if n > 1 else 0.0
+        up = 1.6 * size if n > 1 and not in_place and still.get(b) else 0.0
         strip = strip or step > 0
-        if not step:
+        column = column or up > 0
+        if not step and not up:
             ax.plot(xs, ys, zs, color="#888", lw=0.7)
             pts += list(zip(xs, ys, zs))
         for i in range(n):
             k = round(i * end / max(n - 1, 1))
             color = cmap(i / max(n - 1, 1))
             lines, axes = world_segments(d, k, segs, 0.6 * size)
-            shift = (i * step, 0.0, 0.0)
+            shift = (i * step, 0.0, i * up)
             lines = [tuple(tuple(c + o for c, o in zip(p, shift)) for p in ln) for ln in lines]
             axes = [tuple(tuple(c + o for c, o in zip(p, shift)) for p in ln) for ln in axes]
             for p, q in lines:
@@ -464,6 +469,9 @@ def plot_frames(path, out, scene=None, count=8, title=None):
     if strip:
         note += ("\nthe bodies stay in place: each sampled time is drawn side by side along "
                  f"x, {gap:.3g} m apart, earliest on the left")
+    if column:
+        note += ("\na body that stays in place is drawn one sampled time above the other "
+                 "(earliest at the bottom)")
     draw_planes(ax, scene, pts)
     equal_axes(ax, pts)
     ts = [d["t"] for d in data.values()]
@@ -732,8 +740,8 @@ def scene_figures(ctx):
     if ctx.plot(args):
         ctx.figure(out, f"The bodies at 8 sampled times ({default}), coloured by time, with "
                         "their axes and the path of their centre (bodies that stay in place are "
-                        "drawn side by side along x, one sampled time after the other, as the "
-                        "title says).", args)
+                        "drawn one sampled time beside or above the other, as the title "
+                        "says).", args)
     out = ctx.path(f"{stem}.gif")
     args = ["rigid-animate", trace, "--scene", ctx.scene_path, "--frames", "48", "-o", out]
     if ctx.plot(args):
