@@ -240,13 +240,25 @@ function(wb_add_lab lab side)
     # so that the grader's 2 jobs share them.
     if(WB_UNITY_TESTS)
       get_property(units GLOBAL PROPERTY WB_LAB_TEST_UNITS_${lab})
-      set(batch 0)
       if(units)
+        # Named groups, in file order: CMake links BATCH units last-first, which would
+        # register (and run) the tests as I4, I5, I1, I2, I3; GROUP units keep their order.
         list(LENGTH test_sources count)
         math(EXPR batch "(${count} + ${units} - 1) / ${units}")
+        set(i 0)
+        foreach(src IN LISTS test_sources)
+          math(EXPR g "${i} / ${batch}")
+          if(g LESS 10)
+            set(g "0${g}")
+          endif()
+          set_source_files_properties(${src} PROPERTIES UNITY_GROUP "unit${g}")
+          math(EXPR i "${i} + 1")
+        endforeach()
+        set_target_properties(${lab}_tests_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE GROUP)
+      else()
+        set_target_properties(${lab}_tests_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
+                                                          UNITY_BUILD_BATCH_SIZE 0)
       endif()
-      set_target_properties(${lab}_tests_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
-                                                        UNITY_BUILD_BATCH_SIZE ${batch})
     endif()
     # The lab's headers (and its dependencies'), without linking a side.
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/labs/${lab})

@@ -130,17 +130,53 @@ void check_initial_state(const Scene& scene, const World& world) {
                    "is so large that they overflow)");
 }
 
+double particle_work_scale(const Scene& scene, const World& world) {
+  // The scene size S: the extent of the initial positions or their largest
+  // distance from the origin, 1 m when both are 0 (tools/wbplot/recipes.py's
+  // length_scale, the report's scene size).
+  double S = 0;
+  if (scene.n() > 0) {
+    const Vec2 lo = scene.x.rowwise().minCoeff(), hi = scene.x.rowwise().maxCoeff();
+    S = std::max((hi - lo).norm(), scene.x.colwise().norm().maxCoeff());
+  }
+  if (!(std::isfinite(S) && S > 0)) S = 1.0;
+  const Dynamics& dyn = world.dynamics();
+  Mat2X a(2, scene.n());
+  dyn.acceleration(scene.x, scene.v, a);
+  dyn.reset_evals();
+  const double work = (a.colwise().norm().transpose().array() * scene.m.array()).sum() * S;
+  return std::isfinite(work) ? work : 0.0;
+}
+
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt) {
   RunResult r;
   Mat2X x = scene.x, v = scene.v;
   const Dynamics& dyn = world.dynamics();
+  r.energy0 = world.energy(x, v);
+  r.momentum0 = momentum(v, scene.m);
+  const double scale =
+      energy_scale(r.energy0.kinetic, r.energy0.potential, particle_work_scale(scene, world));
   dyn.reset_evals();
   Scratch scratch;
   scratch.resize(x.cols());
 
   CsvFile trace(opt.out, "t,id,x,y,vx,vy\n");
   CsvFile stats(opt.stats, "step,t,energy,kinetic,potential,px,py,force_evals\n");
-  auto record = [&](long step, double t) {
+  bool moved = false;  // did any step change the state?
+  StepHooks hooks;
+  hooks.step = [&] {
+    if (!moved) {
+      const Mat2X x_before = x, v_before = v;
+      opt.integrator->step(dyn, opt.dt, x, v, scratch);
+      moved = x != x_before || v != v_before;
+    } else {
+      opt.integrator->step(dyn, opt.dt, x, v, scratch);
+    }
+    world.after_step(opt.dt, x, v);
+  };
+  hooks.finite = [&] { return x.allFinite() && v.allFinite(); };
+  hooks.energy = [&] { return world.energy(x, v).total(); };
+  hooks.record = [&](long step, double t) {
     if (trace) {
       append_trace_rows(trace.rows(), t, x, v);
       trace.flush_if_large();
@@ -151,33 +187,16 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
       stats.flush_if_large();
     }
   };
-
-  r.energy0 = world.energy(x, v);
-  r.momentum0 = momentum(v, scene.m);
-  record(0, 0.0);
-  const auto start = std::chrono::steady_clock::now();
-  long k = 0;
-  bool moved = false;  // did any step change the state?
-  while (k < opt.steps) {
-    if (!moved) {
-      const Mat2X x_before = x, v_before = v;
-      opt.integrator->step(dyn, opt.dt, x, v, scratch);
-      moved = x != x_before || v != v_before;
-    } else {
-      opt.integrator->step(dyn, opt.dt, x, v, scratch);
-    }
-    world.after_step(opt.dt, x, v);
-    ++k;
-    const double t = double(k) * opt.dt;  // not accumulated: no drift in t
-    r.diverged = !(x.allFinite() && v.allFinite());
-    if (r.diverged || k == opt.steps || k % opt.every == 0) record(k, t);
-    if (r.diverged) break;
-  }
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const LoopResult loop = run_steps(opt.steps, opt.every, opt.dt, scale, hooks);
+  const long k = loop.steps;
+  r.wall_s = loop.wall_s;
   r.steps = k;
   r.t = double(k) * opt.dt;
   r.force_evals = dyn.evals();
+  r.unconverged = dyn.unconverged();
   r.energy = world.energy(x, v);
+  r.diverged = loop.reason;
+  if (r.diverged.empty()) r.diverged = unconverged_divergence(k, r.unconverged);
   // A stub looks like a perfect run (energy conserved exactly): say so.
   if (k > 0 && opt.integrator->evals_per_step > 0 && r.force_evals == 0) {
     r.warnings.push_back("the integrator \"" + opt.integrator->name +
@@ -189,6 +208,7 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
                          " steps (no step moved a particle or changed a velocity): is the "
                          "step, or a force, still a stub?");
   }
+  for (const std::string& w : world.warnings(x, v)) r.warnings.push_back(w);
   r.momentum = momentum(v, scene.m);
   trace.commit();
   stats.commit();
@@ -199,41 +219,33 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
 
 namespace {
 
-ordered_json number_or_null(double x) {
-  return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr);
-}
-
 ordered_json summary_json(const RunResult& r) {
-  ordered_json j;  // keys in the documented order
-  j["status"] = r.diverged ? "diverged" : "ok";
-  j["steps"] = r.steps;
-  j["t"] = r.t;
-  j["force_evals"] = r.force_evals;
-  j["wall_s"] = r.wall_s;
-  j["energy0"] = number_or_null(r.energy0.total());
-  j["energy"] = number_or_null(r.energy.total());
-  j["momentum0"] = {number_or_null(r.momentum0.x()), number_or_null(r.momentum0.y())};
-  j["momentum"] = {number_or_null(r.momentum.x()), number_or_null(r.momentum.y())};
-  if (!r.warnings.empty()) j["warnings"] = r.warnings;
-  return j;
+  Summary s;
+  s.diverged = r.diverged;
+  s.steps = r.steps;
+  s.t = r.t;
+  s.force_evals = r.force_evals;
+  s.wall_s = r.wall_s;
+  s.energy0 = r.energy0.total();
+  s.energy = r.energy.total();
+  s.momentum0 = {r.momentum0.x(), r.momentum0.y()};
+  s.momentum = {r.momentum.x(), r.momentum.y()};
+  s.unconverged = r.unconverged;
+  s.warnings = r.warnings;
+  return wb::summary_json(s);
 }
 
 std::string help_footer(const LabInfo& info) {
-  std::string s = "\nIntegrators (--integrator):\n";
+  std::vector<IntegratorLine> lines;
   for (const Integrator& it : info.integrators) {
-    s += "  " + it.name + std::string(it.name.size() < 18 ? 18 - it.name.size() : 1, ' ') +
-         it.description + " (order " + std::to_string(it.order) + ", " +
-         std::to_string(it.evals_per_step) + " force evaluation" +
-         (it.evals_per_step == 1 ? "" : "s") + " per step)\n";
+    lines.push_back({it.name, it.description, it.order, it.evals_per_step});
   }
-  s += "  default: " + info.integrators.front().name + "\n";
+  std::string s = integrators_help(lines);
   for (const auto& section : info.help_sections) s += "\n" + section;
   if (info.sweep) {
-    s += "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
-         "step size (--dts list, or dt*2^k for k = 3..-6 from --dt or the scene's dt) to\n"
-         "t_end; one row per run: scene,integrator,dt,steps,force_evals,wall_s,error,\n"
-         "energy_error,reference,status. Errors against the scene's \"exact\" motion or an\n"
-         "RK4 run at the smallest dt/16. See docs/sweep.md.\n";
+    s += sweep_help(
+        "Errors against the scene's \"exact\" motion or an RK4 run at the smallest\n"
+        "dt/16.");
   }
   return s + help_scenes_and_docs(info.lab);
 }
@@ -257,7 +269,7 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
   if (!flags) return status;
   const std::string& exe = spec.exe;
 
-  try {
+  return guarded_main(exe, [&] {
     std::vector<std::string> keys = info.scene_keys;
     if (info.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
     Scene scene = load_scene(flags->scene_file, flags->seed, keys);
@@ -279,13 +291,8 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
       sweep.t_end = flags->t_end;
       sweep.exe = exe;
       sweep.warnings = world->cost_warnings;
-      SweepResult sr = run_sweep(info, scene, *world, sweep);
-      ordered_json j;
-      j["status"] = "ok";
-      j["sweep"] = sweep.csv;
-      j["runs"] = sr.runs;
-      j["diverged"] = sr.diverged;
-      std::cout << j.dump() << std::endl;
+      const SweepResult sr = run_sweep(info, scene, *world, sweep);
+      std::cout << sweep_summary(sweep.csv, sr.rows).dump() << std::endl;
       return 0;
     }
 
@@ -314,13 +321,7 @@ int run_particle_lab(int argc, char** argv, const LabInfo& info) {
     for (const auto& w : r.warnings) std::cerr << exe << ": warning: " << w << "\n";
     std::cout << summary_json(r).dump() << std::endl;
     return 0;
-  } catch (const InputError& e) {
-    std::cerr << exe << ": error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << exe << ": internal error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace wb

@@ -126,32 +126,14 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A CSV field: quoted only when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 // The scale that makes an energy error relative: |E0|, unless E0 is tiny
 // against its parts (energy near zero by the choice of the potential's zero),
 // then K0 + |V0|; 1 (an absolute error) when the scene has no energy at all.
-double energy_scale(const Energy& e0) {
+double relative_energy_scale(const Energy& e0) {
   const double parts = std::abs(e0.kinetic) + std::abs(e0.potential);
   if (std::abs(e0.total()) > 1e-6 * parts) return std::abs(e0.total());
   return parts > 0.0 ? parts : 1.0;
 }
-
-struct Row {
-  const Integrator* integrator;
-  double dt = 0;
-  long steps = 0;
-  long force_evals = 0;
-  double wall_s = 0;
-  double error = 0, energy_error = 0;
-  bool diverged = false;
-};
 
 // Positions at time steps * h of an RK4 run, or non-finite if it diverged.
 Mat2X rk4_positions(const Scene& scene, const World& world, double h, long steps) {
@@ -171,60 +153,24 @@ Mat2X rk4_positions(const Scene& scene, const World& world, double h, long steps
 
 SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& world,
                       const SweepOptions& opt) {
-  // Which integrators, which step sizes, to what time.
-  std::vector<const Integrator*> integrators;
-  if (opt.integrators.empty()) {
-    for (const Integrator& it : info.integrators) integrators.push_back(&it);
-  } else {
-    for (const std::string& name : opt.integrators) {
-      integrators.push_back(&find_integrator(info, name, "--integrators"));
-    }
-  }
-  if (!(opt.repeats >= 1)) {
-    throw InputError("--repeats: got " + std::to_string(opt.repeats) +
-                     ", expected a whole number >= 1");
-  }
-  const double T = opt.t_end ? *opt.t_end : scene.t_end.value_or(-1.0);
-  if (!(T > 0.0 && std::isfinite(T))) {
-    throw InputError(opt.t_end ? "--t-end: got " + num(T) + ", expected a number > 0 for a sweep"
-                               : scene.file + ": t_end: " +
-                                     (scene.t_end ? "got " + num(T) : std::string("missing")) +
-                                     ", expected a number > 0 for a sweep (or pass --t-end)");
-  }
-  std::vector<double> dts = opt.dts;
-  if (dts.empty()) {
-    if (!opt.dt && !scene.dt) {
-      throw InputError(scene.file +
-                       ": dt: missing, expected a number > 0 (or pass --dt or --dts)");
-    }
-    dts = default_dt_ladder(opt.dt ? *opt.dt : *scene.dt);
-  }
-  // Who chose the step sizes, for the messages below.
+  // Which integrators, which step sizes, to what time (the contract's one plan).
+  std::vector<std::string> names;
+  for (const Integrator& it : info.integrators) names.push_back(it.name);
+  const SweepPlan plan = plan_sweep(names, opt.integrators, opt.dts, opt.dt, opt.t_end, scene.dt,
+                                    scene.t_end, scene.file, opt.repeats);
+  const std::vector<double>& dts = plan.dts;
+  const ExactSolution exact = read_exact(scene);
+  const double h_ref = *std::min_element(dts.begin(), dts.end()) / kReferenceRefinement;
   const std::string ladder = opt.dts.empty()
                                  ? (opt.dt ? std::string("--dt") : scene.file + ": dt")
                                  : std::string("--dts");
-  std::vector<long> steps;
-  for (double dt : dts) {
-    if (!(std::isfinite(dt) && dt > 0.0)) {
-      throw InputError("--dts: got " + num(dt) + ", expected step sizes > 0");
-    }
-    const double n = std::round(T / dt);
-    if (!(n >= 1.0 && n <= double(kMaxSteps))) {
-      throw InputError(ladder + ": step " + num(dt) + " gives round(T/dt) = " + num(n) +
-                       " steps for T = " + num(T) + ", expected 1 to " +
-                       std::to_string(kMaxSteps));
-    }
-    steps.push_back(long(n));
-  }
-  const ExactSolution exact = read_exact(scene);
-  const double h_ref = *std::min_element(dts.begin(), dts.end()) / kReferenceRefinement;
   if (exact.kind == ExactSolution::kNone) {
     for (std::size_t d = 0; d < dts.size(); ++d) {
-      const double n = std::round(double(steps[d]) * dts[d] / h_ref);
+      const double n = std::round(double(plan.steps[d]) * dts[d] / h_ref);
       if (!(n <= double(kMaxSteps))) {
         throw InputError(ladder + ": the rk4 reference at the smallest dt / " +
                          num(kReferenceRefinement) + " = " + num(h_ref) + " takes " + num(n) +
-                         " steps to t = " + num(double(steps[d]) * dts[d]) +
+                         " steps to t = " + num(double(plan.steps[d]) * dts[d]) +
                          ", expected at most " + std::to_string(kMaxSteps) +
                          " (use a larger smallest step, a shorter t_end or an \"exact\" scene)");
       }
@@ -267,35 +213,50 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
     return rk4_cache.emplace(t, x).first->second;
   };
 
-  std::vector<Row> rows;
-  const std::size_t total = integrators.size() * dts.size();
+  SweepResult result;
+  const std::size_t total = plan.integrators.size() * dts.size();
   const Energy e0 = world.energy(scene.x, scene.v);
-  const double scale = energy_scale(e0);
+  const double scale = relative_energy_scale(e0);
+  // The run contract's rule for a diverged run (docs/run-contract.md).
+  const double blowup_scale =
+      energy_scale(e0.kinetic, e0.potential, particle_work_scale(scene, world));
   Scratch s;
   s.resize(scene.n());
-  for (const Integrator* integ : integrators) {
+  const Dynamics& dyn = world.dynamics();
+  for (std::size_t i : plan.integrators) {
+    const Integrator* integ = &info.integrators[i];
     for (std::size_t d = 0; d < dts.size(); ++d) {
-      Row row;
-      row.integrator = integ;
+      SweepRow row;
+      row.integrator = i;
       row.dt = dts[d];
-      row.steps = steps[d];
+      row.steps = plan.steps[d];
+      row.reference = reference;
       if (opt.progress) {
-        std::cerr << "sweep: " << integ->name << " dt=" << num(row.dt) << " (" << rows.size() + 1
-                  << "/" << total << ")\n";
+        std::cerr << "sweep: " << integ->name << " dt=" << num(row.dt) << " ("
+                  << result.rows.size() + 1 << "/" << total << ")\n";
       }
-      const Dynamics& dyn = world.dynamics();
 
       // Untimed run: divergence and the largest energy error over the run.
       Mat2X x = scene.x, v = scene.v;
+      dyn.reset_evals();
       for (long k = 0; k < row.steps; ++k) {
         integ->step(dyn, row.dt, x, v, s);
         world.after_step(row.dt, x, v);
-        if (!(x.allFinite() && v.allFinite())) {
+        const bool finite = x.allFinite() && v.allFinite();
+        const double E = finite ? world.energy(x, v).total() : NAN;
+        if (!divergence(finite, E, blowup_scale, k + 1).empty()) {
           row.diverged = true;
           break;
         }
-        const double de = std::abs(world.energy(x, v).total() - e0.total()) / scale;
-        row.energy_error = std::max(row.energy_error, de);
+        row.energy_error = std::max(row.energy_error, std::abs(E - e0.total()) / scale);
+      }
+      row.diverged =
+          row.diverged || !unconverged_divergence(row.steps, dyn.unconverged()).empty();
+      if (row.steps > 0 && x == scene.x && v == scene.v) {
+        std::cerr << "sweep: warning: " << integ->name << " at dt=" << num(row.dt)
+                  << ": the state never changed in " << row.steps
+                  << " steps: its error measures the scene, not the method (is the step "
+                     "still a stub?)\n";
       }
       if (row.diverged) {
         row.error = row.energy_error = kInf;
@@ -321,30 +282,12 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
         row.wall_s = std::min(row.wall_s, wall);
         row.force_evals = dyn.evals();
       }
-      rows.push_back(row);
+      result.rows.push_back(row);
     }
   }
 
   // The CSV, written atomically.
-  std::string out =
-      "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status\n";
-  SweepResult result;
-  for (const Row& row : rows) {
-    out += csv_field(scene.name) + ',' + csv_field(row.integrator->name) + ',';
-    append_number(out, row.dt);
-    out += ',';
-    append_int(out, row.steps);
-    out += ',';
-    append_int(out, row.force_evals);
-    for (double q : {row.wall_s, row.error, row.energy_error}) {
-      out += ',';
-      append_number(out, q);
-    }
-    out += ',' + reference + ',' + (row.diverged ? "diverged" : "ok") + '\n';
-    ++result.runs;
-    result.diverged += row.diverged ? 1 : 0;
-  }
-  file.write(out);
+  file.write(sweep_table(scene.name, names, result.rows));
   file.commit();
   return result;
 }

@@ -107,7 +107,11 @@ TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
     const wb::VecX radius = wb::VecX::Constant(k * k, r);
     Pairs got;
     grid_pairs(x, radius, got);
-    INFO("radius " << r);
+    INFO("a 12 x 12 lattice of touching discs of radius "
+         << r << " on cell boundaries: expected " << 2 * k * (k - 1) + 2 * (k - 1) * (k - 1)
+         << " pairs (every 8-neighbour link: touching boxes count), got " << got.size()
+         << " (fewer: a neighbour cell left out, or a strict < where touching must count; "
+            "more: a pair listed twice)");
     REQUIRE(got.size() == std::size_t(2 * k * (k - 1) + 2 * (k - 1) * (k - 1)));
     require_same_pairs(x, radius, "lattice of touching discs, r = " + std::to_string(r));
   }
@@ -122,10 +126,16 @@ TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far
     require_same_pairs(x, wb::VecX::Zero(6), "points with coincident copies");
     Pairs got;
     grid_pairs(x, wb::VecX::Zero(6), got);
+    INFO(
+        "points of radius 0 pair only where they coincide: {0, 2, 5} give 3 pairs and "
+        "{1, 4} one, 4 in all; got "
+        << got.size() << " (a pair listed twice, or a point paired with itself?)");
     REQUIRE(got.size() == 4);  // {0, 2, 5} coincide (3 pairs), {1, 4} (1 pair)
     grid_pairs(wb::Mat2X(2, 0), wb::VecX(0), got);
+    INFO("no particles give no pairs, and `pairs` is cleared first; got " << got.size());
     REQUIRE(got.empty());
     grid_pairs(x.leftCols(1), wb::VecX::Constant(1, 0.3), got);
+    INFO("one particle gives no pairs (never a particle with itself); got " << got.size());
     REQUIRE(got.empty());
   }
   {

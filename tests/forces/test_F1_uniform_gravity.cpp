@@ -29,6 +29,8 @@ TEST_CASE("F1 uniform gravity: each particle gets m_i g", "[forces][F1][3pts]") 
       -4.905, -19.62, -29.43;
   wbtest::require_near(f, expected, kTol, "uniform gravity: f_i = m_i g (weight is mass times g)",
                        kTol);
+  INFO("f keeps one column per particle (3); got " << f.cols()
+                                                   << ": add into f, never resize it");
   REQUIRE(f.cols() == 3);
 }
 

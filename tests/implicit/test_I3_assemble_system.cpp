@@ -59,6 +59,9 @@ void dense_reference(const Setup& s, Eigen::MatrixXd& A, Eigen::VectorXd& b) {
 void require_dense(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
                    const Eigen::MatrixXd& Ae, const Eigen::VectorXd& be,
                    const std::string& what) {
+  INFO(what << ": A is " << A.rows() << " x " << A.cols() << " and b has " << b.size()
+            << " entries, expected " << Ae.rows() << " x " << Ae.cols() << " and " << be.size()
+            << " (2n: two velocity unknowns per particle, pinned ones included)");
   REQUIRE(A.rows() == Ae.rows());
   REQUIRE(A.cols() == Ae.cols());
   REQUIRE(b.size() == be.size());
@@ -82,6 +85,8 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
   assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, A, b);
+  INFO("A is " << A.rows() << " x " << A.cols()
+               << ", expected 8 x 8 (2n for the 4 particles, pinned ones included)");
   REQUIRE(A.rows() == 8);
   REQUIRE(A.cols() == 8);
   const Eigen::MatrixXd Ad = A;
@@ -132,6 +137,7 @@ TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3
   imtest::dense_jacobians(s.net, s.x0, s.v0, K, D);
   const Eigen::VectorXd be = kH * (imtest::flat(imtest::forces(s.net, s.x0, s.v0) + s.f_ext) +
                                    kH * K * imtest::flat(s.v0));
+  INFO("b has " << b.size() << " entries, expected " << be.size() << " (2n)");
   REQUIRE(b.size() == be.size());
   Eigen::Index i;
   const double err = (b - be).cwiseAbs().maxCoeff(&i);

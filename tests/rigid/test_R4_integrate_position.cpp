@@ -61,12 +61,17 @@ TEST_CASE(
   const Eigen::Quaterniond q0 = quat(0.9, 0.1, 0.3, -0.2);
   Body b = make_body(1.0, Vec3(1, 2, 3), q0, Vec3::Zero(), Vec3::Zero(), Vec3(0.0, 3.0, 0.0));
   integrate_position(b, 0.5);
+  INFO("omega = 0: q = " << b.q.coeffs().transpose()
+                         << ", expected finite: the rotation by a zero angle is the identity "
+                            "(do not divide by |omega| when it is 0)");
   REQUIRE(b.q.coeffs().allFinite());
   require_near(rot(b), q0.toRotationMatrix(), kComposeTol, "omega = 0: the orientation stays");
   require_near(b.x, Vec3(0.0, 1.5, 0.0), kComposeTol, "x = x0 + h v");
   // A spin exactly along the body's first axis: the axis does not move.
   Body s = make_body(1.0, Vec3(1, 2, 3), q0, Vec3(5.0 * q0.toRotationMatrix().col(0)));
   for (int k = 0; k < 100; ++k) integrate_position(s, 0.01);
+  INFO("spin along a principal axis, 100 steps: q = " << s.q.coeffs().transpose()
+                                                      << ", expected finite");
   REQUIRE(s.q.coeffs().allFinite());
   require_near(Vec3(rot(s).col(0)), Vec3(q0.toRotationMatrix().col(0)), kComposeTol,
                "spinning about its own axis 0, the body's axis 0 stays where it was");
@@ -86,6 +91,7 @@ TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid
   }
   require_near(rot(b), rot(ref), kSameMotionTol,
                "after 10^6 steps the body has turned as the exponential map turns it");
+  INFO("after 10^6 steps q = " << b.q.coeffs().transpose() << ", expected finite");
   REQUIRE(b.q.coeffs().allFinite());
   const double err = orthonormality_error(rot(b));
   INFO("max(|R^T R - E|, |det R - 1|) after 10^6 steps = " << err << ", expected <= " << kOrthoTol

@@ -262,11 +262,24 @@ def measure(claim, data):
         # QUANTITY x, y, vx, vy, speed, r (from the origin), r@X,Y, disp (from the start).
         # offset LAB/SCENE[@I] x|y|r REDUCER: the last row minus the closed-form motion,
         # one value per particle (r: the distance between them).
+        # A last argument id=K keeps particle K only.
+        only = None
+        if len(args) == 4 and args[3].startswith("id="):
+            try:
+                only = int(args[3][3:])
+            except ValueError:
+                raise InputError(f"{claim.where}: '{args[3]}': expected id=K, K a particle "
+                                 "id") from None
+            args = args[:3]
         want(3)
         lab, stem, integ = _target(args[0])
         p = data.file(lab, data.run_name(stem, integ) + ".csv")
         from .runs import read_trace
         tr = read_trace(p)
+        if only is not None:
+            if only not in tr:
+                raise InputError(f"{claim.where}: id={only}: no such particle in {p}")
+            tr = {only: tr[only]}
         if name == "offset":
             _, at = wexact.motion(data.scene(lab, stem))
             if at is None:
@@ -279,6 +292,9 @@ def measure(claim, data):
             return _reduce(vals, args[2])
         q = args[1]
         vals = []
+        if q.endswith(":end"):  # each particle's last row only
+            q = q[:-len(":end")]
+            tr = {pid: {c: col[-1:] for c, col in d.items()} for pid, d in tr.items()}
         if q == "rchange":  # one value per particle: |x| at the end minus |x| at the start
             vals = [math.hypot(d["x"][-1], d["y"][-1]) - math.hypot(d["x"][0], d["y"][0])
                     for d in tr.values()]

@@ -64,6 +64,10 @@ def build_parser():
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--growth", type=_positive_float, metavar="F",
                    help="predicted energy factor per step, drawn when the run blew up")
+    s.add_argument("--diverged", type=int, metavar="STEP",
+                   help="the step at which the run's summary says it diverged (its last "
+                        "row; docs/run-contract.md, \"Diverged\"); without it, the first "
+                        "row whose energy is not finite")
     s.add_argument("--title")
 
     s = sub.add_parser("energy", help="total energy of several runs on the same axes",
@@ -82,6 +86,10 @@ def build_parser():
     s.add_argument("--growth", metavar="LABEL=F,...",
                    help="predicted energy factor per step of some runs, drawn beside the "
                         "measured growth when a run blew up")
+    s.add_argument("--diverged", metavar="LABEL=STEP,...",
+                   help="the runs whose summary says they diverged, and at which step (an x "
+                        "marks it); without it, a run diverged where its energy is first not "
+                        "finite")
     s.add_argument("--title")
 
     s = sub.add_parser("phase", help="phase portrait of one particle, several traces overlaid",
@@ -179,7 +187,8 @@ def run(args):
         runs.plot_paths(args.traces, labels, args.out, scene=args.exact, ids=ids,
                         title=args.title)
     elif args.command == "stats":
-        runs.plot_stats(args.stats, args.out, title=args.title, growth=args.growth)
+        runs.plot_stats(args.stats, args.out, title=args.title, growth=args.growth,
+                        diverged=args.diverged)
     elif args.command == "energy":
         labels = parse_list(args.labels, "--labels") if args.labels else None
         growth = {}
@@ -189,8 +198,15 @@ def run(args):
                 growth[name] = _positive_float(f)
             except ValueError:
                 raise InputError(f"--growth: item '{item}': expected LABEL=F with F > 0") from None
+        diverged = {}
+        for item in parse_list(args.diverged, "--diverged") if args.diverged else []:
+            name, _, st = item.partition("=")
+            try:
+                diverged[name] = int(st)
+            except ValueError:
+                raise InputError(f"--diverged: item '{item}': expected LABEL=STEP") from None
         runs.plot_energy(args.stats, labels, args.out, relative=args.relative, title=args.title,
-                         growth=growth)
+                         growth=growth, diverged=diverged)
     elif args.command == "phase":
         labels = parse_list(args.labels, "--labels") if args.labels else None
         runs.plot_phase(args.traces, labels, args.out, pid=args.id, axis=args.axis,

@@ -18,6 +18,10 @@ MAX_DRAWN = 300  # particles drawn in a trajectory figure when --ids is not give
 def read_trace(path):
     """{id: {"t": [...], "x": [...], ...}} from a trace CSV, rows in file order."""
     rows = read_csv(path, TRACE_COLUMNS, "trace CSV (t,id,x,y,vx,vy)")
+    if rows and "qw" in rows[0]:
+        raise InputError(f"{path}: a rigid-body trace (3D, with orientations), expected a "
+                         "particle trace t,id,x,y,vx,vy: draw it with tools/plot rigid-frames, "
+                         "rigid-polhode or rigid-animate")
     by_id = {}
     for i, r in enumerate(rows):
         s = r["id"].strip()
@@ -285,8 +289,16 @@ def drift_series(s):
     return t, d, kind
 
 
-def _diverged_at(s):
-    """(t, step) of the first row whose energy is not finite, or None."""
+def _diverged_at(s, step=None):
+    """(t, step) where the run diverged: the row of `step` when the run's summary gave it
+    (--diverged: the run contract's rule, docs/run-contract.md), else the first row whose
+    energy is not finite; None when neither."""
+    if step is not None:
+        for t, st in zip(s["t"], s["step"]):
+            if st == step:
+                return t, st
+        raise InputError(f"--diverged: step {step} is not a row of the stats (the run's "
+                         f"last row is step {s['step'][-1]:.0f})")
     for t, st, e in zip(s["t"], s["step"], s["energy"]):
         if not finite(e):
             return t, st
@@ -302,9 +314,9 @@ def _start_scale(s):
     return head[len(head) // 2] if head else 0.0
 
 
-def _blew_up(s):
+def _blew_up(s, step=None):
     """True when the run diverged or its energy grew past CLIP_ENERGY times its start."""
-    if _diverged_at(s) is not None:
+    if _diverged_at(s, step) is not None:
         return True
     first = max(abs(s["energy"][0]) if finite(s["energy"][0]) else 0.0, _start_scale(s))
     peak = max([abs(v) for v in s["energy"] if finite(v)], default=0.0)
@@ -349,22 +361,22 @@ def _mark_divergence(ax, div, color="0.25", label=True):
     t, step = div
     ax.axvline(t, color=color, ls=":", lw=1.2)
     if label:
-        ax.text(t, 0.5, f" not finite from step {step:.0f}\n (t = {t:.3g} s)",
+        ax.text(t, 0.5, f" diverged at step {step:.0f}\n (t = {t:.3g} s)",
                 transform=blended_transform_factory(ax.transData, ax.transAxes),
                 ha="right", va="center", fontsize=8, color=color, rotation=90)
 
 
-def plot_stats(path, out, title=None, growth=None):
+def plot_stats(path, out, title=None, growth=None, diverged=None):
     s = read_stats(path)
     drift = drift_series(s)
-    blew = _blew_up(s)
+    blew = _blew_up(s, diverged)
     show_drift = drift is not None and not blew
     panels = 3 if show_drift else 2
     heights = [3, 1.6, 2] if show_drift else [3, 2]
     fig, axes = new_figure(panels, 1, figsize=(6.4, 2.0 + 1.9 * panels), sharex=True,
                            gridspec_kw={"height_ratios": heights})
     ax = axes[0]
-    div = _diverged_at(s)
+    div = _diverged_at(s, diverged)
     curves = []
     for key, label, style in (("energy", "total E", "-"), ("kinetic", "kinetic K", "--"),
                               ("potential", "potential U", ":")):
@@ -376,12 +388,12 @@ def plot_stats(path, out, title=None, growth=None):
     ys = [v for _, y, _, _ in curves for v in y]
     span = (max(ys) - min(ys)) if ys else 0.0
     for k, (t, y, label, style) in enumerate(curves):
-        same = [c[2] for c in curves[:k] if _coincides((c[0], c[1]), (t, y), span)]
+        same = [c for c in curves[:k] if _coincides((c[0], c[1]), (t, y), span)]
         kw = {}
         if same:
             every = max(1, len(t) // 12)
             kw = dict(marker="o", mfc="white", ms=4, markevery=(k * every // 3 % every, every))
-            label += f" (coincides with {same[0]})"
+            label += _overlap_label(same[0][2], same[0][1], y, log10=blew)
         ax.plot(t, y, style, label=label, **kw)
     if blew:
         _pow10_axis(ax)
@@ -444,8 +456,12 @@ def plot_stats(path, out, title=None, growth=None):
 COINCIDE = 2e-3  # curves closer than this fraction of the y range are drawn as coinciding
 
 
+SAME_VALUES = 1e-3  # "coincides" in a legend: every value within this fraction of the other's
+
+
 def _coincides(a, b, span):
-    """True when two series (same length, same times) differ by less than COINCIDE * span."""
+    """True when two series (same length, same times) differ by less than COINCIDE * span:
+    drawn on top of each other at the figure's scale."""
     if len(a[0]) != len(b[0]) or not a[0] or span <= 0:
         return False
     if any(abs(x - y) > 1e-12 * max(1.0, abs(x)) for x, y in zip(a[0], b[0])):
@@ -453,7 +469,24 @@ def _coincides(a, b, span):
     return max(abs(x - y) for x, y in zip(a[1], b[1])) <= COINCIDE * span
 
 
-def plot_energy(paths, labels, out, relative=False, title=None, growth=None):
+def _same_values(a, b, log10=False):
+    """True when two series' values agree within SAME_VALUES of each other everywhere (on a
+    log10 axis, within log10(1 + SAME_VALUES)): then, and only then, a legend says
+    "coincides with". Curves that only lie on top of each other at the figure's scale (a
+    10 % difference under a range of 10^100) are said to be "on top of" each other."""
+    if len(a) != len(b):
+        return False
+    if log10:
+        return all(abs(x - y) <= math.log10(1 + SAME_VALUES) for x, y in zip(a, b))
+    return all(abs(x - y) <= SAME_VALUES * max(abs(x), abs(y)) for x, y in zip(a, b))
+
+
+def _overlap_label(other, a, b, log10=False):
+    return (f" (coincides with {other})" if _same_values(a, b, log10)
+            else f" (on top of {other} at this scale)")
+
+
+def plot_energy(paths, labels, out, relative=False, title=None, growth=None, diverged=None):
     """Total energy (or its error) of several runs. A run that blew up switches the figure to
     |E| on a log scale up to each run's last finite step, the divergence marked, with the
     predicted per-step growth (growth: {label: factor}) beside the measured one."""
@@ -467,8 +500,13 @@ def plot_energy(paths, labels, out, relative=False, title=None, growth=None):
     if unknown:
         raise InputError(f"--growth: '{unknown[0]}' is not one of the labels "
                          f"{','.join(labels)}")
+    diverged = diverged or {}
+    unknown = [k for k in diverged if k not in labels]
+    if unknown:
+        raise InputError(f"--diverged: '{unknown[0]}' is not one of the labels "
+                         f"{','.join(labels)}")
     stats = [read_stats(p) for p in paths]
-    blew = any(_blew_up(s) for s in stats)
+    blew = any(_blew_up(s, diverged.get(lb)) for s, lb in zip(stats, labels))
     fig, ax = new_figure(figsize=(6.4, 4.4))
     series, kinds, notes = [], set(), []
     for s, label in zip(stats, labels):
@@ -498,17 +536,18 @@ def plot_energy(paths, labels, out, relative=False, title=None, growth=None):
     drawn = []
     for k, ((t, y), s, label) in enumerate(zip(series, stats, labels)):
         color, marker = integrator_style(label, labels)
-        div = _diverged_at(s)
-        suffix = f" (not finite from step {div[1]:.0f})" if div is not None else ""
-        same = [labels[j] for j in drawn if _coincides(comp[j], comp[k], span)]
+        div = _diverged_at(s, diverged.get(label))
+        suffix = f" (diverged at step {div[1]:.0f})" if div is not None else ""
+        same = [j for j in drawn if _coincides(comp[j], comp[k], span)]
         kw = {}
         if same:
             # Drawn on top of an earlier curve: dashed with sparse markers, and said so.
             every = max(1, len(t) // 12)
             kw = dict(ls=(0, (4, 3)), marker=marker, markevery=(k * every // 3 % every, every),
                       ms=5, mfc="white")
-            suffix += f" (coincides with {same[0]})"
-            notes.append(f"{label} = {same[0]}")
+            suffix += _overlap_label(labels[same[0]], series[same[0]][1], y,
+                                     log10=blew)
+            notes.append(f"{label} = {labels[same[0]]}")
         ax.plot(t, y, color=color, label=label + suffix, **kw)
         drawn.append(k)
         if div is not None and t:
@@ -565,7 +604,7 @@ def plot_phase(paths, labels, out, pid=0, axis="x", title=None):
         color, marker = integrator_style(label, labels)
         diverged = len(xs) < len(data[pid][axis])
         span = max((max(c) - min(c) for c in (xs, vs) if c), default=0.0)
-        same = [lb for lb, (px, pv) in drawn if len(px) == len(xs) and xs and
+        same = [(lb, px, pv) for lb, (px, pv) in drawn if len(px) == len(xs) and xs and
                 max(max(abs(a - b) for a, b in zip(px, xs)),
                     max(abs(a - b) for a, b in zip(pv, vs))) <= COINCIDE * span]
         kw = dict(ls=styles[k % len(styles)], lw=1.2 if k else 1.0)
@@ -576,7 +615,8 @@ def plot_phase(paths, labels, out, pid=0, axis="x", title=None):
                       markevery=(k * every // 3 % every, every), ms=5, mfc="white")
         ax.plot(xs, vs, color=color, **kw,
                 label=label + (" (diverged)" if diverged else "")
-                + (f" (coincides with {same[0]})" if same else ""))
+                + (_overlap_label(same[0][0], same[0][1] + same[0][2], xs + vs)
+                   if same else ""))
         drawn.append((label, (xs, vs)))
         if xs:
             ax.plot([xs[-1]], [vs[-1]], "o", color=color, ms=5)

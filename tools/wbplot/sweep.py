@@ -95,9 +95,15 @@ def by_integrator(runs):
 
 def asymptotic_points(runs, scale=1.0):
     """The (dt, error) points used for the order, sorted by dt (rule in docs/report.md)."""
-    pts = sorted((r.dt, r.error) for r in runs
-                 if not r.diverged and finite(r.error) and r.error > 0)
-    pts = [(h, e) for h, e in pts if FLOOR_REL * scale <= e < CEILING_REL * scale]
+    # The range is contiguous from the smallest dt up: it ends at the first step that
+    # diverged or whose error reached the ceiling (a larger step that lands near the exact
+    # answer by a lucky phase is not in the asymptotic range).
+    pts = []
+    for r in sorted(runs, key=lambda r: r.dt):
+        if r.diverged or not finite(r.error) or r.error >= CEILING_REL * scale:
+            break
+        if r.error > 0 and r.error >= FLOOR_REL * scale:
+            pts.append((r.dt, r.error))
     # A rounding plateau at the smallest steps: the error stops falling with dt.
     while len(pts) >= 3:
         (h0, e0), (h1, e1) = pts[0], pts[1]

@@ -280,8 +280,18 @@ void ContactWorld::planes_pass(double h, Mat2X& x, Mat2X& v) const {
       Vec2 xi = x0, vi = v0;
       const double jn = collide_plane(p.point, p.n, r_[i] + kSkin, m_[i], p.restitution,
                                       settings_.rest_speed, xi, vi);
+      const bool approaching =
+          (x0 - p.point).dot(p.n) < r_[i] && v0.dot(p.n) < -settings_.rest_speed;
+      plane_hits_.seen += approaching;
+      plane_hits_.answered += approaching && jn > 0;
       if (jn > 0) {
-        if (p.friction > 0) friction_impulse(p.n, jn, p.friction, m_[i], vi);
+        if (p.friction > 0) {
+          const Vec2 before = vi;
+          const double jt = friction_impulse(p.n, jn, p.friction, m_[i], vi);
+          const bool sliding = (before - before.dot(p.n) * p.n).norm() > 0;
+          friction_hits_.seen += sliding;
+          friction_hits_.answered += sliding && (jt != 0 || vi != before);
+        }
         // The impulses act before this step's position update: x0 + h dv,
         // then only what overlap remains is removed (a second call with no
         // velocity moves without an impulse).
@@ -332,7 +342,12 @@ void ContactWorld::pair_response(double h, int i, double mj, int j, double e, Ma
                                  Mat2X& v) const {
   const Vec2 x1_0 = x.col(i), v1_0 = v.col(i), x2_0 = x.col(j), v2_0 = v.col(j);
   Vec2 x1 = x1_0, v1 = v1_0, x2 = x2_0, v2 = v2_0;
-  if (collide_particles(m_[i], r_[i] + kSkin, mj, r_[j] + kSkin, e, x1, v1, x2, v2) > 0) {
+  const double J = collide_particles(m_[i], r_[i] + kSkin, mj, r_[j] + kSkin, e, x1, v1, x2, v2);
+  const Vec2 d = x1_0 - x2_0;
+  const bool approaching = d.norm() < r_[i] + r_[j] && (v1_0 - v2_0).dot(d) < 0;
+  pair_hits_.seen += approaching;
+  pair_hits_.answered += approaching && J > 0;
+  if (J > 0) {
     x1 = x1_0 + h * (v1 - v1_0);
     x2 = x2_0 + h * (v2 - v2_0);
     Vec2 s1 = Vec2::Zero(), s2 = Vec2::Zero();
@@ -392,10 +407,16 @@ void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
     for (Contact& c : solved_) solve_contact(w_, c, v);
   }
   x += h * (v - v0);
-  // The totals, for the next step's warm start.
+  // The totals, for the next step's warm start; approaching contacts that the
+  // solver (C5) left without a normal impulse are counted for warnings().
   kept_.clear();
   for (std::size_t c = 0; c < solved_.size(); ++c) {
-    kept_[keys_[c]] = {solved_[c].Pn, solved_[c].Pt};
+    const Contact& k = solved_[c];
+    const Vec2 rel = k.b >= 0 ? Vec2(v0.col(k.a) - v0.col(k.b)) : Vec2(v0.col(k.a));
+    const bool approaching = rel.dot(k.n) < 0;
+    solver_hits_.seen += approaching;
+    solver_hits_.answered += approaching && k.Pn > 0;
+    kept_[keys_[c]] = {k.Pn, k.Pt};
   }
   push_apart(x);
 }
@@ -424,6 +445,40 @@ void ContactWorld::push_apart(Mat2X& x) const {
       }
     }
   }
+}
+
+std::vector<std::string> ContactWorld::warnings(const Mat2X& x, const Mat2X& v) const {
+  std::vector<std::string> out = forces_.warnings(x, v);
+  auto unanswered = [&](const Answered& a, const std::string& what) {
+    if (a.seen > 0 && a.answered == 0) {
+      out.push_back(std::to_string(a.seen) + " times " + what +
+                    " returned no impulse for any of them: is it still a stub?");
+    }
+  };
+  unanswered(plane_hits_,
+             "a particle moved into a plane within its radius, and collide_plane (C1)");
+  unanswered(pair_hits_,
+             "two touching particles moved towards each other, and "
+             "collide_particles (C2)");
+  unanswered(solver_hits_,
+             "a contact closed in, and the contact solver (C5: prepare_contact, "
+             "warm_start_contact, solve_contact)");
+  unanswered(friction_hits_,
+             "a particle slid along a plane with friction, and "
+             "friction_impulse (C4)");
+  // The broad phase (C3) against the provided brute force, on the last state.
+  if (any_radius_ && x.cols() >= 2 && x.allFinite()) {
+    Pairs grid, brute;
+    grid_pairs(x, r_, grid);
+    brute_force_pairs(x, r_, brute);
+    if (grid.empty() && !brute.empty()) {
+      out.push_back(
+          "grid_pairs (C3) found no candidate pair in the last state, where the "
+          "brute-force broad phase finds " +
+          std::to_string(brute.size()) + ": is it still a stub?");
+    }
+  }
+  return out;
 }
 
 void use_collisions(LabInfo& info) {

@@ -90,6 +90,9 @@ class ContactWorld : public World {
   const Dynamics& dynamics() const override { return forces_.dynamics(); }
   Energy energy(const Mat2X& x, const Mat2X& v) const override { return forces_.energy(x, v); }
   void after_step(double h, Mat2X& x, Mat2X& v) const override;
+  // A stub's signature: contacts that approached and got no impulse from C1,
+  // C2 or C4 in the whole run, a broad phase (C3) that misses pairs.
+  std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
 
   const std::vector<PlaneDef>& planes() const { return planes_; }
   const ContactSettings& settings() const { return settings_; }
@@ -126,6 +129,13 @@ class ContactWorld : public World {
   mutable std::vector<double> restitution_;
   mutable std::vector<int> plane_;  // the plane of each contact, -1 for a pair
   mutable std::unordered_map<std::uint64_t, std::pair<double, double>> kept_, next_;
+  // Approaching contacts seen, and those the student's function answered
+  // with an impulse: planes (C1), pairs (C2), sliding with friction (C4), the
+  // accumulated solver (C5).
+  struct Answered {
+    long seen = 0, answered = 0;
+  };
+  mutable Answered plane_hits_, pair_hits_, friction_hits_, solver_hits_;  // C5 too
 };
 
 // Makes the lab run its scenes with the forces lab's forces, plus collisions

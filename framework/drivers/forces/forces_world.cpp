@@ -309,6 +309,7 @@ void ParticleDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
                              "): see TODO(F6)");
   }
   a.array() = f_.array().rowwise() * inv_m_;
+  if (!any_force_) any_force_ = !f_.isZero(0);
 }
 
 Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m) {
@@ -323,6 +324,15 @@ ForceWorld::ForceWorld(const Scene& scene)
 
 Energy ForceWorld::energy(const Mat2X& x, const Mat2X& v) const {
   return wb::energy(forces_, x, v, m_);
+}
+
+std::vector<std::string> ForceWorld::warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
+  if (forces_.empty() || dyn_.any_force()) return {};
+  return {
+      "every force evaluation gave zero force on every particle, although the scene "
+      "declares " +
+      std::to_string(forces_.size()) +
+      " force(s): are the forces lab's functions (F1-F8, accumulate_forces) still stubs?"};
 }
 
 void use_forces(LabInfo& info) {

@@ -49,6 +49,8 @@ class ParticleDynamics : public Dynamics {
  public:
   ParticleDynamics(const ForceList& forces, const VecX& m);
   const Mat2X& last_forces() const { return f_; }
+  // Did any evaluation give a non-zero force (what the forces' stubs never do)?
+  bool any_force() const { return any_force_; }
 
  protected:
   void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const override;
@@ -58,6 +60,7 @@ class ParticleDynamics : public Dynamics {
   VecX m_;
   Eigen::Array<double, 1, Eigen::Dynamic> inv_m_;
   mutable Mat2X f_;
+  mutable bool any_force_ = false;
 };
 
 Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m);
@@ -68,6 +71,8 @@ class ForceWorld : public World {
   explicit ForceWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  // A scene with forces whose every evaluation gave zero: the forces' stubs.
+  std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
   const ForceList& forces() const { return forces_; }
   const VecX& masses() const { return m_; }
 

@@ -328,14 +328,17 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
   iterations_ += r.iterations;
   max_iterations_ = std::max(max_iterations_, r.iterations);
   if (r.converged && !r.solver_failed) return;
+  count_unconverged();  // the run contract's share rule (docs/run-contract.md)
   if (++failed_ <= 3) {
     std::cerr << "implicit: " << file_ << ": " << integrator << " step " << steps_ << ": ";
     if (r.iterations == 0 && !r.solver_failed) {
       std::cerr << "the step did no linear solve and did not converge (see TODO(I4), "
                    "TODO(I5))\n";
     } else if (r.solver_failed) {
-      std::cerr << "the linear solver failed after " << r.iterations
-                << " solves; the step keeps the last good iterate\n";
+      // r.iterations counts the solves that succeeded before the failed one.
+      std::cerr << "the linear solver failed on solve " << r.iterations + 1
+                << (r.iterations == 0 ? " (the step's first)" : "")
+                << "; the step keeps the last good iterate\n";
     } else {
       std::cerr << "Newton did not converge in " << r.iterations << " solves (residual "
                 << num(r.residual) << " > tol * scale = " << num(opt_.tol * r.scale) << ")\n";

@@ -63,13 +63,6 @@ void append_stats_row(std::string& buf, long step, double t, const Totals& s) {
   buf += '\n';
 }
 
-ordered_json number_or_null(double x) {
-  return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr);
-}
-ordered_json vec_json(const Vec3& v) {
-  return {number_or_null(v.x()), number_or_null(v.y()), number_or_null(v.z())};
-}
-
 struct RunOptions {
   const Integrator* integrator = nullptr;
   double dt = 0;
@@ -77,12 +70,58 @@ struct RunOptions {
   std::string out, stats;
 };
 
+// The floor of the run's energy scale (wb::energy_scale): the work gravity
+// and the point forces would do across the scene, sum of (m |g| + |F|) times
+// the scene size (the extent of the centres or their largest distance from
+// the origin; 1 m when both are 0).
+double work_scale(const Scene& scene, const std::vector<Body>& bodies) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
+  double far = 0, force = 0;
+  for (const Body& b : bodies) {
+    lo = lo.cwiseMin(b.x);
+    hi = hi.cwiseMax(b.x);
+    far = std::max(far, b.x.norm());
+    force += b.m * scene.g.norm();
+  }
+  for (const PointForce& f : scene.point_forces) force += f.F.norm();
+  double S = bodies.empty() ? 0.0 : std::max((hi - lo).norm(), far);
+  if (!(std::isfinite(S) && S > 0)) S = 1.0;
+  return std::isfinite(force * S) ? force * S : 0.0;
+}
+
+ordered_json vec_json(const Vec3& v) {
+  auto n = [](double x) { return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr); };
+  return {n(v.x()), n(v.y()), n(v.z())};
+}
+
 ordered_json simulate(const Scene& scene, const RunOptions& opt,
                       std::vector<std::string>& warnings) {
   std::vector<Body> bodies = initial_bodies(scene);
   wb::CsvFile trace(opt.out, "t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n");
   wb::CsvFile stats(opt.stats, "step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz\n");
-  auto record = [&](long k, double t) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!(bodies[i].I_body.diagonal().minCoeff() > 0)) {
+      warnings.push_back("body " + std::to_string(i) +
+                         ": its inertia tensor has an entry <= 0 (or NaN): are the R1 inertia "
+                         "functions written yet?");
+    }
+  }
+  const Totals t0 = totals(scene, bodies);
+  const double scale = wb::energy_scale(t0.kinetic, t0.potential, work_scale(scene, bodies));
+  bool moved = false;
+  double drift = 0;
+  StepState state;   // contacts' impulses, kept from step to step
+  double angle = 0;  // largest angle of a revolute hinge's body axis from its axis
+  const Body first = bodies.front();
+  wb::StepHooks hooks;
+  hooks.step = [&] {
+    drift = std::max(drift, step(scene, *opt.integrator, opt.dt, bodies, state));
+    angle = std::max(angle, state.hinge_angle);
+    moved = moved || bodies.front().x != first.x || bodies.front().q.coeffs() != first.q.coeffs();
+  };
+  hooks.finite = [&] { return finite(bodies); };
+  hooks.energy = [&] { return totals(scene, bodies).energy(); };
+  hooks.record = [&](long k, double t) {
     if (trace) {
       append_trace_rows(trace.rows(), t, bodies);
       trace.flush_if_large();
@@ -92,35 +131,9 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
       stats.flush_if_large();
     }
   };
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!(bodies[i].I_body.diagonal().minCoeff() > 0)) {
-      warnings.push_back("body " + std::to_string(i) +
-                         ": its inertia tensor has an entry <= 0 (or NaN): are the R1 inertia "
-                         "functions written yet?");
-    }
-  }
-  const Totals t0 = totals(scene, bodies);
-  record(0, 0.0);
-  const auto start = std::chrono::steady_clock::now();
-  long k = 0;
-  bool diverged = false, moved = false;
-  double drift = 0;
-  StepState state;   // contacts' impulses, kept from step to step
-  double angle = 0;  // largest angle of a revolute hinge's body axis from its axis
-  const Body first = bodies.front();
-  while (k < opt.steps) {
-    drift = std::max(drift, step(scene, *opt.integrator, opt.dt, bodies, state));
-    angle = std::max(angle, state.hinge_angle);
-    ++k;
-    const double t = double(k) * opt.dt;
-    diverged = !finite(bodies);
-    moved = moved || bodies.front().x != first.x || bodies.front().q.coeffs() != first.q.coeffs();
-    if (diverged || k == opt.steps || k % opt.every == 0) record(k, t);
-    if (diverged) break;
-  }
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (k > 0 && !moved && !diverged) {
+  const wb::LoopResult loop = wb::run_steps(opt.steps, opt.every, opt.dt, scale, hooks);
+  const long k = loop.steps;
+  if (k > 0 && !moved && loop.reason.empty()) {
     warnings.push_back("body 0 never moved or turned in " + std::to_string(k) +
                        " steps: is integrate_position (R4) still a stub?");
   }
@@ -128,142 +141,103 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
   trace.commit();
   stats.commit();
 
-  ordered_json j;  // keys in the documented order
-  j["status"] = diverged ? "diverged" : "ok";
-  j["steps"] = k;
-  j["t"] = double(k) * opt.dt;
-  j["force_evals"] = k;  // one force accumulation per step
-  j["wall_s"] = wall;
-  j["energy0"] = number_or_null(t0.energy());
-  j["energy"] = number_or_null(t1.energy());
-  j["momentum0"] = vec_json(t0.p);
-  j["momentum"] = vec_json(t1.p);
-  j["angular_momentum0"] = vec_json(t0.L);
-  j["angular_momentum"] = vec_json(t1.L);
-  if (!scene.hinges.empty()) j["hinge_drift"] = number_or_null(drift);
+  wb::Summary s;
+  s.diverged = loop.reason;
+  s.steps = k;
+  s.t = double(k) * opt.dt;
+  s.force_evals = k;  // one force accumulation per step
+  s.wall_s = loop.wall_s;
+  s.energy0 = t0.energy();
+  s.energy = t1.energy();
+  s.momentum0 = {t0.p.x(), t0.p.y(), t0.p.z()};
+  s.momentum = {t1.p.x(), t1.p.y(), t1.p.z()};
+  s.extra = ordered_json::object();
+  s.extra["angular_momentum0"] = vec_json(t0.L);
+  s.extra["angular_momentum"] = vec_json(t1.L);
+  if (!scene.hinges.empty()) {
+    s.extra["hinge_drift"] = std::isfinite(drift) ? ordered_json(drift) : ordered_json(nullptr);
+  }
   const bool revolute = std::any_of(scene.hinges.begin(), scene.hinges.end(),
                                     [](const Hinge& hg) { return hg.revolute; });
-  if (revolute) j["hinge_angle"] = number_or_null(angle);
-  if (!warnings.empty()) j["warnings"] = warnings;
-  return j;
+  if (revolute) {
+    s.extra["hinge_angle"] = std::isfinite(angle) ? ordered_json(angle) : ordered_json(nullptr);
+  }
+  s.warnings = warnings;
+  return wb::summary_json(s);
 }
 
 // ---- Sweep mode: every integrator over a ladder of step sizes on a torque-free scene,
-// against the exact conserved angular momentum and energy (docs/sweep.md, "rigid").
+// against the exact conserved angular momentum and energy (docs/sweep.md, "rigid"). The
+// plan, the table and the summary are the contract's (wb/contract.h); only the state and
+// the errors are this lab's.
 
-struct SweepOptions {
-  std::string csv;
-  std::vector<std::string> integrators;
-  std::vector<double> dts;
-  int repeats = 3;
-};
-
-ordered_json run_sweep(const LabInfo& info, const Scene& scene, double base_dt, double T,
-                       const SweepOptions& opt) {
+std::vector<wb::SweepRow> run_sweep(const LabInfo& info, const Scene& scene,
+                                    const wb::SweepPlan& plan, int repeats) {
   if (!scene.torque_free()) {
     throw InputError("--sweep: " + scene.file +
                      ": expected a torque-free scene (no forces, planes or hinges): its exact "
                      "angular momentum and energy are the initial ones");
   }
-  if (!(T > 0)) throw InputError("--sweep: t_end: got " + num(T) + ", expected a number > 0");
-  std::vector<const Integrator*> integs;
-  if (opt.integrators.empty()) {
-    for (const Integrator& it : info.integrators) integs.push_back(&it);
-  } else {
-    for (const std::string& n : opt.integrators) {
-      integs.push_back(&wb::find_named(info.integrators, n, "--integrators"));
-    }
-  }
-  std::vector<double> dts = opt.dts;
-  if (dts.empty()) {
-    for (int k = 3; k >= -6; --k) dts.push_back(std::ldexp(base_dt, k));
-  }
-  const std::string ladder = opt.dts.empty() ? "--dt" : "--dts";
-  for (double h : dts) {
-    if (!(std::isfinite(h) && h > 0)) {
-      throw InputError(ladder + ": got " + num(h) + ", expected finite numbers > 0");
-    }
-    const double n = std::round(T / h);
-    if (!(n >= 1 && n <= double(wb::kMaxSteps))) {
-      throw InputError(ladder + ": step " + num(h) + " gives round(T/dt) = " + num(n) +
-                       " steps for T = " + num(T) + ", expected 1 to " +
-                       std::to_string(wb::kMaxSteps));
-    }
-  }
-  if (opt.repeats < 1) {
-    throw InputError("--repeats: got " + std::to_string(opt.repeats) + ", expected >= 1");
-  }
-  wb::AtomicFile csv(opt.csv);
-  const std::string exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
-  for (const auto& w : scene.cost_warnings) std::cerr << exe << ": warning: " << w << "\n";
-  std::string buf =
-      "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,"
-      "status\n";
-  const Totals t0 = totals(scene, initial_bodies(scene));
+  const std::vector<Body> start = initial_bodies(scene);
+  const Totals t0 = totals(scene, start);
   const double Lscale = std::max(t0.L.norm(), 1e-300), Escale = std::max(t0.energy(), 1e-300);
-  long runs = 0, diverged_runs = 0;
-  for (const Integrator* integ : integs) {
-    for (double h : dts) {
-      const long steps = long(std::round(T / h));
-      std::cerr << "sweep: " << integ->name << " dt=" << num(h) << " (" << runs + 1 << "/"
-                << integs.size() * dts.size() << ")\n";
+  const double blowup_scale =
+      wb::energy_scale(t0.kinetic, t0.potential, work_scale(scene, start));
+  std::vector<wb::SweepRow> rows;
+  const std::size_t total = plan.integrators.size() * plan.dts.size();
+  for (std::size_t i : plan.integrators) {
+    const Integrator& integ = info.integrators[i];
+    for (std::size_t d = 0; d < plan.dts.size(); ++d) {
+      wb::SweepRow row;
+      row.integrator = i;
+      row.dt = plan.dts[d];
+      row.steps = row.force_evals = plan.steps[d];
+      row.reference = "exact";
+      const double h = row.dt;
+      std::cerr << "sweep: " << integ.name << " dt=" << num(h) << " (" << rows.size() + 1 << "/"
+                << total << ")\n";
       // Timed: the pure step loop, fastest of `repeats`.
-      double wall = 1e300;
-      for (int r = 0; r < opt.repeats; ++r) {
-        std::vector<Body> bodies = initial_bodies(scene);
-        const auto start = std::chrono::steady_clock::now();
-        for (long k = 0; k < steps; ++k) step(scene, *integ, h, bodies);
-        wall = std::min(
-            wall,
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      row.wall_s = INFINITY;
+      for (int r = 0; r < repeats; ++r) {
+        std::vector<Body> bodies = start;
+        const auto t_start = std::chrono::steady_clock::now();
+        for (long k = 0; k < row.steps; ++k) step(scene, integ, h, bodies);
+        row.wall_s = std::min(
+            row.wall_s,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
       }
-      // Untimed: the errors along the run.
-      std::vector<Body> bodies = initial_bodies(scene);
+      // Untimed: the errors along the run, and the contract's rule for a diverged run.
+      std::vector<Body> bodies = start;
       double e_err = 0;
-      bool div = false;
-      for (long k = 0; k < steps && !div; ++k) {
-        step(scene, *integ, h, bodies);
-        div = !finite(bodies);
-        if (!div) e_err = std::max(e_err, std::abs(totals(scene, bodies).energy() - t0.energy()));
+      for (long k = 0; k < row.steps && !row.diverged; ++k) {
+        step(scene, integ, h, bodies);
+        const bool ok = finite(bodies);
+        const double E = ok ? totals(scene, bodies).energy() : NAN;
+        row.diverged = !wb::divergence(ok, E, blowup_scale, k + 1).empty();
+        if (!row.diverged) e_err = std::max(e_err, std::abs(E - t0.energy()));
       }
-      const double L_err = div ? INFINITY : (totals(scene, bodies).L - t0.L).norm() / Lscale;
-      e_err = div ? INFINITY : e_err / Escale;
-      ++runs;
-      diverged_runs += div;
-      buf += scene.name + "," + integ->name + ",";
-      append_number(buf, h);
-      buf += ",";
-      append_int(buf, steps);
-      buf += ",";
-      append_int(buf, steps);
-      for (double q : {wall, L_err, e_err}) {
-        buf += ",";
-        if (std::isinf(q)) {
-          buf += "inf";
-        } else {
-          append_number(buf, q);
-        }
+      bool moved = false;
+      for (std::size_t b = 0; b < bodies.size(); ++b) {
+        moved = moved || bodies[b].x != start[b].x ||
+                bodies[b].q.coeffs() != start[b].q.coeffs() || bodies[b].omega != start[b].omega;
       }
-      buf += std::string(",exact,") + (div ? "diverged" : "ok") + "\n";
+      if (row.steps > 0 && !moved && !row.diverged) {
+        std::cerr << "sweep: warning: " << integ.name << " at dt=" << num(h)
+                  << ": no body moved or turned in " << row.steps
+                  << " steps: its errors of 0 mean nothing (are R4 and R5 still stubs?)\n";
+      }
+      row.error = row.diverged ? INFINITY : (totals(scene, bodies).L - t0.L).norm() / Lscale;
+      row.energy_error = row.diverged ? INFINITY : e_err / Escale;
+      rows.push_back(row);
     }
   }
-  csv.write(buf);
-  csv.commit();
-  ordered_json j;
-  j["status"] = "ok";
-  j["sweep"] = opt.csv;
-  j["runs"] = runs;
-  j["diverged"] = diverged_runs;
-  return j;
+  return rows;
 }
 
 std::string help_footer(const LabInfo& info) {
-  std::string s = "\nIntegrators (--integrator):\n";
-  for (const Integrator& it : info.integrators) {
-    s += "  " + it.name + std::string(it.name.size() < 22 ? 22 - it.name.size() : 1, ' ') +
-         it.description + " (order 1, 1 force evaluation per step)\n";
-  }
-  s += "  default: " + info.integrators.front().name + "\n";
+  std::vector<wb::IntegratorLine> lines;
+  for (const Integrator& it : info.integrators) lines.push_back({it.name, it.description, 1, 1});
+  std::string s = wb::integrators_help(lines);
   s +=
       "\nScene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
       "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"
@@ -273,12 +247,9 @@ std::string help_footer(const LabInfo& info) {
   s += "\nTrace (--out): t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (omega in the world frame).\n"
        "Stats (--stats): step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz (L about the "
        "origin).\n";
-  s += "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
-       "step size (--dts list, or dt*2^k for k = 3..-6 from --dt or the scene's dt) to\n"
-       "t_end, on a torque-free scene; one row per run: scene,integrator,dt,steps,\n"
-       "force_evals,wall_s,error,energy_error,reference,status. error = |L(T) - L0| / |L0|,\n"
-       "energy_error = max |E - E0| / E0 (the exact values are the initial ones). See "
-       "docs/sweep.md.\n";
+  s += wb::sweep_help(
+      "On a torque-free scene only: error = |L(T) - L0| / |L0|,\n"
+      "energy_error = max |E - E0| / E0 (the exact values are the initial ones).");
   return s + wb::help_scenes_and_docs(info.lab);
 }
 
@@ -300,26 +271,29 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
   if (!flags) return status;
   const std::string& exe = spec.exe;
 
-  try {
+  return wb::guarded_main(exe, [&] {
     const Scene scene = load_scene(flags->scene_file);
-    const double h = wb::step_size(*flags, scene.dt, scene.file);
     if (!flags->sweep_csv.empty()) {
-      const double T = flags->t_end ? *flags->t_end : scene.t_end.value_or(-1.0);
-      if (T < 0) throw InputError(scene.file + ": t_end: missing (or pass --t-end)");
-      SweepOptions sweep;
-      sweep.csv = flags->sweep_csv;
-      sweep.integrators = flags->sweep_integrators;
-      sweep.dts = flags->sweep_dts;
-      if (flags->repeats) sweep.repeats = *flags->repeats;
-      std::cout << run_sweep(info, scene, h, T, sweep).dump() << std::endl;
+      std::vector<std::string> names;
+      for (const Integrator& it : info.integrators) names.push_back(it.name);
+      const int repeats = flags->repeats.value_or(3);
+      const wb::SweepPlan plan =
+          wb::plan_sweep(names, flags->sweep_integrators, flags->sweep_dts, flags->dt,
+                         flags->t_end, scene.dt, scene.t_end, scene.file, repeats);
+      wb::AtomicFile csv(flags->sweep_csv);  // an unwritable path fails before the runs
+      for (const auto& w : scene.cost_warnings) std::cerr << exe << ": warning: " << w << "\n";
+      const std::vector<wb::SweepRow> rows = run_sweep(info, scene, plan, repeats);
+      csv.write(wb::sweep_table(scene.name, names, rows));
+      csv.commit();
+      std::cout << wb::sweep_summary(flags->sweep_csv, rows).dump() << std::endl;
       return 0;
     }
 
     RunOptions opt;
     opt.integrator =
         &wb::choose_integrator(info.integrators, *flags, scene.integrator, scene.file);
-    opt.dt = h;
-    opt.steps = wb::steps_to_take(*flags, scene.t_end, scene.file, h);
+    opt.dt = wb::step_size(*flags, scene.dt, scene.file);
+    opt.steps = wb::steps_to_take(*flags, scene.t_end, scene.file, opt.dt);
     opt.every = flags->every.value_or(1);
     opt.out = flags->out;
     opt.stats = flags->stats;
@@ -329,13 +303,7 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
     for (const auto& w : warnings) std::cerr << exe << ": warning: " << w << "\n";
     std::cout << j.dump() << std::endl;
     return 0;
-  } catch (const InputError& e) {
-    std::cerr << exe << ": error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << exe << ": internal error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace rigid

@@ -18,13 +18,17 @@ class Dynamics {
     eval(x, v, a);
   }
   long evals() const { return evals_; }
-  void reset_evals() const { evals_ = 0; }
+  // Steps whose implicit solve did not converge (counted by the labs that
+  // solve; a share above kMaxUnconvergedShare makes the run diverged).
+  long unconverged() const { return unconverged_; }
+  void count_unconverged() const { ++unconverged_; }
+  void reset_evals() const { evals_ = unconverged_ = 0; }
 
  protected:
   virtual void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const = 0;
 
  private:
-  mutable long evals_ = 0;
+  mutable long evals_ = 0, unconverged_ = 0;
 };
 
 // Dynamics from a callable, for tests and small examples.

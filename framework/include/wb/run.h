@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "wb/contract.h"
 #include "wb/dynamics.h"
 #include "wb/paths.h"
 #include "wb/scene.h"
@@ -35,10 +36,11 @@ struct LabInfo {
 
 // What one simulation produced: the summary line's fields.
 struct RunResult {
-  bool diverged = false;
-  long steps = 0;  // steps taken
+  std::string diverged;  // why the run diverged (docs/run-contract.md), "" when it did not
+  long steps = 0;        // steps taken
   double t = 0;
   long force_evals = 0;
+  long unconverged = 0;  // steps whose implicit solve did not converge
   double wall_s = 0;
   Energy energy0, energy;
   Vec2 momentum0 = Vec2::Zero(), momentum = Vec2::Zero();
@@ -57,8 +59,6 @@ struct RunOptions {
   std::string stats;  // energy/momentum CSV, empty for none
 };
 
-// The most steps one run takes (--steps, or round(T/H)); docs/run-contract.md.
-constexpr long kMaxSteps = 100'000'000;
 // Steps times particles above which a run warns on stderr that it will be slow.
 constexpr double kLongRunParticleSteps = 1e10;
 
@@ -70,6 +70,10 @@ std::int64_t parse_whole(const std::string& flag, const std::string& text, std::
 // Refuses a scene whose initial energy or momentum is not finite (finite
 // input that overflows), naming the file and the values.
 void check_initial_state(const Scene& scene, const World& world);
+
+// The work the initial forces would do across the scene, sum of m_i |a_i(0)|
+// times the scene size (J): the floor of the run's energy scale (energy_scale).
+double particle_work_scale(const Scene& scene, const World& world);
 
 // Runs one scene from its initial state. Throws InputError for bad input.
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt);

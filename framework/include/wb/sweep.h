@@ -50,7 +50,7 @@ struct SweepOptions {
 
 // What the sweep wrote, for the summary line.
 struct SweepResult {
-  long runs = 0, diverged = 0;
+  std::vector<SweepRow> rows;
 };
 
 // Runs the sweep and writes the CSV

@@ -35,6 +35,12 @@ class World {
   // "Limits"), printed as "<lab>: warning: ..." only once the whole scene and
   // the flags are accepted.
   std::vector<std::string> cost_warnings;
+  // Plain sentences for the summary's "warnings" at the end of a run, ending
+  // in (x, v): what a stub of the lab's functions did that would otherwise
+  // pass for a result (a contact no function answered). The default: none.
+  virtual std::vector<std::string> warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
+    return {};
+  }
 };
 
 // Builds a scene's World; throws InputError for bad scene entries.

@@ -13,9 +13,16 @@ import os
 
 from .. import creep
 from ..common import InputError, new_figure, parse_list, save_figure
+from ..recipes import fmt_dt
 from ..runs import choose_ids, read_trace
 
 REPLACES_GENERIC = True  # discs to scale replace the generic dot trajectories
+
+# The pack README's plot commands for a run of this lab (tools/pack): out/run.csv, its stats.
+PACK_PLOTS = [("tools/plot discs out/run.csv --scene {scene} -o out/run.png",
+               "the discs to scale, with the planes"),
+              ("tools/plot stats out/run-stats.csv -o out/run-energy.png",
+               "energy and momentum against time")]
 
 MAX_PATHS = 60        # particle paths drawn under the discs
 MAX_FRAMES = 80       # frames of an animation
@@ -331,10 +338,11 @@ def scene_figures(ctx):
     desc = doc.get("description", f"Scene {ctx.stem}.")
     trace, stats = ctx.path(f"{ctx.stem}.csv"), ctx.path(f"{ctx.stem}-stats.csv")
     s = ctx.run(["--scene", ctx.scene_path, "--out", trace, "--stats", stats,
-                 "--every", str(_every(doc, n))], ctx.scene_path, "scene as shipped")
+                 "--every", str(_every(doc, n))], ctx.scene_path, "scene as shipped",
+                save=ctx.stem)
     if s is None:
         return
-    setting = f"semi-implicit Euler, dt = {doc.get('dt')} s"
+    setting = f"semi-implicit Euler, dt = {fmt_dt(doc.get('dt'))} s"
     fig = ctx.path(f"{ctx.stem}-discs.png")
     a = ["discs", trace, "--scene", ctx.scene_path, "-o", fig, "--title",
          f"{ctx.stem}: discs at the end ({setting})"]
@@ -345,6 +353,8 @@ def scene_figures(ctx):
                    + extra, a)
     fig = ctx.path(f"{ctx.stem}-energy.png")
     a = ["stats", stats, "-o", fig, "--title", f"{ctx.stem}: energy and momentum ({setting})"]
+    if s.get("status") == "diverged":  # the step the run contract says it diverged at
+        a += ["--diverged", str(s["steps"])]
     if ctx.plot(a):
         e0, e1 = s.get("energy0"), s.get("energy")
         trend = ""

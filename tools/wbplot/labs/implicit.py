@@ -10,6 +10,8 @@ amplitude, against h*omega: the stability picture of this lab.
 """
 import math
 
+from ..recipes import fmt_dt
+
 REPLACES_GENERIC = True
 
 IMPLICIT = ("backward-euler", "baraff-witkin", "implicit-trapezoid", "backward-euler-1")
@@ -116,10 +118,23 @@ def _every(doc):
     return max(1, math.ceil(steps / 2000))
 
 
+def sweep_argv(exe, scene_path, doc, csv, names=None):
+    """The lab's sweep of a one-spring scene, for the report and tools/claims alike: steps
+    from 8 dt down to dt/512 (backward Euler reaches its asymptotic range only at small
+    h omega), every integrator but backward-euler-1 (it takes backward-euler's steps)."""
+    dts = ",".join(repr(float(doc["dt"]) * 2.0 ** k) for k in range(3, -10, -1))
+    argv = [exe, "--scene", scene_path, "--sweep", csv, "--repeats", "1", "--dts", dts]
+    if names is None:
+        names = [n for n in ("backward-euler", "baraff-witkin", "implicit-trapezoid",
+                             "explicit-euler", "symplectic-euler", "midpoint", "trapezoid",
+                             "rk4")]
+    return argv + ["--integrators", ",".join(names)]
+
+
 def scene_figures(ctx):
     doc, stem = ctx.doc, ctx.stem
     name = doc.get("name", stem)
-    dt = doc.get("dt")
+    dt = fmt_dt(doc.get("dt"))
     hw = _one_spring(doc)
     # backward-euler-1 takes the same steps as backward-euler wherever it runs (one linear
     # spring): it is left out of the comparisons (and one colour fewer is needed).
@@ -131,7 +146,7 @@ def scene_figures(ctx):
     # The scene as shipped.
     trace, stats = ctx.path(f"{stem}.csv"), ctx.path(f"{stem}-stats.csv")
     s = ctx.run(["--scene", ctx.scene_path, "--out", trace, "--stats", stats, "--every", k],
-                ctx.scene_path, f"{default} (scene default)")
+                ctx.scene_path, f"{default} (scene default)", save=stem)
     if s is not None:
         fig = ctx.path(f"{stem}-trajectory.png")
         a = ["trace", trace, "-o", fig, "--title", f"{name}: trajectories ({default}, dt = {dt} s)"]
@@ -140,6 +155,8 @@ def scene_figures(ctx):
                        "open circles are the starts, dots the ends.", a)
         fig = ctx.path(f"{stem}-energy.png")
         a = ["stats", stats, "-o", fig, "--title", f"{name}: energy and momentum ({default})"]
+        if s.get("status") == "diverged":
+            a += ["--diverged", str(s["steps"])]
         if ctx.plot(a):
             ctx.figure(fig, f"Energy (total, kinetic, potential) and momentum against time, "
                        f"{default} at dt = {dt} s.", a)
@@ -149,7 +166,8 @@ def scene_figures(ctx):
     for n in names:
         st = ctx.path(f"{stem}-{n}-stats.csv")
         s = ctx.run(["--scene", ctx.scene_path, "--integrator", n, "--stats", st,
-                     "--every", k], f"{ctx.scene_path} --integrator {n}", n)
+                     "--every", k], f"{ctx.scene_path} --integrator {n}", n,
+                    save=f"{stem}-{n}")  # the summary `summary` claims read
         if s is not None:
             files.append(st)
             labels.append(n)
@@ -159,6 +177,7 @@ def scene_figures(ctx):
         a = ["energy"] + [f for f, _ in implicit] + [
             "--labels", ",".join(n for _, n in implicit), "-o", fig, "--title",
             f"{name}: total energy, implicit integrators (dt = {dt} s)"]
+        a += ctx.diverged_args([n for _, n in implicit])
         if ctx.plot(a):
             ctx.figure(fig, f"Total energy against time of the implicit integrators alone on "
                        f"{name} at dt = {dt} s (the explicit ones are in the next figure: "
@@ -167,9 +186,12 @@ def scene_figures(ctx):
         fig = ctx.path(f"{stem}-energy-compare.png")
         a = ["energy"] + files + ["--labels", ",".join(labels), "-o", fig, "--title",
                                   f"{name}: total energy by integrator (dt = {dt} s)"]
+        a += ctx.diverged_args(labels)
         if ctx.plot(a):
             ctx.figure(fig, f"Total energy against time for each integrator on {name} at "
-                       f"dt = {dt} s. An x marks a run that diverged (its last finite value).",
+                       f"dt = {dt} s. An x marks where a run diverged (the run contract's rule: not "
+                       "finite, |E| past 1000 times its initial scale, or most Newton solves "
+                       "failed).",
                        a)
 
     # The stability picture, with the scene's h*omega, and a sweep of the one-spring scene.
@@ -185,11 +207,7 @@ def scene_figures(ctx):
                    f"curve (dashed). The dotted line is this scene, hω = {hw:.3g}; a marker "
                    "shows where a method that starts bounded stops being bounded.", a)
     sw = ctx.path(f"{stem}-sweep.csv")
-    # Steps from 8 dt down to dt/512: backward Euler reaches its asymptotic range only
-    # at small h omega.
-    dts = ",".join(repr(float(dt) * 2.0 ** k) for k in range(3, -10, -1))
-    s = ctx.run(["--scene", ctx.scene_path, "--sweep", sw, "--repeats", "1", "--dts", dts,
-                 "--integrators", ",".join(names)],
+    s = ctx.run(sweep_argv(ctx.exe, ctx.scene_path, doc, sw, names)[1:],
                 f"{ctx.scene_path} --sweep", "sweep")
     if s is None:
         return

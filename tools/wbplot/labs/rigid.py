@@ -20,11 +20,18 @@ from ..common import (InputError, column, finite, integrator_style, new_figure, 
 # The generic particle figures read 2D traces: they do not apply to the rigid lab's.
 REPLACES_GENERIC = True
 
+# The pack README's plot commands for a run of this lab (tools/pack): out/run.csv, its stats.
+PACK_PLOTS = [("tools/plot rigid-frames out/run.csv --scene {scene} -o out/run.png",
+               "the bodies at sampled times, in 3D"),
+              ("tools/plot rigid-momenta out/run-stats.csv -o out/run-energy.png",
+               "energy, momentum, angular momentum against time")]
+
 TRACE_COLUMNS = ["t", "id", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx",
                  "wy", "wz"]
 STATS_COLUMNS = ["step", "t", "energy", "kinetic", "potential", "px", "py", "pz", "Lx", "Ly",
                  "Lz"]
-SWEEP_COLUMNS = ["scene", "integrator", "dt", "steps", "error", "energy_error", "status"]
+SWEEP_COLUMNS = ["scene", "integrator", "dt", "steps", "wall_s", "error", "energy_error",
+                 "status"]
 MAX_WRITTEN_STEPS = 2000  # rows per body the report asks for (--every)
 INTEGRATORS = ["implicit-gyroscopic", "explicit-gyroscopic"]
 
@@ -238,7 +245,7 @@ def _norm3(s, cols, k):
     return math.sqrt(sum(c * c for c in v)) if all(finite(c) for c in v) else float("nan")
 
 
-def plot_momenta(paths, labels, out, title=None):
+def plot_momenta(paths, labels, out, title=None, diverged=None):
     """Energy, linear momentum and angular momentum (about the origin) against time.
 
     A run that diverged early gets a second column: the first moments of the run
@@ -255,6 +262,18 @@ def plot_momenta(paths, labels, out, title=None):
     t_end = max((s["t"][-1] for s in runs if s["t"] and finite(s["t"][-1])), default=0.0)
     blowups = {n: runs[n]["t"][ends[n] + 1] for n in range(len(runs))
                if ends[n] < len(runs[n]["t"]) - 1}
+    blow_steps = {n: int(runs[n]["step"][ends[n] + 1]) for n in blowups}
+    # Runs whose summary says they diverged with a finite last row (|E| past 1000 times
+    # its initial scale, docs/run-contract.md): the blow-up is that row.
+    for label, step in (diverged or {}).items():
+        if label not in labels:
+            raise InputError(f"--diverged: '{label}' is not one of the labels {','.join(labels)}")
+        n = labels.index(label)
+        if n not in blowups:
+            rows = [k for k, st in enumerate(runs[n]["step"]) if st == step]
+            if not rows:
+                raise InputError(f"--diverged: {label}: step {step} is not a row of its stats")
+            blowups[n], blow_steps[n] = runs[n]["t"][rows[0]], step
     finite_runs = [n for n in range(len(runs)) if n not in blowups]
     zoom = bool(blowups) and bool(finite_runs) and t_end > 0 and \
         max(blowups.values()) < EARLY_BLOWUP * t_end
@@ -276,7 +295,7 @@ def plot_momenta(paths, labels, out, title=None):
             for ax in axes:
                 ax.axvline(blowups[n], color=colors[n], lw=0.8, ls="-.")
             notes.append(f"{label} diverged at t = {blowups[n]:g} s, step "
-                         f"{int(s['step'][end + 1])} (dash-dot line)")
+                         f"{blow_steps[n]} (dash-dot line)")
     if len(runs) > 1:
         e0 = runs[0]["energy"]
         for s, label in zip(runs[1:], labels[1:]):
@@ -376,7 +395,11 @@ def plot_polhode(path, out, body=0, title=None):
         ax3.legend(loc="upper left")
     ax3.set_xlabel("ω_x (rad/s)")
     ax3.set_ylabel("ω_y (rad/s)")
-    ax3.set_zlabel("ω_z (rad/s)")
+    ax3.set_zlabel("ω_z (rad/s)", labelpad=4)
+    # Shrink the box inside its axes, and keep the axes off the figure's right edge, so
+    # that the z label is not cut.
+    ax3.set_box_aspect(None, zoom=0.78)
+    fig.subplots_adjust(left=0.07, right=0.9, wspace=0.3)
     ax3.set_title("polhode: the tip of ω in the body frame")
     fig.suptitle(title or f"body {body}" + (" (diverged)" if diverged else ""))
     save_figure(fig, out)
@@ -398,6 +421,24 @@ def plot_frames(path, out, scene=None, count=8, title=None):
     cmap = matplotlib.colormaps["viridis"]
     pts = []
     note = ""
+    strip = column = False
+    # Bodies whose centres all stay within their own size (spinning in place) would stack
+    # their outlines into one tangle: the samples are then drawn side by side along x, a
+    # film strip, `gap` apart (the bodies' spread in x plus 1.6 of the largest size).
+    # When some bodies move and others stay, each body that stays is drawn as a strip of its
+    # own along z (1.6 of its size apart), so that it neither tangles nor meets the others.
+    sizes, travels, xs0, still = [], [], [], {}
+    for b, d in data.items():
+        end = min(last_finite(d[c]) for c in ("x", "y", "z", "qw"))
+        if end < 0:
+            continue
+        sizes.append(body_size(bodies.get(b, {})) if shape_edges(bodies.get(b, {})) else 0.5)
+        travels.append(max(math.dist((d["x"][k], d["y"][k], d["z"][k]),
+                                     (d["x"][0], d["y"][0], d["z"][0])) for k in range(end + 1)))
+        xs0.append(d["x"][0])
+        still[b] = travels[-1] < sizes[-1]
+    in_place = bool(sizes) and all(still.values())
+    gap = (max(xs0) - min(xs0) + 1.6 * max(sizes)) if in_place else 0.0
     for b, d in sorted(data.items()):
         end = min(last_finite(d[c]) for c in ("x", "y", "z", "qw"))
         if end < 0:
@@ -405,20 +446,34 @@ def plot_frames(path, out, scene=None, count=8, title=None):
         if end < len(d["t"]) - 1:
             note = f" (diverged: drawn up to t = {d['t'][end]:g} s)"
         xs, ys, zs = d["x"][:end + 1], d["y"][:end + 1], d["z"][:end + 1]
-        ax.plot(xs, ys, zs, color="#888", lw=0.7)
-        pts += list(zip(xs, ys, zs))
         segs = shape_edges(bodies.get(b, {}))
         size = body_size(bodies.get(b, {})) if segs else 0.5
         n = max(1, min(count, end + 1))
+        step = gap if n > 1 else 0.0
+        up = 1.6 * size if n > 1 and not in_place and still.get(b) else 0.0
+        strip = strip or step > 0
+        column = column or up > 0
+        if not step and not up:
+            ax.plot(xs, ys, zs, color="#888", lw=0.7)
+            pts += list(zip(xs, ys, zs))
         for i in range(n):
             k = round(i * end / max(n - 1, 1))
             color = cmap(i / max(n - 1, 1))
             lines, axes = world_segments(d, k, segs, 0.6 * size)
+            shift = (i * step, 0.0, i * up)
+            lines = [tuple(tuple(c + o for c, o in zip(p, shift)) for p in ln) for ln in lines]
+            axes = [tuple(tuple(c + o for c, o in zip(p, shift)) for p in ln) for ln in axes]
             for p, q in lines:
                 ax.plot(*zip(p, q), color=color, lw=0.9)
                 pts += [p, q]
             for j, (p, q) in enumerate(axes):
                 ax.plot(*zip(p, q), color=AXIS_COLORS[j], lw=1.2)
+    if strip:
+        note += ("\nthe bodies stay in place: each sampled time is drawn side by side along "
+                 f"x, {gap:.3g} m apart, earliest on the left")
+    if column:
+        note += ("\na body that stays in place is drawn one sampled time above the other "
+                 "(earliest at the bottom)")
     draw_planes(ax, scene, pts)
     equal_axes(ax, pts)
     ts = [d["t"] for d in data.values()]
@@ -486,12 +541,15 @@ def animate(path, out, scene=None, frames=60, fps=20, title=None):
 
 
 def plot_sweep(path, out, title=None):
-    """Work-precision: relative L and E errors against steps (log-log), per integrator."""
+    """Work-precision: relative L and E errors against the wall time of the run's step loop
+    (log-log), per integrator. A step's cost is what it weighs: an implicit-gyroscopic step
+    (a Newton step with a 3x3 solve per body) costs more than an explicit one, so steps alone
+    would flatter it."""
     rows = read_csv(path, SWEEP_COLUMNS, "rigid sweep CSV")
     by = {}
     for i, r in enumerate(rows):
         by.setdefault(r["integrator"], []).append(i)
-    steps = column(path, rows, "steps")
+    steps = column(path, rows, "wall_s")
     err = column(path, rows, "error")
     eerr = column(path, rows, "energy_error")
     fig, axes = new_figure(1, 2, figsize=(11.0, 4.2))
@@ -500,12 +558,15 @@ def plot_sweep(path, out, title=None):
     for name, idx in by.items():
         color, marker = integrator_style(name, names)
         for ax, ys in zip(axes, (err, eerr)):
-            xy = [(steps[i], ys[i]) for i in idx if finite(ys[i]) and ys[i] > 0]
+            xy = [(steps[i], ys[i]) for i in idx
+                  if finite(ys[i]) and ys[i] > 0 and finite(steps[i]) and steps[i] > 0]
             ax.loglog([p[0] for p in xy], [p[1] for p in xy], color=color, marker=marker,
                       label=name)
         bad = [i for i in idx if rows[i]["status"] != "ok"]
         if bad:
             notes.append(f"{name}: {len(bad)} diverged run(s) not drawn")
+        if any(not (finite(steps[i]) and steps[i] > 0) for i in idx):
+            notes.append(f"{name}: run(s) too fast to time (wall time 0) not drawn")
         zero = [i for i in idx if finite(err[i]) and err[i] == 0]
         if zero:
             notes.append(f"{name}: {len(zero)} run(s) with zero error not drawn")
@@ -517,12 +578,12 @@ def plot_sweep(path, out, title=None):
                  for ys in (err, eerr) for i, j in pairs
                  if finite(ys[i]) and finite(ys[j]) and max(abs(ys[i]), abs(ys[j])) > 0]
         if pairs and diffs and max(diffs) < 0.25:
-            notes.append(f"the two integrators' curves nearly coincide (within "
-                         f"{100 * max(diffs):.0f}% at every dt)")
+            notes.append(f"the two integrators' errors agree within {100 * max(diffs):.0f}% "
+                         "at every dt: what separates them is what a step costs")
     axes[0].set_ylabel("|L(T) - L0| / |L0|")
     axes[1].set_ylabel("max |E - E0| / E0")
     for ax in axes:
-        ax.set_xlabel("steps (one force accumulation each)")
+        ax.set_xlabel("wall time of the step loop (s): what the steps cost")
         ax.legend(loc="best")
     scene = rows[0]["scene"]
     fig.suptitle(title or f"work-precision on the torque-free scene {scene}: exact L and E are "
@@ -539,6 +600,8 @@ def add_commands(sub):
                        "momentum against time (one or more --stats files)")
     s.add_argument("stats", nargs="+", metavar="STATS.csv")
     s.add_argument("--labels", help="comma-separated, one per file")
+    s.add_argument("--diverged", metavar="LABEL=STEP,...",
+                   help="runs whose summary says they diverged, and at which step")
     s.add_argument("-o", "--out", required=True, metavar="FIG.png")
     s.add_argument("--title")
     s = sub.add_parser("rigid-polhode", help="rigid lab: angular velocity in the body frame")
@@ -573,7 +636,14 @@ def run(args):
                          after=args.after, title=args.title)
     elif cmd == "rigid-momenta":
         labels = parse_list(args.labels, "--labels") if args.labels else None
-        plot_momenta(args.stats, labels, args.out, title=args.title)
+        diverged = {}
+        for item in parse_list(args.diverged, "--diverged") if args.diverged else []:
+            name, _, st = item.partition("=")
+            try:
+                diverged[name] = int(st)
+            except ValueError:
+                raise InputError(f"--diverged: item '{item}': expected LABEL=STEP") from None
+        plot_momenta(args.stats, labels, args.out, title=args.title, diverged=diverged)
     elif cmd == "rigid-polhode":
         plot_polhode(args.trace, args.out, body=args.id, title=args.title)
     elif cmd == "rigid-frames":
@@ -633,13 +703,13 @@ def scene_figures(ctx):
         if integ == default:
             argv += ["--out", trace]
         s = ctx.run(argv + ["--every", every], f"{stem} ({integ})", label=integ,
-                    save=stem if integ == default else None)
+                    save=f"{stem}-{integ}")  # the summary `summary` claims read
         if s is None:
             continue
         if s.get("status") == "diverged" and every != "1" and s.get("steps", 0) <= 10**6:
             # Every step up to the blow-up, for the figure's zoomed column.
             s = ctx.run(argv + ["--every", "1"], f"{stem} ({integ}, every step)", label=integ,
-                        again=True)
+                        again=True, save=f"{stem}-{integ}")
             if s is None:
                 continue
         summaries[integ] = s
@@ -654,6 +724,7 @@ def scene_figures(ctx):
     out = ctx.path(f"{stem}-momenta.png")
     args = ["rigid-momenta"] + [p for _, p in stats] + [
         "--labels", ",".join(i for i, _ in stats), "-o", out]
+    args += ctx.diverged_args([i for i, _ in stats])
     if ctx.plot(args):
         ctx.figure(out, f"Energy, momentum and angular momentum about the origin against time "
                         f"(--every {every}; a run that diverged: every step, and a right-hand "
@@ -663,13 +734,20 @@ def scene_figures(ctx):
     args = ["rigid-polhode", trace, "-o", out]
     if ctx.plot(args):
         ctx.figure(out, f"Body 0's angular velocity in its own frame ({default}): constant "
-                        "components mean a spin about a principal axis; a component that "
-                        "changes sign is a flip.", args)
+                        "components mean a spin about a principal axis. " + (
+                            "On this torque-free body, a large component that changes sign "
+                            "while the others pass through their extremes is a flip (the "
+                            "Dzhanibekov effect)." if _torque_free(doc) else
+                            "Under forces, hinges or contact the components also change sign "
+                            "for other reasons (a pendulum's swing): that is not a flip."),
+                   args)
     out = ctx.path(f"{stem}-frames.png")
     args = ["rigid-frames", trace, "--scene", ctx.scene_path, "-o", out]
     if ctx.plot(args):
         ctx.figure(out, f"The bodies at 8 sampled times ({default}), coloured by time, with "
-                        "their axes and the path of their centre.", args)
+                        "their axes and the path of their centre (bodies that stay in place are "
+                        "drawn one sampled time beside or above the other, as the title "
+                        "says).", args)
     out = ctx.path(f"{stem}.gif")
     args = ["rigid-animate", trace, "--scene", ctx.scene_path, "--frames", "48", "-o", out]
     if ctx.plot(args):
@@ -679,7 +757,7 @@ def scene_figures(ctx):
     if _torque_free(doc) and stem == "dzhanibekov":
         csv = ctx.path(f"sweep-{stem}.csv")
         s = ctx.run(["--scene", ctx.scene_path, "--sweep", csv, "--t-end", "10", "--repeats",
-                     "1"], f"{stem} sweep", label="sweep")
+                     "3"], f"{stem} sweep", label="sweep")
         if s is not None:
             out = ctx.path(f"sweep-{stem}.png")
             args = ["rigid-sweep", csv, "-o", out]
@@ -687,7 +765,9 @@ def scene_figures(ctx):
                 ctx.figure(out, "Work-precision of the two integrators over 10 s of the "
                                 "torque-free flip: relative error of the angular momentum at "
                                 "the end, and the largest relative energy error, against the "
-                                "number of steps.", args)
+                                "wall time of the step loop (the least of 3 timed runs): an "
+                                "implicit-gyroscopic step costs more than an explicit one, so "
+                                "the same number of steps is not the same work.", args)
 
 
 # Scenes whose resting contacts the report runs with both solvers (handouts/rigid.md#r6).

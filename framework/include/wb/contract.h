@@ -1,0 +1,140 @@
+// The run contract's parts that do not depend on a lab's state type
+// (docs/run-contract.md): the one rule that says a run diverged, the step loop
+// that applies it, the summary line, the --help paragraphs on integrators and
+// sweeps, and the sweep's ladder and table. The particle labs (wb::Mat2X
+// state, framework/src/run.cpp, sweep.cpp) and the rigid lab (rigid::Body
+// state, framework/drivers/rigid/rigid_run.cpp) both call these: one contract,
+// one implementation, whatever the state.
+#pragma once
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "wb/input.h"
+
+namespace wb {
+
+// The most steps one run takes (--steps, or round(T/H)); docs/run-contract.md.
+constexpr long kMaxSteps = 100'000'000;
+
+// ---- Diverged (docs/run-contract.md, "Diverged"): one rule for every lab.
+
+// |E| past this many times the run's initial energy scale is a blow-up (the
+// figures' log scale has drawn such runs as blown up since the first labs):
+// no scene of the workbook gains a factor of 1000 on purpose, and explicit
+// methods outside their stability region pass it within tens of steps.
+constexpr double kBlowUpFactor = 1000.0;
+// A run whose implicit solver did not converge on more than this share of its
+// steps is diverged even if it stayed finite: its states are not solutions
+// of the method's equations (the stiff rope with a failing CG: 161 of 200).
+constexpr double kMaxUnconvergedShare = 0.5;
+
+// The energy scale E_s a run's |E| is compared with: the largest of |E0|,
+// K0 + |V0| (a total near 0 by the choice of the potential's zero) and work0,
+// the work the initial forces would do across the scene (sum of m|a| times
+// the scene size, docs/run-contract.md): a scene that starts at rest with
+// zero potential (a rope laid out straight) still has a scale.
+double energy_scale(double kinetic0, double potential0, double work0);
+
+// Why the state after `step` has diverged, or "" while it has not: a state
+// that is not finite, an energy that is not finite, or |E| > kBlowUpFactor
+// times `scale`.
+std::string divergence(bool state_finite, double energy, double scale, long step);
+
+// Why a finished run has diverged by its solver, or "": more than
+// kMaxUnconvergedShare of `steps` did not converge.
+std::string unconverged_divergence(long steps, long unconverged);
+
+// ---- The step loop.
+
+struct StepHooks {
+  std::function<void()> step;                       // one step of the state
+  std::function<bool()> finite;                     // is the state finite?
+  std::function<double()> energy;                   // its total energy (J)
+  std::function<void(long step, double t)> record;  // write it to the trace and stats
+};
+
+struct LoopResult {
+  long steps = 0;      // steps taken
+  std::string reason;  // why the run diverged ("" when it did not)
+  double wall_s = 0;   // the loop's wall time, writing included
+};
+
+// Takes up to `steps` steps of size dt, records step 0, every `every`-th step
+// and the last one; stops at the first step whose state diverged (recorded).
+LoopResult run_steps(long steps, long every, double dt, double scale, const StepHooks& hooks);
+
+// ---- The summary line (docs/run-contract.md, "The summary line").
+
+struct Summary {
+  std::string diverged;  // why the run diverged, "" when it is ok
+  long steps = 0;
+  double t = 0;
+  long force_evals = 0;
+  double wall_s = 0;
+  double energy0 = 0, energy = 0;
+  std::vector<double> momentum0, momentum;  // 2 or 3 components
+  long unconverged = -1;                    // < 0: the lab has no solver to report
+  ordered_json extra;                       // lab keys after the momenta (object or null)
+  std::vector<std::string> warnings;
+};
+
+// The summary line's JSON object, keys in the documented order. The status
+// is "diverged" when `diverged` says why, and whenever a number the line
+// prints is not finite: "ok" with "energy": null cannot happen.
+ordered_json summary_json(const Summary& s);
+
+// main()'s body: runs `body`; bad input (InputError) prints one line and
+// returns 2, any other exception returns 1 ("internal error").
+int guarded_main(const std::string& exe, const std::function<int()>& body);
+
+// ---- --help paragraphs.
+
+// One line of the integrator list.
+struct IntegratorLine {
+  std::string name, description;
+  int order = 1, evals_per_step = 1;
+};
+std::string integrators_help(const std::vector<IntegratorLine>& list);
+
+// The sweep paragraph: `what` says what the errors are measured against.
+std::string sweep_help(const std::string& what);
+
+// ---- Sweep mode's ladder and table (docs/sweep.md).
+
+struct SweepPlan {
+  std::vector<std::size_t> integrators;  // indices into the lab's list
+  std::vector<double> dts;
+  std::vector<long> steps;  // round(T / dt) each
+  double t_end = 0;
+};
+
+// Which integrators (--integrators, else all), which step sizes (--dts, else
+// dt*2^k for k = 3..-6 from --dt or the scene's dt) and to what time (--t-end,
+// else the scene's t_end); InputError naming the flag or scene key.
+SweepPlan plan_sweep(const std::vector<std::string>& names,
+                     const std::vector<std::string>& wanted, const std::vector<double>& dts,
+                     std::optional<double> dt, std::optional<double> t_end,
+                     std::optional<double> scene_dt, std::optional<double> scene_t_end,
+                     const std::string& scene_file, int repeats);
+
+// What one run of a sweep measured.
+struct SweepRow {
+  std::size_t integrator = 0;
+  double dt = 0;
+  long steps = 0, force_evals = 0;
+  double wall_s = 0, error = 0, energy_error = 0;
+  std::string reference;  // "exact" or "rk4"
+  bool diverged = false;
+};
+
+// The sweep's CSV text:
+//   scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status
+std::string sweep_table(const std::string& scene, const std::vector<std::string>& names,
+                        const std::vector<SweepRow>& rows);
+
+// The sweep's summary line: status ok, the file, how many runs and how many diverged.
+ordered_json sweep_summary(const std::string& csv, const std::vector<SweepRow>& rows);
+
+}  // namespace wb

@@ -1,0 +1,231 @@
+// The run contract's state-independent parts (wb/contract.h).
+#include "wb/contract.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include "wb/output.h"
+
+namespace wb {
+
+namespace {
+
+std::string fmt(double x) {
+  std::string s;
+  append_number(s, x);
+  return s;
+}
+
+ordered_json number_or_null(double x) {
+  return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr);
+}
+
+// A CSV field: quoted only when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+double energy_scale(double kinetic0, double potential0, double work0) {
+  const double total = std::abs(kinetic0 + potential0);
+  const double parts = std::abs(kinetic0) + std::abs(potential0);
+  double s = 0;
+  for (double c : {total, parts, std::abs(work0)}) {
+    if (std::isfinite(c)) s = std::max(s, c);
+  }
+  return s;
+}
+
+std::string divergence(bool state_finite, double energy, double scale, long step) {
+  if (!state_finite) return "the state is not finite at step " + std::to_string(step);
+  if (!std::isfinite(energy)) return "the energy is not finite at step " + std::to_string(step);
+  if (std::abs(energy) > kBlowUpFactor * scale) {
+    return "|E| = " + fmt(std::abs(energy)) + " J at step " + std::to_string(step) +
+           ", more than " + fmt(kBlowUpFactor) + " times the initial energy scale " + fmt(scale) +
+           " J";
+  }
+  return "";
+}
+
+std::string unconverged_divergence(long steps, long unconverged) {
+  if (steps <= 0 || !(double(unconverged) > kMaxUnconvergedShare * double(steps))) return "";
+  return "the implicit solver did not converge on " + std::to_string(unconverged) + " of " +
+         std::to_string(steps) + " steps (more than " +
+         std::to_string(int(std::lround(100 * kMaxUnconvergedShare))) + " %)";
+}
+
+LoopResult run_steps(long steps, long every, double dt, double scale, const StepHooks& hooks) {
+  LoopResult r;
+  hooks.record(0, 0.0);
+  const auto start = std::chrono::steady_clock::now();
+  long k = 0;
+  while (k < steps) {
+    hooks.step();
+    ++k;
+    const double t = double(k) * dt;  // not accumulated: no drift in t
+    const bool finite = hooks.finite();
+    r.reason = divergence(finite, finite ? hooks.energy() : NAN, scale, k);
+    if (!r.reason.empty() || k == steps || k % every == 0) hooks.record(k, t);
+    if (!r.reason.empty()) break;
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.steps = k;
+  return r;
+}
+
+ordered_json summary_json(const Summary& s) {
+  bool finite = std::isfinite(s.energy0) && std::isfinite(s.energy);
+  for (const auto* v : {&s.momentum0, &s.momentum})
+    for (double c : *v) finite = finite && std::isfinite(c);
+  ordered_json j;  // keys in the documented order
+  j["status"] = !s.diverged.empty() || !finite ? "diverged" : "ok";
+  if (!s.diverged.empty() || !finite) {
+    j["diverged"] = s.diverged.empty() ? "a number of the summary is not finite" : s.diverged;
+  }
+  j["steps"] = s.steps;
+  j["t"] = s.t;
+  j["force_evals"] = s.force_evals;
+  j["wall_s"] = s.wall_s;
+  j["energy0"] = number_or_null(s.energy0);
+  j["energy"] = number_or_null(s.energy);
+  for (const auto& [key, v] : {std::pair{"momentum0", &s.momentum0}, {"momentum", &s.momentum}}) {
+    ordered_json a = ordered_json::array();
+    for (double c : *v) a.push_back(number_or_null(c));
+    j[key] = a;
+  }
+  if (s.extra.is_object()) {
+    for (const auto& [key, value] : s.extra.items()) j[key] = value;
+  }
+  if (s.unconverged > 0) j["unconverged"] = s.unconverged;
+  if (!s.warnings.empty()) j["warnings"] = s.warnings;
+  return j;
+}
+
+int guarded_main(const std::string& exe, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::cerr << exe << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << exe << ": internal error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+std::string integrators_help(const std::vector<IntegratorLine>& list) {
+  std::size_t width = 18;
+  for (const IntegratorLine& it : list) width = std::max(width, it.name.size() + 2);
+  std::string s = "\nIntegrators (--integrator):\n";
+  for (const IntegratorLine& it : list) {
+    s += "  " + it.name + std::string(width - it.name.size(), ' ') + it.description + " (order " +
+         std::to_string(it.order) + ", " + std::to_string(it.evals_per_step) +
+         " force evaluation" + (it.evals_per_step == 1 ? "" : "s") + " per step)\n";
+  }
+  if (!list.empty()) s += "  default: " + list.front().name + "\n";
+  return s;
+}
+
+std::string sweep_help(const std::string& what) {
+  return "\nSweep mode (--sweep FILE.csv): every integrator (or --integrators a,b) at every\n"
+         "step size (--dts list, or dt*2^k for k = 3..-6 from --dt or the scene's dt) to\n"
+         "t_end; one row per run: scene,integrator,dt,steps,force_evals,wall_s,error,\n"
+         "energy_error,reference,status. " +
+         what + " A run that diverges (docs/run-contract.md) has status diverged. See\n" +
+         "docs/sweep.md.\n";
+}
+
+SweepPlan plan_sweep(const std::vector<std::string>& names,
+                     const std::vector<std::string>& wanted, const std::vector<double>& dts,
+                     std::optional<double> dt, std::optional<double> t_end,
+                     std::optional<double> scene_dt, std::optional<double> scene_t_end,
+                     const std::string& scene_file, int repeats) {
+  SweepPlan p;
+  if (wanted.empty()) {
+    for (std::size_t i = 0; i < names.size(); ++i) p.integrators.push_back(i);
+  } else {
+    for (const std::string& w : wanted) {
+      const auto it = std::find(names.begin(), names.end(), w);
+      if (it == names.end()) {
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+        throw InputError("--integrators: got \"" + w + "\", expected one of: " + known);
+      }
+      p.integrators.push_back(std::size_t(it - names.begin()));
+    }
+  }
+  if (!(repeats >= 1)) {
+    throw InputError("--repeats: got " + std::to_string(repeats) +
+                     ", expected a whole number >= 1");
+  }
+  const double T = t_end ? *t_end : scene_t_end.value_or(-1.0);
+  if (!(T > 0.0 && std::isfinite(T))) {
+    throw InputError(t_end ? "--t-end: got " + fmt(T) + ", expected a number > 0 for a sweep"
+                           : scene_file + ": t_end: " +
+                                 (scene_t_end ? "got " + fmt(T) : std::string("missing")) +
+                                 ", expected a number > 0 for a sweep (or pass --t-end)");
+  }
+  p.t_end = T;
+  p.dts = dts;
+  if (p.dts.empty()) {
+    if (!dt && !scene_dt) {
+      throw InputError(scene_file +
+                       ": dt: missing, expected a number > 0 (or pass --dt or --dts)");
+    }
+    for (int k = 3; k >= -6; --k) p.dts.push_back(std::ldexp(dt ? *dt : *scene_dt, k));
+  }
+  // Who chose the step sizes, for the messages below.
+  const std::string ladder =
+      dts.empty() ? (dt ? std::string("--dt") : scene_file + ": dt") : std::string("--dts");
+  for (double h : p.dts) {
+    if (!(std::isfinite(h) && h > 0.0)) {
+      throw InputError("--dts: got " + fmt(h) + ", expected step sizes > 0");
+    }
+    const double n = std::round(T / h);
+    if (!(n >= 1.0 && n <= double(kMaxSteps))) {
+      throw InputError(ladder + ": step " + fmt(h) + " gives round(T/dt) = " + fmt(n) +
+                       " steps for T = " + fmt(T) + ", expected 1 to " +
+                       std::to_string(kMaxSteps));
+    }
+    p.steps.push_back(long(n));
+  }
+  return p;
+}
+
+std::string sweep_table(const std::string& scene, const std::vector<std::string>& names,
+                        const std::vector<SweepRow>& rows) {
+  std::string out =
+      "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status\n";
+  for (const SweepRow& row : rows) {
+    out += csv_field(scene) + ',' + csv_field(names.at(row.integrator)) + ',';
+    append_number(out, row.dt);
+    out += ',';
+    append_int(out, row.steps);
+    out += ',';
+    append_int(out, row.force_evals);
+    for (double q : {row.wall_s, row.error, row.energy_error}) {
+      out += ',';
+      append_number(out, q);
+    }
+    out += ',' + row.reference + ',' + (row.diverged ? "diverged" : "ok") + '\n';
+  }
+  return out;
+}
+
+ordered_json sweep_summary(const std::string& csv, const std::vector<SweepRow>& rows) {
+  ordered_json j;
+  j["status"] = "ok";
+  j["sweep"] = csv;
+  j["runs"] = rows.size();
+  j["diverged"] =
+      std::count_if(rows.begin(), rows.end(), [](const SweepRow& r) { return r.diverged; });
+  return j;
+}
+
+}  // namespace wb
