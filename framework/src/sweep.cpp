@@ -179,9 +179,10 @@ SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& worl
 
   // Every integrator against the scene before the first run.
   std::vector<std::string> warnings = opt.warnings;
-  for (const Integrator* integ : integrators) {
-    if (!integ->check) continue;
-    const std::string w = integ->check(*integ, world.dynamics());
+  for (std::size_t i : plan.integrators) {
+    const Integrator& integ = info.integrators[i];
+    if (!integ.check) continue;
+    const std::string w = integ.check(integ, world.dynamics());
     if (!w.empty()) warnings.push_back(w);
   }
 
