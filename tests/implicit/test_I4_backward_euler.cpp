@@ -34,8 +34,8 @@ NewtonOptions options(NewtonOptions::Solver solver = NewtonOptions::kLDLT) {
 // solves, the residual |G(y)| at the returned y and the scale
 // |M v| + |b_0| + h |f_ext| both recomputed by the test (backward_euler.h), x' = x + h v'.
 // Reported and recomputed residuals differ by rounding: ~1e-16 of the scale.
-constexpr double kReportTol = 1e-9;        // relative, on the residual and on the scale
-constexpr double kReportFloor = 1e-13;     // absolute, times the scale: rounding of G
+constexpr double kReportTol = 1e-9;     // relative, on the residual and on the scale
+constexpr double kReportFloor = 1e-13;  // absolute, times the scale: rounding of G
 void require_report(const NewtonReport& r, const SpringNetwork& net, const NewtonOptions& o,
                     const Mat2X& x0, const Mat2X& v0, const Mat2X& f_ext, double h,
                     const Mat2X& x1, const Mat2X& v1, int solves, bool converged,
@@ -380,11 +380,12 @@ TEST_CASE("I4 backward Euler: converged means the residual is at most tol times 
       const NewtonReport r = backward_euler_step(net, f, h, o, x, v);
       const double s = imtest::newton_scale(net, x0, v0, f, h, o.definite);
       const double g = imtest::newton_residual(net, x0, v0, f, h, v);
-      INFO((c == 0 ? "bead on a stiff spring starting at rest length" : "network of 1e-6 kg beads")
-           << ", tol " << tol << ": report {iterations " << r.iterations << ", converged "
-           << r.converged << "}; |G(y)| at the returned y " << g << ", tol * scale " << tol * s
-           << ": converged only when |G| <= tol * scale (not on a small update, not on |G| "
-              "<= tol)");
+      INFO(
+          (c == 0 ? "bead on a stiff spring starting at rest length" : "network of 1e-6 kg beads")
+          << ", tol " << tol << ": report {iterations " << r.iterations << ", converged "
+          << r.converged << "}; |G(y)| at the returned y " << g << ", tol * scale " << tol * s
+          << ": converged only when |G| <= tol * scale (not on a small update, not on |G| "
+             "<= tol)");
       REQUIRE_FALSE(r.solver_failed);
       REQUIRE(r.converged);
       REQUIRE(g <= tol * s * (1 + kReportTol) + kReportFloor * s);
@@ -424,9 +425,8 @@ TEST_CASE("I4 backward Euler: a failed solve is reported and never returned as N
   REQUIRE(std::isnan(r.residual));
   wbtest::require_finite(x, "positions after a failed solve");
   wbtest::require_finite(v, "velocities after a failed solve");
-  wbtest::require_near(v, vs, 0.0,
-                       "v after a failed first solve: the last good iterate y = v (pinned: 0)",
-                       1e-15);
+  wbtest::require_near(
+      v, vs, 0.0, "v after a failed first solve: the last good iterate y = v (pinned: 0)", 1e-15);
   wbtest::require_near(x, Mat2X(x0 + h * vs), 0.0,
                        "x after a failed first solve: x + h y with y = v (the pinned one stays)",
                        1e-15);

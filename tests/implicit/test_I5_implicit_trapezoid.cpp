@@ -101,7 +101,7 @@ TEST_CASE("I5 implicit trapezoid: second order in h against the exact oscillator
   }
 }
 
-TEST_CASE("I5 implicit trapezoid: a pinned particle never moves, even one that arrives moving",
+TEST_CASE("I5 implicit trapezoid: a pinned particle never moves even one that arrives moving",
           "[implicit][I5][2pts]") {
   SpringNetwork net;
   Mat2X x0, v0;
