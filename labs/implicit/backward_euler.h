@@ -13,10 +13,12 @@ struct NewtonOptions {
   double cg_tol = 1e-12;       // CG: relative residual of each linear solve
 };
 
+// What backward_euler_step did (every field is checked by the tests [I4]):
 struct NewtonReport {
-  int iterations = 0;          // linear solves done
-  double residual = 0;         // |G(y)| at the returned y (kg m/s), Euclidean norm
-  double scale = 0;            // |M v0| + |b_0| (kg m/s), b_0 the first right-hand side
+  int iterations = 0;          // linear solves that succeeded
+  double residual = 0;         // |G(y)| at the returned y (kg m/s), Euclidean norm over the
+                               // free particles; NaN when no solve succeeded
+  double scale = 0;            // the momentum scale of the convergence test: step 3 below
   bool converged = false;      // residual <= tol * scale (one_iteration: the solve succeeded)
   bool solver_failed = false;  // a factorisation or CG failed, or dv was not finite
 };
@@ -32,13 +34,24 @@ struct NewtonReport {
 //      A dv = b_0, y += dv  (one_iteration: stop after step 3's first |b|:
 //      Baraff and Witkin);
 //   3. then repeat: assemble at (x + h y, y), whose b is -G(y); stop when
-//      |b| <= tol * scale (converged), scale = |M v| + |b_0| + h |f_ext| (the
-//      momenta at stake: the residual cannot be rounded below ~1e-16 of them),
-//      or after max_iterations solves; else solve A dv = b, y += dv;
-//   4. x += h y, v = y, and report iterations and the final residual |G(y)|.
+//      |b| <= tol * scale (converged), or after max_iterations solves; else
+//      solve A dv = b, y += dv. The scale (NewtonReport::scale) is
+//
+//        scale = |M v| + |b_0| + h |f_ext|      (kg m/s, Euclidean norms)
+//
+//      with v the start velocities of step 1 (pinned ones 0), b_0 the first
+//      right-hand side and f_ext every particle's external force: the momenta
+//      at stake (the residual cannot be rounded below ~1e-16 of them). Each
+//      term matters: a network gliding with its springs at rest has only
+//      |M v|, one released from rest without gravity only |b_0|, one at rest
+//      in equilibrium under gravity only h |f_ext|;
+//   4. x += h y, v = y, and report iterations and the final residual |G(y)|
+//      (one_iteration: the residual at y after its single solve).
 //
 // A failed solve (Eigen's info() != Success, or a non-finite dv) stops the
-// iteration with solver_failed: x and v keep the last good iterate, never NaN.
+// iteration with solver_failed and converged false, and step 4 still runs
+// with the last good iterate y (y = v when the first solve failed): x and v
+// are never NaN.
 //
 // Inputs:
 //   net    the springs, masses, drag and pinned particles (n particles)

@@ -32,7 +32,7 @@ Vec2 at_gap(double d, double s, double r) { return kP + (r + d) * kN + s * kT; }
 TEST_CASE(
     "C1 collide_plane: tilted plane reverses the normal velocity times e and keeps the "
     "tangential one",
-    "[collisions][C1][7pts]") {
+    "[collisions][C1][6pts]") {
   const double r = 0.1, m = 2.5, e = 0.5;
   Vec2 x = at_gap(-0.02, 0.7, r);
   Vec2 v = -1.5 * kN + 0.9 * kT;
@@ -47,7 +47,7 @@ TEST_CASE(
 TEST_CASE(
     "C1 collide_plane: the impulse j = -(1 + e) m v.n is positive and changes the "
     "momentum by j n",
-    "[collisions][C1][4pts]") {
+    "[collisions][C1][3pts]") {
   const double r = 0.05, e = 0.8;
   for (double m : {0.5, 4.0}) {
     Vec2 x = at_gap(-0.001, -0.3, r);
@@ -62,7 +62,7 @@ TEST_CASE(
 }
 
 TEST_CASE("C1 collide_plane: a receding particle is moved out but gets no impulse",
-          "[collisions][C1][4pts]") {
+          "[collisions][C1][3pts]") {
   const double r = 0.2, m = 1.5;
   Vec2 x = at_gap(-0.05, 0.25, r);
   const Vec2 v0 = 0.3 * kN + 1.1 * kT;  // moving away from the plane
@@ -101,11 +101,31 @@ TEST_CASE(
   const double r = 0.1, m = 3.0, e = 0.9, rest = 0.05;
   {
     Vec2 x(0.0, 0.099), v(0.2, -0.03);  // slower than rest_speed: e = 0
-    collide_plane(p, n, r, m, e, rest, x, v);
+    const double j = collide_plane(p, n, r, m, e, rest, x, v);
     require_near(v, Vec2(0.2, 0.0), kRound, "approach at 0.03 m/s < rest_speed: e = 0, v.n = 0");
+    require_near(j, 3.0 * 0.03, kRound,
+                 "a resting contact still returns its impulse j = -(1 + 0) m v.n = m 0.03");
     Vec2 x2(0.0, 0.099), v2(0.2, -0.5);  // faster: bounces with e
     collide_plane(p, n, r, m, e, rest, x2, v2);
     require_near(v2, Vec2(0.2, 0.45), kRound, "approach at 0.5 m/s > rest_speed: v.n = e 0.5");
+  }
+  {
+    // At the threshold: -v.n = rest_speed exactly is not below it (bounces with e);
+    // just below it rests. A tangential speed of 2 m/s (above rest_speed) and the
+    // momentum m |v.n| = 1.5 (also above) do not enter the decision.
+    const double slow = 0.5;
+    Vec2 x(0.0, 0.09), v(2.0, -0.5);
+    double j = collide_plane(p, n, r, m, e, slow, x, v);
+    require_near(v, Vec2(2.0, 0.45), kRound,
+                 "approach speed equal to rest_speed 0.5: not resting, rebounds with e = 0.9");
+    require_near(j, 1.9 * 3.0 * 0.5, kRound, "j = -(1 + e) m v.n at the threshold");
+    x = Vec2(0.0, 0.09);
+    v = Vec2(2.0, -0.499);
+    j = collide_plane(p, n, r, m, e, slow, x, v);
+    require_near(v, Vec2(2.0, 0.0), kRound,
+                 "approach speed 0.499 just below rest_speed 0.5 (compare the normal speed "
+                 "-v.n, not |v| or m |v.n|): resting, e = 0");
+    require_near(j, 3.0 * 0.499, kRound, "resting: j = -m v.n");
   }
   // A ball resting on the floor under gravity, semi-implicit Euler: gravity
   // adds g h = 0.00981 m/s of approach each step, below rest_speed, so every
@@ -150,6 +170,33 @@ TEST_CASE("C1 collide_plane: the rebound height of a dropped ball is e^2 times t
     // v_max h with v_max = sqrt(2 g H).
     const double tol = h * (g * t / 2 + 2 * std::sqrt(2 * g * H));
     require_near(apex, e * e * H, tol, "rebound height e^2 H (kinetic energy scales by e^2)");
+  }
+}
+
+TEST_CASE(
+    "C1 collide_plane: a centre below the plane deeper than the radius is pushed out and "
+    "bounces",
+    "[collisions][C1][3pts]") {
+  // Fast particles tunnel: the centre can be on the solid side, (x - p).n < 0.
+  // The gap d = (x - p).n - r is then below -r, and the same law applies.
+  for (double r : {0.1, 0.0}) {
+    const double m = 1.5, e = 0.5;
+    Vec2 x = at_gap(-0.35 - r, 0.4, r);  // centre 0.35 m below the plane
+    Vec2 v = -2.0 * kN + 0.3 * kT;
+    const double j = collide_plane(kP, kN, r, m, e, 0.0, x, v);
+    INFO("radius " << r << ", centre 0.35 below the plane");
+    require_near(x, at_gap(0.0, 0.4, r), kRound,
+                 "moved out along +n until it just touches: x - d n with d = (x - p).n - r < -r");
+    require_near(v, Vec2(1.0 * kN + 0.3 * kT), kRound,
+                 "normal velocity -e v.n = 1.0 after, tangential kept");
+    require_near(j, (1 + e) * m * 2.0, kRound, "j = -(1 + e) m v.n");
+    // Receding but still deep: pushed out along +n, no impulse.
+    x = at_gap(-0.35 - r, 0.4, r);
+    v = 0.5 * kN;
+    require_near(collide_plane(kP, kN, r, m, e, 0.0, x, v), 0.0, kRound,
+                 "impulse on a receding particle below the plane");
+    require_near(x, at_gap(0.0, 0.4, r), kRound, "a receding deep particle is moved out too");
+    require_near(v, Vec2(0.5 * kN), kRound, "a receding deep particle keeps its velocity");
   }
 }
 

@@ -47,7 +47,7 @@ TEST_CASE("C2 collide_particles: equal masses head-on with e = 1 exchange normal
 TEST_CASE(
     "C2 collide_particles: momentum conserved to rounding and kinetic energy lost by "
     "(1 - e^2)/2 mu v_n^2",
-    "[collisions][C2][5pts]") {
+    "[collisions][C2][4pts]") {
   const double m1 = 1.5, m2 = 4.0, mu = m1 * m2 / (m1 + m2);
   for (double e : {1.0, 0.6, 0.0}) {
     Vec2 x1 = kX1, x2 = kX2;
@@ -66,7 +66,7 @@ TEST_CASE(
 }
 
 TEST_CASE("C2 collide_particles: e = 1 reproduces the lecture's elastic velocity formula",
-          "[collisions][C2][4pts]") {
+          "[collisions][C2][3pts]") {
   const double m1 = 1.5, m2 = 4.0;
   Vec2 x1 = kX1, x2 = kX2;
   Vec2 v1(0.7, -2.1), v2(-0.3, 0.8);
@@ -80,7 +80,7 @@ TEST_CASE("C2 collide_particles: e = 1 reproduces the lecture's elastic velocity
 }
 
 TEST_CASE("C2 collide_particles: a 1 to 10^6 mass ratio behaves like a wall",
-          "[collisions][C2][4pts]") {
+          "[collisions][C2][3pts]") {
   const double m1 = 1.0, m2 = 1e6, e = 0.5;
   Vec2 x1 = kX1, x2 = kX2;
   Vec2 v1 = -2.0 * kN + Vec2(0.96, -0.28), v2(0.0, 0.0);
@@ -133,7 +133,20 @@ TEST_CASE("C2 collide_particles: coincident centres use the fallback normal +y w
 }
 
 TEST_CASE("C2 collide_particles: discs apart get nothing and touching discs are in contact",
-          "[collisions][C2][2pts]") {
+          "[collisions][C2][3pts]") {
+  {
+    // Unequal radii 0.1 and 0.3 (contact when dist <= r1 + r2 = 0.4), each side of it.
+    Vec2 x1(0.0, 0.0), x2(0.41, 0.0), v1(1.0, 0.0), v2(-1.0, 0.0);
+    double J = collide_particles(0.5, 0.1, 2.0, 0.3, 1.0, x1, v1, x2, v2);
+    require_near(J, 0.0, 0.0, "impulse between discs of radii 0.1 and 0.3, 0.41 apart");
+    require_near(x1, Vec2(0.0, 0.0), 0.0, "position of a disc not in contact (r1 + r2 = 0.4)");
+    x2 = Vec2(0.39, 0.0);
+    J = collide_particles(0.5, 0.1, 2.0, 0.3, 1.0, x1, v1, x2, v2);
+    require_near(J, 2.0 * 2.0 / (1 / 0.5 + 1 / 2.0), kRound,
+                 "discs of radii 0.1 and 0.3, 0.39 apart: in contact (s = r1 + r2 - dist > 0), "
+                 "J = -(1 + e) v_n / (1/m1 + 1/m2)");
+    require_near((x2 - x1).norm(), 0.4, kRound, "separated to r1 + r2 = 0.4");
+  }
   {
     Vec2 x1(0.0, 0.0), x2(0.51, 0.0), v1(1.0, 0.0), v2(-1.0, 0.0);  // gap 0.01
     const double J = collide_particles(1.0, 0.25, 1.0, 0.25, 1.0, x1, v1, x2, v2);
@@ -146,6 +159,27 @@ TEST_CASE("C2 collide_particles: discs apart get nothing and touching discs are 
   require_near(J, 2.0, kRound,
                "touching and approaching: J = -(1 + e) v_n / (1/m1 + 1/m2) = 2 * 2 / 2");
   require_near(v1, Vec2(-1.0, 0.0), kRound, "touching discs exchange velocities (e = 1)");
+}
+
+TEST_CASE(
+    "C2 collide_particles: approaching is decided by the relative normal velocity and not "
+    "by one particle's",
+    "[collisions][C2][2pts]") {
+  // Particle 1 above particle 2 (n = +y), both falling: 1 at 1 m/s, 2 at 3 m/s.
+  // v1.n < 0, but (v1 - v2).n = 2 > 0: they separate, no impulse.
+  Vec2 x1(0.0, 0.35), x2(0.0, 0.0), v1(0.0, -1.0), v2(0.0, -3.0);
+  double J = collide_particles(1.0, 0.2, 1.0, 0.2, 1.0, x1, v1, x2, v2);
+  require_near(J, 0.0, 0.0, "impulse when (v1 - v2).n = +2 (receding) although v1.n < 0");
+  require_near(v1, Vec2(0.0, -1.0), 0.0, "velocity of particle 1: receding, unchanged");
+  require_near(v2, Vec2(0.0, -3.0), 0.0, "velocity of particle 2: receding, unchanged");
+  // Swapped speeds: v1.n and v2.n both < 0, but particle 1 catches up, v_n = -2.
+  x1 = Vec2(0.0, 0.35);
+  x2 = Vec2(0.0, 0.0);
+  v1 = Vec2(0.0, -3.0);
+  v2 = Vec2(0.0, -1.0);
+  J = collide_particles(1.0, 0.2, 1.0, 0.2, 1.0, x1, v1, x2, v2);
+  require_near(J, 2.0, kRound, "(v1 - v2).n = -2: approaching, J = -(1 + 1) (-2) / 2");
+  require_near(v1, Vec2(0.0, -1.0), kRound, "equal masses, e = 1: velocities exchanged");
 }
 
 }  // namespace test_C2_collide_particles

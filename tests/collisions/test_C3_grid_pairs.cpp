@@ -36,12 +36,12 @@ void brute_force(const wb::Mat2X& x, const wb::VecX& radius, Pairs& pairs) {
 
 // Compares grid_pairs with brute force: same pairs, each once, i < j.
 void require_same_pairs(const wb::Mat2X& x, const wb::VecX& r, const std::string& what) {
-  Pairs got, expected;
+  Pairs got = {{1, 0}, {5, 3}}, expected;  // left from a previous step: cleared first
   grid_pairs(x, r, got);
   brute_force(x, r, expected);
   for (const auto& [i, j] : got) {
     INFO(what << ": grid_pairs gave (" << i << ", " << j << "), expected i < j, both < "
-              << x.cols());
+              << x.cols() << " (the vector held (1, 0) and (5, 3) before the call: clear it)");
     REQUIRE((0 <= i && i < j && j < x.cols()));
   }
   Pairs sorted = got;
@@ -53,7 +53,8 @@ void require_same_pairs(const wb::Mat2X& x, const wb::VecX& r, const std::string
   std::set_difference(sorted.begin(), sorted.end(), expected.begin(), expected.end(),
                       std::back_inserter(extra));
   std::ostringstream s;
-  s << what << ": brute force finds " << expected.size() << " pairs, grid_pairs " << got.size();
+  s << what << ": brute force finds " << expected.size() << " pairs, grid_pairs " << got.size()
+    << " (the vector is cleared first: it held 2 pairs before the call)";
   if (!missing.empty()) {
     s << "; missing (" << missing[0].first << ", " << missing[0].second << ") at "
       << wbtest::str(x.col(missing[0].first)) << " r " << r[missing[0].first] << " and "

@@ -43,7 +43,7 @@ Vec2 slide(double theta, double mu, int steps, double h, Vec2& x) {
 }  // namespace
 
 TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity stops",
-          "[collisions][C4][4pts]") {
+          "[collisions][C4][3pts]") {
   Vec2 v = -0.5 * kN + 0.2 * kT;
   const double jt = friction_impulse(kN, 3.0, 0.5, 2.0, v);  // needs 2 * 0.2 = 0.4 <= 1.5
   require_near(v, Vec2(-0.5 * kN), kRound, "static friction: tangential velocity 0, normal kept");
@@ -51,7 +51,7 @@ TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity
 }
 
 TEST_CASE("C4 friction_impulse: outside the cone the impulse is mu jn against the sliding",
-          "[collisions][C4][4pts]") {
+          "[collisions][C4][3pts]") {
   Vec2 v = 0.1 * kN + 3.0 * kT;
   const double jt = friction_impulse(kN, 1.0, 0.4, 2.0, v);  // would need 6 > mu jn = 0.4
   require_near(v, Vec2(0.1 * kN + 2.8 * kT), kRound,
@@ -72,7 +72,7 @@ TEST_CASE("C4 friction_impulse: a block on a slope sticks when tan theta < mu",
 TEST_CASE(
     "C4 friction_impulse: on a steeper slope it slides with a = g (sin theta - mu cos "
     "theta)",
-    "[collisions][C4][3pts]") {
+    "[collisions][C4][2pts]") {
   const double theta = 35.0 * M_PI / 180.0, mu = 0.3, g = 9.81, h = 1e-3;
   const int steps = 1000;
   Vec2 x(0, 0);
@@ -87,9 +87,9 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "C4 friction_impulse: the impulse opposes the sliding in both directions and no "
-    "sliding gives no NaN",
-    "[collisions][C4][1pts]") {
+    "C4 friction_impulse: the impulse opposes the sliding in both directions and no sliding "
+    "or mu jn = 0 gives no NaN",
+    "[collisions][C4][2pts]") {
   for (double s : {1.0, -1.0}) {
     Vec2 v = -0.2 * kN + s * 1.5 * kT;
     friction_impulse(kN, 2.0, 0.25, 1.0, v);  // bound 0.5 < 1.5: sliding
@@ -101,6 +101,53 @@ TEST_CASE(
   wbtest::require_finite(wb::Mat2X(v), "velocity with no tangential part");
   require_near(v, Vec2(-0.7 * kN), kRound, "nothing to stop: velocity unchanged");
   require_near(jt, 0.0, kRound, "no tangential impulse");
+  // jn = 0 (no contact this step) or mu = 0 (ice): the cone is the point 0, so the
+  // tangential impulse is 0, with or without sliding (v_t = 0 included: no 0 / 0).
+  for (double vt : {0.0, 1.5}) {
+    for (int which = 0; which < 2; ++which) {
+      const double jn = which == 0 ? 0.0 : 2.0, mu = which == 0 ? 0.4 : 0.0;
+      const Vec2 v0 = -0.7 * kN + vt * kT;
+      Vec2 w = v0;
+      const double jt0 = friction_impulse(kN, jn, mu, 1.5, w);
+      INFO("jn = " << jn << ", mu = " << mu << ", |v_t| = " << vt);
+      wbtest::require_finite(wb::Mat2X(w), "velocity with mu jn = 0");
+      require_near(w, v0, kRound, "mu jn = 0: no friction, velocity unchanged");
+      require_near(jt0, 0.0, kRound, "mu jn = 0: returned impulse 0");
+    }
+  }
+}
+
+TEST_CASE(
+    "C4 friction_impulse: the cone compares the impulse m |v_t| with mu jn so the mass "
+    "decides",
+    "[collisions][C4][2pts]") {
+  // The same tangential speed and bound, two masses: what decides is the impulse
+  // needed to stop the sliding, m |v_t|, against mu jn (not |v_t| alone).
+  struct Case {
+    double m, vt, jn, mu;  // m |v_t| against mu jn
+    bool sticks;
+  };
+  const Case cases[] = {
+      {4.0, 0.2, 1.0, 0.5, false},    // 0.8 > 0.5: slides (|v_t| = 0.2 < 0.5 would stick)
+      {0.25, 1.0, 1.0, 0.5, true},    // 0.25 <= 0.5: sticks (|v_t| = 1 > 0.5 would slide)
+      {2.0, 0.505, 2.0, 0.5, false},  // 1.01 > 1.0: just outside the cone
+      {2.0, 0.495, 2.0, 0.5, true},   // 0.99 <= 1.0: just inside
+  };
+  for (const Case& c : cases) {
+    Vec2 v = -0.3 * kN + c.vt * kT;
+    const double jt = friction_impulse(kN, c.jn, c.mu, c.m, v);
+    const double bound = c.mu * c.jn;
+    INFO("m = " << c.m << ", |v_t| = " << c.vt << ", mu jn = " << bound << ": m |v_t| = "
+                << c.m * c.vt << (c.sticks ? " <= mu jn: static" : " > mu jn: sliding"));
+    if (c.sticks) {
+      require_near(v, Vec2(-0.3 * kN), kRound, "static: the tangential velocity is stopped");
+      require_near(jt, c.m * c.vt, kRound, "static: returned impulse m |v_t|");
+    } else {
+      require_near(v, Vec2(-0.3 * kN + (c.vt - bound / c.m) * kT), kRound,
+                   "sliding: the tangential speed drops by mu jn / m");
+      require_near(jt, bound, kRound, "sliding: returned impulse mu jn");
+    }
+  }
 }
 
 }  // namespace test_C4_friction_impulse

@@ -20,20 +20,24 @@ using wb::Vec2;
 //   f = -(k (L - r) + kd (v_i - v_j).u) u
 //   K = -k ((1 - r/L) I + (r/L) u u^T)   (= -k (P + (1 - r/L)(I - P)))
 //   D = -kd u u^T
+// With `definite`, a compressed spring's (1 - r/L) across it counts as 0:
+//   K = -k u u^T when L < r.
 struct SpringTerms {
   Vec2 f;
   Mat2 K, D;
 };
 
 inline SpringTerms spring_terms(const Vec2& xi, const Vec2& xj, const Vec2& vi, const Vec2& vj,
-                                double k, double r, double kd) {
+                                double k, double r, double kd, bool definite = false) {
   SpringTerms t;
   const Vec2 d = xi - xj;
   const double L = d.norm();
   const Vec2 u = d / L;
+  const Mat2 P = u * u.transpose();
   t.f = -(k * (L - r) + kd * u.dot(vi - vj)) * u;
-  t.K = -k * ((1.0 - r / L) * Mat2::Identity() + (r / L) * u * u.transpose());
-  t.D = -kd * u * u.transpose();
+  t.K = -k * ((1.0 - r / L) * Mat2::Identity() + (r / L) * P);
+  if (definite && L < r) t.K = -k * P;
+  t.D = -kd * P;
   return t;
 }
 
@@ -52,14 +56,15 @@ inline Mat2X forces(const SpringNetwork& net, const Mat2X& x, const Mat2X& v) {
 
 // Dense K = df/dx and D = df/dv (2n x 2n), unknowns ordered (0x, 0y, 1x, ...).
 inline void dense_jacobians(const SpringNetwork& net, const Mat2X& x, const Mat2X& v,
-                            Eigen::MatrixXd& K, Eigen::MatrixXd& D) {
+                            Eigen::MatrixXd& K, Eigen::MatrixXd& D, bool definite = false) {
   const Eigen::Index n = net.n();
   K = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   D = -net.drag * Eigen::MatrixXd::Identity(2 * n, 2 * n);
   for (const NetworkSpring& s : net.springs) {
     const bool a = s.j < 0;
     const Vec2 xj = a ? s.anchor : Vec2(x.col(s.j)), vj = a ? Vec2::Zero() : Vec2(v.col(s.j));
-    const SpringTerms t = spring_terms(x.col(s.i), xj, v.col(s.i), vj, s.k, s.rest, s.kd);
+    const SpringTerms t =
+        spring_terms(x.col(s.i), xj, v.col(s.i), vj, s.k, s.rest, s.kd, definite);
     K.block<2, 2>(2 * s.i, 2 * s.i) += t.K;
     D.block<2, 2>(2 * s.i, 2 * s.i) += t.D;
     if (!a) {
@@ -99,6 +104,36 @@ inline double trapezoid_residual(const SpringNetwork& net, const Mat2X& x0, cons
   for (Eigen::Index p = 0; p < net.n(); ++p)
     if (net.is_pinned(p)) G.col(p).setZero();
   return G.norm();
+}
+
+// Newton's residual G(y) = M (y - v0) - h (f(x0 + h y, y) + f_ext) of backward
+// Euler, on the free particles (kg m/s): what NewtonReport::residual reports
+// for the returned y = v1. Pinned particles' velocities in v0 count as 0.
+inline double newton_residual(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                              const Mat2X& f_ext, double h, const Mat2X& v1) {
+  Mat2X vs = v0;
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) vs.col(p).setZero();
+  Mat2X G = (v1 - vs) * net.m.asDiagonal() - h * (forces(net, x0 + h * v1, v1) + f_ext);
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) G.col(p).setZero();
+  return G.norm();
+}
+
+// backward_euler.h's convergence scale |M v| + |b_0| + h |f_ext| (kg m/s), with
+// v the start velocities (pinned ones 0) and b_0 = h (f + f_ext + h K v) the
+// first right-hand side (pinned rows 0), K = df/dx at the start.
+inline double newton_scale(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                           const Mat2X& f_ext, double h, bool definite) {
+  Mat2X vs = v0;
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) vs.col(p).setZero();
+  Eigen::MatrixXd K, D;
+  dense_jacobians(net, x0, vs, K, D, definite);
+  Eigen::VectorXd b0 = h * (flat(forces(net, x0, vs) + f_ext) + h * K * flat(vs));
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) b0.segment<2>(2 * p).setZero();
+  return (vs * net.m.asDiagonal()).norm() + b0.norm() + h * f_ext.norm();
 }
 
 // The momentum scale of a step, |M v0| + h |f(x0, v0) + f_ext| (kg m/s): the

@@ -97,17 +97,26 @@ TEST_CASE("I2 spring derivatives: definite drops only a compressed spring's cros
 
 TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
           "[implicit][I2][3pts]") {
-  Vec2 f(1.0, 1.0);
-  Mat2 K, D;
-  spring_derivatives(xi, xi, vi, vj, k, 0.0, kd, true, f, K, D);
-  INFO("L = 0: the direction is undefined; f = 0, K = -k I (the rest-0 limit), D = 0; got f = "
-       << f.transpose() << ", K =\n"
-       << K << "\nD =\n"
-       << D);
-  REQUIRE(f.allFinite());
-  REQUIRE(f.norm() == 0.0);
-  REQUIRE((K + k * Mat2::Identity()).norm() <= kRelTol * k);
-  REQUIRE(D.norm() == 0.0);
+  // Whatever the rest length and the flag (spring_derivatives.h: L == 0).
+  for (double rest : {0.0, 0.8}) {
+    for (bool definite : {true, false}) {
+      Vec2 f(1.0, 1.0);
+      Mat2 K, D;
+      spring_derivatives(xi, xi, vi, vj, k, rest, kd, definite, f, K, D);
+      INFO("L = 0, rest " << rest << ", definite " << definite
+                          << ": the direction is undefined; f = 0, K = -k I (the rest-0 "
+                             "limit), D = 0; got f = "
+                          << f.transpose() << ", K =\n"
+                          << K << "\nD =\n"
+                          << D);
+      REQUIRE(f.allFinite());
+      REQUIRE(K.allFinite());
+      REQUIRE(D.allFinite());
+      REQUIRE(f.norm() == 0.0);
+      REQUIRE((K + k * Mat2::Identity()).norm() <= kRelTol * k);
+      REQUIRE(D.norm() == 0.0);
+    }
+  }
 }
 
 }  // namespace test_I2_spring_derivatives

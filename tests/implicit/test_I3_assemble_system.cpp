@@ -36,10 +36,12 @@ Setup setup() {
   return s;
 }
 
-// The dense A and b of assemble_system.h, pinned particles excluded.
-void dense_reference(const Setup& s, Eigen::MatrixXd& A, Eigen::VectorXd& b) {
+// The dense A and b of assemble_system.h, pinned particles excluded; with
+// `definite`, compressed springs' blocks clamped (in A and in b's K term).
+void dense_reference(const Setup& s, Eigen::MatrixXd& A, Eigen::VectorXd& b,
+                     bool definite = false) {
   Eigen::MatrixXd K, D;
-  imtest::dense_jacobians(s.net, s.xl, s.vl, K, D);
+  imtest::dense_jacobians(s.net, s.xl, s.vl, K, D, definite);
   const Eigen::Index n = s.net.n();
   Eigen::VectorXd M(2 * n);
   for (Eigen::Index p = 0; p < n; ++p) M.segment<2>(2 * p).setConstant(s.net.m[p]);
@@ -80,7 +82,7 @@ void require_dense(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& 
 }  // namespace
 
 TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
-          "[implicit][I3][5pts]") {
+          "[implicit][I3][4pts]") {
   const Setup s = setup();
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
@@ -115,7 +117,7 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
 }
 
 TEST_CASE("I3 assembly: A and b equal a dense reference on a small network",
-          "[implicit][I3][8pts]") {
+          "[implicit][I3][7pts]") {
   const Setup s = setup();
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
@@ -159,6 +161,28 @@ TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
   Eigen::VectorXd be;
   dense_reference(s, Ae, be);
   require_dense(A, b, Ae, be, "particle 1 pinned");
+}
+
+TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks",
+          "[implicit][I3][2pts]") {
+  // Springs 0-1 and 2-0 compressed (rest 1.5 > L), the others stretched: with
+  // definite = true their blocks lose the term across the spring, in A and in b;
+  // with definite = false they keep it.
+  Setup s = setup();
+  s.net.springs[0].rest = 1.5;
+  s.net.springs[2].rest = 1.5;
+  for (bool definite : {true, false}) {
+    Eigen::SparseMatrix<double> A;
+    Eigen::VectorXd b;
+    assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, definite, A, b);
+    Eigen::MatrixXd Ae;
+    Eigen::VectorXd be;
+    dense_reference(s, Ae, be, definite);
+    require_dense(A, b, Ae, be,
+                  std::string("two compressed springs, definite = ") +
+                      (definite ? "true: -K = k u u^T on them (spring_derivatives' clamp)"
+                                : "false: the exact blocks"));
+  }
 }
 
 }  // namespace test_I3_assemble_system

@@ -32,6 +32,31 @@ NewtonOptions options(NewtonOptions::Solver solver = NewtonOptions::kLDLT) {
   return o;
 }
 
+// Every field of the report against what the step returned: `solves` linear
+// solves, the residual |G(y)| at the returned y and the scale
+// |M v| + |b_0| + h |f_ext| both recomputed by the test (backward_euler.h), x' = x + h v'.
+// Reported and recomputed residuals differ by rounding: ~1e-16 of the scale.
+constexpr double kReportTol = 1e-9;     // relative, on the residual and on the scale
+constexpr double kReportFloor = 1e-13;  // absolute, times the scale: rounding of G
+void require_report(const NewtonReport& r, const SpringNetwork& net, const NewtonOptions& o,
+                    const Mat2X& x0, const Mat2X& v0, const Mat2X& f_ext, double h,
+                    const Mat2X& x1, const Mat2X& v1, int solves, bool converged,
+                    const std::string& what) {
+  const double s = imtest::newton_scale(net, x0, v0, f_ext, h, o.definite);
+  const double g = imtest::newton_residual(net, x0, v0, f_ext, h, v1);
+  INFO(what << ": report {iterations " << r.iterations << ", residual " << r.residual
+            << ", scale " << r.scale << ", converged " << r.converged << ", solver_failed "
+            << r.solver_failed << "}; expected iterations " << solves << ", residual |G(y)| = "
+            << g << " at the returned y, scale |M v| + |b_0| + h |f_ext| = " << s
+            << ", converged " << converged << " (backward_euler.h, NewtonReport)");
+  REQUIRE_FALSE(r.solver_failed);
+  REQUIRE(r.iterations == solves);
+  REQUIRE(r.converged == converged);
+  REQUIRE(wbtest::near(r.scale, s, 0.0, kReportTol));
+  REQUIRE(wbtest::near(r.residual, g, kReportFloor * s, kReportTol));
+  wbtest::require_near(x1, Mat2X(x0 + h * v1), 0.0, what + ": x' = x + h v'", 1e-12);
+}
+
 void require_solves_be(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
                        const Mat2X& f_ext, double h, const Mat2X& x1, const Mat2X& v1,
                        const std::string& what) {
@@ -72,15 +97,23 @@ TEST_CASE("I4 backward Euler: one anchored linear spring takes the closed-form s
         ve(d, p) = s[1];
       }
     }
-    backward_euler_step(net, f, h, options(solver), x, v);
+    const NewtonReport r = backward_euler_step(net, f, h, options(solver), x, v);
     const std::string which = solver == NewtonOptions::kCG ? "CG" : "LDLT";
     wbtest::require_near(x, xe, 0.0, which + ": x' of the closed-form backward Euler step", 1e-9);
     wbtest::require_near(v, ve, 0.0, which + ": v' of the closed-form backward Euler step", 1e-9);
+    INFO(which << ": report {iterations " << r.iterations << ", converged " << r.converged
+               << ", solver_failed " << r.solver_failed
+               << "}: on linear springs the first solve is exact, so Newton has converged "
+                  "after it (LDLT: exactly 1 solve)");
+    REQUIRE(r.converged);
+    REQUIRE_FALSE(r.solver_failed);
+    REQUIRE(r.iterations >= 1);
+    if (solver == NewtonOptions::kLDLT) REQUIRE(r.iterations == 1);
   }
 }
 
 TEST_CASE("I4 backward Euler: energy factor 1/(1 + (h w)^2) per step on linear springs",
-          "[implicit][I4][3pts]") {
+          "[implicit][I4][2pts]") {
   // Two particles, each on its own spring, with the same w = sqrt(k/m).
   SpringNetwork net =
       imtest::anchored_network({1.0, 4.0}, {9.0, 36.0}, {Vec2(0.5, 0.5), Vec2(-0.4, 0.1)});
@@ -97,7 +130,7 @@ TEST_CASE("I4 backward Euler: energy factor 1/(1 + (h w)^2) per step on linear s
 }
 
 TEST_CASE("I4 backward Euler: Newton's residual roughly squares from one iteration to the next",
-          "[implicit][I4][5pts]") {
+          "[implicit][I4][4pts]") {
   // A nonlinear network and a step of h w ~ 1: the first solve leaves a relative
   // residual of a few percent;
   // Newton's method with the exact Jacobian (definite = false, springs stay
@@ -149,7 +182,7 @@ TEST_CASE("I4 backward Euler: Newton's residual roughly squares from one iterati
 }
 
 TEST_CASE("I4 backward Euler: a converged step solves the backward Euler equations",
-          "[implicit][I4][4pts]") {
+          "[implicit][I4][3pts]") {
   // Damped springs (their K leaves out the damping's turn: Newton still
   // converges, more slowly), drag, gravity, and the CG solver too.
   for (auto solver : {NewtonOptions::kLDLT, NewtonOptions::kCG}) {
@@ -168,7 +201,7 @@ TEST_CASE("I4 backward Euler: a converged step solves the backward Euler equatio
   }
 }
 
-TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][3pts]") {
+TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][2pts]") {
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.5, 0.1);
@@ -188,7 +221,7 @@ TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][3p
   }
 }
 
-TEST_CASE("I4 backward Euler: internal springs conserve momentum", "[implicit][I4][2pts]") {
+TEST_CASE("I4 backward Euler: internal springs conserve momentum", "[implicit][I4][1pts]") {
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.8);
@@ -222,13 +255,15 @@ TEST_CASE("I4 backward Euler: one_iteration is the single solve of Baraff and Wi
   NewtonOptions o = options();
   o.one_iteration = true;
   Mat2X x = x0, v = v0;
-  backward_euler_step(net, f, h, o, x, v);
+  const NewtonReport r = backward_euler_step(net, f, h, o, x, v);
   wbtest::require_near(v, ve, 0.0, "v' after one linear solve", 1e-10);
   wbtest::require_near(x, xe, 0.0, "x' = x + h v'", 1e-10);
+  // One solve leaves the nonlinear step unsolved: the report says how far (not 0).
+  require_report(r, net, o, x0, v0, f, h, x, v, 1, true, "one_iteration");
 }
 
 TEST_CASE("I4 backward Euler: a stiff hanging chain at h = 1/60 comes to rest in equilibrium",
-          "[implicit][I4][3pts]") {
+          "[implicit][I4][2pts]") {
   // 8 beads of 10 g, springs of k = 1e4 N/m (k/m = 1e6: explicit Euler's energy
   // would grow by 1 + (h w)^2 ~ 280 per step), the top bead pinned at
   // top = (0.3, 0.2), hanging straight down from unstretched springs of rest 0.1 m.
@@ -261,6 +296,157 @@ TEST_CASE("I4 backward Euler: a stiff hanging chain at h = 1/60 comes to rest in
   wbtest::require_near(x, xe, 1e-9, "bead position at static equilibrium");
   INFO("largest bead speed " << v.colwise().norm().maxCoeff() << " m/s, expected at rest");
   REQUIRE(v.colwise().norm().maxCoeff() <= 1e-7);
+}
+
+TEST_CASE("I4 backward Euler: a capped step reports its solves and the residual left",
+          "[implicit][I4][2pts]") {
+  // Damped springs and drag (Newton converges linearly: the residual after
+  // 1, 2, 3 solves is still far from 0); a tolerance no step reaches, so
+  // that exactly max_iterations solves are done and converged is false.
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0, 1.2, 0.4);
+  Mat2X f(2, 4);
+  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  const double h = 0.15;
+  for (int cap = 1; cap <= 3; ++cap) {
+    NewtonOptions o = options();
+    o.tol = 1e-300;
+    o.max_iterations = cap;
+    Mat2X x = x0, v = v0;
+    const NewtonReport r = backward_euler_step(net, f, h, o, x, v);
+    require_report(r, net, o, x0, v0, f, h, x, v, cap, false,
+                   "max_iterations " + std::to_string(cap) + ", never converged");
+  }
+}
+
+TEST_CASE("I4 backward Euler: converged means the residual is at most tol times the scale",
+          "[implicit][I4][2pts]") {
+  // 1. Each term of the scale |M v| + |b_0| + h |f_ext| alone: a step whose
+  //    other terms are 0 must still converge (else it never can: the residual
+  //    is rounding, and 0 * tol accepts nothing).
+  const double h = 0.1;
+  NewtonOptions o = options();
+  o.tol = 1e-9;
+  o.max_iterations = 20;
+  auto run = [&](const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0, const Mat2X& f,
+                 const std::string& what) {
+    Mat2X x = x0, v = v0;
+    const NewtonReport r = backward_euler_step(net, f, h, o, x, v);
+    INFO(what << ": report {iterations " << r.iterations << ", residual " << r.residual
+              << ", scale " << r.scale << ", converged " << r.converged
+              << "}: expected converged within 20 solves, scale |M v| + |b_0| + h |f_ext| = "
+              << imtest::newton_scale(net, x0, v0, f, h, o.definite));
+    REQUIRE(r.converged);
+    REQUIRE(wbtest::near(r.scale, imtest::newton_scale(net, x0, v0, f, h, o.definite), 0.0,
+                         kReportTol));
+  };
+  {
+    // Gliding: three beads 0.3 m apart on springs of rest 0.3 m, all at (0.7, -0.3) m/s:
+    // no force, b_0 = 0, scale = |M v|.
+    SpringNetwork net;
+    net.m = Eigen::Vector3d(0.3, 0.7, 0.2);
+    net.springs = {imtest::spring(0, 1, 80.0, 0.3), imtest::spring(1, 2, 50.0, 0.3)};
+    Mat2X x(2, 3), v(2, 3);
+    x << 0.1, 0.4, 0.7, -0.2, -0.2, -0.2;
+    v << 0.7, 0.7, 0.7, -0.3, -0.3, -0.3;
+    run(net, x, v, Mat2X::Zero(2, 3), "gliding with unstretched springs (scale = |M v|)");
+  }
+  {
+    SpringNetwork net;
+    Mat2X x, v;
+    imtest::small_network(net, x, v);
+    v.setZero();
+    run(net, x, v, Mat2X::Zero(2, 4), "released from rest, no gravity (scale = |b_0|)");
+  }
+  {
+    // One bead at rest where its spring holds it against gravity: f + f_ext = 0
+    // up to rounding, b_0 ~ 1e-16 h m g, scale = h |f_ext|.
+    const double m = 0.3, k = 70.0, g = 9.81;
+    SpringNetwork net = imtest::anchored_network({m}, {k}, {Vec2(0.1, 0.7)});
+    Mat2X x(2, 1), f(2, 1);
+    x.col(0) = Vec2(0.1, 0.7 - m * g / k);
+    f.col(0) = Vec2(0.0, -m * g);
+    run(net, x, Mat2X::Zero(2, 1), f, "at rest in equilibrium under gravity (scale = h |f_ext|)");
+  }
+  // 2. Whatever tol, a step reported converged has |G| <= tol * scale at the returned y:
+  //    - a bead swinging about the anchor of a stiff spring that starts at its rest
+  //      length: b_0 = 0, so the first update dv is 0 while G(y) is large (the spring
+  //      must stretch to turn the bead);
+  //    - a network of 1e-6 kg beads: the scale is ~1e-6 kg m/s, and |G| <= tol alone
+  //      would accept a residual of the order of the momenta themselves.
+  SpringNetwork pend = imtest::anchored_network({0.5}, {1e4}, {Vec2::Zero()});
+  pend.springs[0].rest = 1.0;
+  Mat2X xp(2, 1), vp(2, 1);
+  xp << 0.6, -0.8;
+  vp << 1.6, 1.2;  // across the spring
+  SpringNetwork tiny;
+  Mat2X xt, vt;
+  imtest::small_network(tiny, xt, vt);
+  tiny.m *= 1e-6;
+  for (NetworkSpring& sp : tiny.springs) sp.k *= 1e-6;
+  for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
+    o.tol = tol;
+    o.max_iterations = 50;
+    for (int c = 0; c < 2; ++c) {
+      const SpringNetwork& net = c == 0 ? pend : tiny;
+      const Mat2X& x0 = c == 0 ? xp : xt;
+      const Mat2X& v0 = c == 0 ? vp : vt;
+      const Mat2X f = Mat2X::Zero(2, net.n());
+      Mat2X x = x0, v = v0;
+      const NewtonReport r = backward_euler_step(net, f, h, o, x, v);
+      const double s = imtest::newton_scale(net, x0, v0, f, h, o.definite);
+      const double g = imtest::newton_residual(net, x0, v0, f, h, v);
+      INFO(
+          (c == 0 ? "bead on a stiff spring starting at rest length" : "network of 1e-6 kg beads")
+          << ", tol " << tol << ": report {iterations " << r.iterations << ", converged "
+          << r.converged << "}; |G(y)| at the returned y " << g << ", tol * scale " << tol * s
+          << ": converged only when |G| <= tol * scale (not on a small update, not on |G| "
+             "<= tol)");
+      REQUIRE_FALSE(r.solver_failed);
+      REQUIRE(r.converged);
+      REQUIRE(g <= tol * s * (1 + kReportTol) + kReportFloor * s);
+    }
+  }
+}
+
+TEST_CASE("I4 backward Euler: a failed solve is reported and never returned as NaN",
+          "[implicit][I4][2pts]") {
+  // Particle 0 on a spring compressed to half its rest length, along x, with the
+  // exact block (definite = false): across the spring K = +k, and with m = h^2 k
+  // the matrix M - h^2 K has an exact zero pivot: SimplicialLDLT fails.
+  // Particle 1 is pinned and arrives moving; particle 2 is free and far away.
+  SpringNetwork net;
+  net.m = Eigen::Vector3d(1.0, 2.0, 1.5);
+  net.pinned = {0, 1, 0};
+  net.springs = {imtest::spring(0, -1, 1.0, 2.0, 0.0, Vec2(0.0, 0.0)),
+                 imtest::spring(2, 1, 3.0, 1.0)};
+  Mat2X x0(2, 3), v0(2, 3), f(2, 3);
+  x0 << 1.0, 5.0, 5.0, 0.0, 0.0, 1.5;
+  v0 << 0.5, 0.25, -0.5, 0.0, 1.0, 0.25;
+  f << 0.0, 0.0, 0.0, 0.0, 0.0, -1.0;
+  NewtonOptions o = options();
+  o.definite = false;
+  const double h = 1.0;
+  Mat2X x = x0, v = v0;
+  const NewtonReport r = backward_euler_step(net, f, h, o, x, v);
+  Mat2X vs = v0;
+  vs.col(1).setZero();
+  INFO("report {iterations " << r.iterations << ", residual " << r.residual << ", converged "
+                             << r.converged << ", solver_failed " << r.solver_failed
+                             << "}: the first factorisation fails (zero pivot), so expected "
+                                "solver_failed, not converged, 0 solves, residual NaN");
+  REQUIRE(r.solver_failed);
+  REQUIRE_FALSE(r.converged);
+  REQUIRE(r.iterations == 0);
+  REQUIRE(std::isnan(r.residual));
+  wbtest::require_finite(x, "positions after a failed solve");
+  wbtest::require_finite(v, "velocities after a failed solve");
+  wbtest::require_near(
+      v, vs, 0.0, "v after a failed first solve: the last good iterate y = v (pinned: 0)", 1e-15);
+  wbtest::require_near(x, Mat2X(x0 + h * vs), 0.0,
+                       "x after a failed first solve: x + h y with y = v (the pinned one stays)",
+                       1e-15);
 }
 
 }  // namespace test_I4_backward_euler

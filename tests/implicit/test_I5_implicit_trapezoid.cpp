@@ -24,7 +24,7 @@ NewtonOptions options() {
 }  // namespace
 
 TEST_CASE("I5 implicit trapezoid: energy kept exactly on linear springs at any h w",
-          "[implicit][I5][5pts]") {
+          "[implicit][I5][4pts]") {
   // On X' = A X the step is the Cayley transform of A, which preserves the
   // energy norm: the energy ratio is 1 up to the solve's rounding (1e-9).
   SpringNetwork net =
@@ -101,12 +101,14 @@ TEST_CASE("I5 implicit trapezoid: second order in h against the exact oscillator
   }
 }
 
-TEST_CASE("I5 implicit trapezoid: a pinned particle never moves", "[implicit][I5][3pts]") {
+TEST_CASE("I5 implicit trapezoid: a pinned particle never moves even one that arrives moving",
+          "[implicit][I5][2pts]") {
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.5, 0.1);
   net.pinned = {0, 0, 1, 0};
-  v0.col(2).setZero();
+  // Its given velocity (0.8, -0.1) is ignored: a pinned particle has v = 0 (from
+  // the start: the explicit half must not move it either).
   Mat2X f(2, 4);
   f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
   Mat2X x = x0, v = v0;
@@ -117,11 +119,65 @@ TEST_CASE("I5 implicit trapezoid: a pinned particle never moves", "[implicit][I5
                  << v.col(2).transpose());
     REQUIRE(x.col(2) == x0.col(2));
     REQUIRE(v.col(2) == Vec2::Zero());
-    const double r = imtest::trapezoid_residual(net, xs, vs, f, 0.1, x, v);
+    Mat2X vp = vs;
+    vp.col(2).setZero();
+    const double r = imtest::trapezoid_residual(net, xs, vp, f, 0.1, x, v);
     const double s = imtest::momentum_scale(net, xs, vs, f, 0.1);
     INFO("trapezoid residual of the free particles " << r << " against scale " << s);
     REQUIRE(r <= 1e-9 * s);
   }
+}
+
+TEST_CASE("I5 implicit trapezoid: returns the Newton report of its backward Euler half",
+          "[implicit][I5][2pts]") {
+  // The half step's residual M (v' - v~) - h/2 (f(x', v') + f_ext) is the
+  // trapezoid's own, M (v' - v) - h/2 (f(x, v) + f(x', v')) - h f_ext.
+  SpringNetwork net;
+  Mat2X x0, v0;
+  imtest::small_network(net, x0, v0, 0.0, 0.4);
+  Mat2X f(2, 4);
+  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  const double h = 0.1;
+  for (int cap : {1, 50}) {
+    NewtonOptions o = options();
+    o.max_iterations = cap;
+    Mat2X x = x0, v = v0;
+    const NewtonReport r = implicit_trapezoid_step(net, f, h, o, x, v);
+    Mat2X G = (v - v0) * net.m.asDiagonal() -
+              0.5 * h * (imtest::forces(net, x0, v0) + imtest::forces(net, x, v)) - h * f;
+    const double s = imtest::momentum_scale(net, x0, v0, f, h);
+    INFO("max_iterations " << cap << ": report {iterations " << r.iterations << ", residual "
+                           << r.residual << ", converged " << r.converged << ", solver_failed "
+                           << r.solver_failed << "}, trapezoid residual of the returned state "
+                           << G.norm() << ": return backward_euler_step's report");
+    REQUIRE_FALSE(r.solver_failed);
+    REQUIRE(r.iterations >= 1);
+    REQUIRE(r.iterations <= cap);
+    REQUIRE(r.converged == (cap > 1));
+    REQUIRE(r.scale > 0.0);
+    REQUIRE(wbtest::near(r.residual, G.norm(), 1e-13 * s, 1e-9));
+  }
+  // A failed solve (an exact zero pivot: m = (h/2)^2 k across a spring compressed to
+  // half its rest length, definite = false) is reported, and the state stays finite:
+  // the explicit half, then x~ + h/2 v~, v~ (the backward half's last good iterate).
+  SpringNetwork bad = imtest::anchored_network({1.0}, {1.0}, {Vec2::Zero()});
+  bad.springs[0].rest = 2.0;
+  Mat2X x(2, 1), v = Mat2X::Zero(2, 1);
+  x << 1.0, 0.0;
+  NewtonOptions o = options();
+  o.definite = false;
+  const NewtonReport r = implicit_trapezoid_step(bad, Mat2X::Zero(2, 1), 2.0, o, x, v);
+  INFO("report {iterations " << r.iterations << ", converged " << r.converged
+                             << ", solver_failed " << r.solver_failed
+                             << "}: the backward half's factorisation fails, expected "
+                                "solver_failed and not converged");
+  REQUIRE(r.solver_failed);
+  REQUIRE_FALSE(r.converged);
+  wbtest::require_finite(x, "position after a failed solve");
+  wbtest::require_finite(v, "velocity after a failed solve");
+  // f = -k (L - rest) u = (1, 0) N: v~ = h/2 f / m = (1, 0), x' = x~ + h/2 v~ = (2, 0).
+  wbtest::require_near(v, Mat2X(Vec2(1.0, 0.0)), 0.0, "v = v~ (last good iterate)", 1e-15);
+  wbtest::require_near(x, Mat2X(Vec2(2.0, 0.0)), 0.0, "x = x~ + h/2 v~", 1e-15);
 }
 
 }  // namespace test_I5_implicit_trapezoid

@@ -37,6 +37,9 @@ TEST_CASE("R3 a force at a lever arm adds the torque (p - x) x F to what is ther
                "f adds every force: (0.5, 0, -1) + 3 e_z + 4 e_x");
   require_near(b.tau, Vec3(0.25, -5.0, -4.0), kTol,
                "tau adds (p - x) x F: (0.25, 1, 0) - 6 e_y - 4 e_z (the lever arm first)");
+  require_near(b.v, Vec3::Zero(), 0.0,
+               "v unchanged: apply_force only accumulates f and tau, the step integrates them");
+  require_near(b.x, Vec3(1, 1, 1), 0.0, "x unchanged by apply_force");
 }
 
 TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3][3pts]") {
@@ -46,6 +49,10 @@ TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3
   apply_gravity(b, Vec3(0.0, -1.0, -9.81));
   require_near(b.f, Vec3(1.0, -2.5, -24.525), kTol, "f += m g with m = 2.5 kg");
   require_near(b.tau, Vec3(0.0, 2.0, 0.0), kTol, "gravity acts at the centre: tau unchanged");
+  require_near(b.v, Vec3::Zero(), 0.0,
+               "v unchanged: forces only accumulate in f, the step integrates them");
+  require_near(b.x, Vec3(4, 5, 6), 0.0, "x unchanged by apply_gravity");
+  require_near(b.omega, Vec3(1, 2, 3), 0.0, "omega unchanged by a force");
 }
 
 }  // namespace test_R3_apply_force

@@ -55,6 +55,12 @@ TEST_CASE("R5 from rest: v = h f / m and omega = h I^-1 tau for both variants",
     require_near(b.omega, Vec3(h * inverse_inertia(b) * Vec3(0.5, 1.5, -2.0)), kStepTol,
                  "omega = h I^-1 tau (world I^-1 = R I_body^-1 R^T) when omega0 = 0");
     require_near(b.x, Vec3(1, 2, 3), 0.0, "x is not moved by the velocity update");
+    // The accumulators are inputs: the caller clears them (integrate_velocity.h).
+    require_near(b.f, Vec3(4.0, -2.0, 1.0), 0.0, "f is left as it was (not cleared or changed)");
+    require_near(b.tau, Vec3(0.5, 1.5, -2.0), 0.0,
+                 "tau is left as it was (not cleared or changed)");
+    INFO("q " << b.q.coeffs().transpose() << ": the velocity update does not turn the body");
+    REQUIRE(b.q.coeffs() == quat(0.7, 0.1, -0.4, 0.3).coeffs());
   }
 }
 
