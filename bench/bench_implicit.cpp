@@ -14,6 +14,9 @@
 //                             place; solver auto, ldlt, cholmod or cg; "1" = one solve
 //                             (baraff-witkin-fast), else Newton to tol 1e-9
 //                             (backward-euler-fast); extra counter: cg_iters per step
+//   fast/second_<shape>_<solver>[1]/<n>  the same, over exactly the first simulated
+//                             second (60 steps from rest): the same motion at every n,
+//                             so that times per step compare across sizes
 //   se/<shape>/<n>            symplectic_euler_step on the same springs and
 //                             gravity (network_forces), h = 1e-4 s, inside its
 //                             stability limit (h sqrt(k/m) = 0.1 per spring)
@@ -184,6 +187,15 @@ BENCHMARK_CAPTURE(be, cloth_cg, true, NewtonOptions::kCG, false)->Apply(sizes);
 BENCHMARK_CAPTURE(se, cloth, true)->Apply(sizes);
 
 using FS = wb::FastSolverOptions;
+void first_second(benchmark::internal::Benchmark* b) {
+  for (long n : {1000, 10000, 100000}) b->Arg(n);
+  b->Iterations(60);
+  b->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK_CAPTURE(fast, second_rope_auto1, false, FS::kAuto, true)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, second_rope_auto, false, FS::kAuto, false)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, second_cloth_auto1, true, FS::kAuto, true)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, second_cloth_auto, true, FS::kAuto, false)->Apply(first_second);
 BENCHMARK_CAPTURE(fast, rope_auto1, false, FS::kAuto, true)->Apply(sizes);
 BENCHMARK_CAPTURE(fast, rope_auto, false, FS::kAuto, false)->Apply(sizes);
 BENCHMARK_CAPTURE(fast, rope_ldlt1, false, FS::kLDLT, true)->Apply(sizes);

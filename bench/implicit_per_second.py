@@ -58,10 +58,12 @@ def main():
         scene = os.path.join(tmp, f"{name}.json")
         with open(scene, "w", encoding="utf-8") as f:
             json.dump(plug.cost_scene(n, args.km, args.t_end, cloth), f)
-        se_dt = plug._se_limit(args.exe, scene, args.km, args.t_end, None)
-        over = plug._run(args.exe, scene, "symplectic-euler", se_dt * 1.1, args.t_end, 1, None)
-        case = {"n": n, "se_dt": se_dt, "se_status_at_1.1_dt": over.get("status"),
-                "rounds": []}
+        side = int(round(math.sqrt(n)))
+        length = 0.05 * ((side if cloth else n) - 1)
+        mgl = n * 0.01 * 9.81 * length
+        se_dt = plug._se_limit(args.exe, scene, args.km, mgl, None)
+        case = {"n": n, "se_dt": se_dt, "se_search": f"largest of c/sqrt(k/m) stable for "
+                f"{plug.COST_SEARCH_T} s (|dE| <= 0.01 M g L)", "rounds": []}
         for r in range(args.rounds):
             rnd = {"loadavg": list(os.getloadavg())}
             for m in METHODS:

@@ -69,12 +69,14 @@ inline void add_block(double* val, const BlockAt& at, const Mat2& B, double s) {
 // triangles) after an approximate minimum degree ordering: the elimination
 // tree walk of Eigen's SimplicialCholesky (one pass over the rows of L).
 // Returns sum over columns of (count^2), the factorisation's multiply-adds.
-double factor_work(const SpMat& G, double& nnz_l) {
+// Also returns the ordering: new_of_old[i] is particle i's place in it.
+double factor_work(const SpMat& G, double& nnz_l, std::vector<int>& new_of_old) {
   const int n = int(G.rows());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> pinv;
   Eigen::AMDOrdering<int> amd;
   amd(G, pinv);
   const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p = pinv.inverse();
+  new_of_old.assign(p.indices().data(), p.indices().data() + n);
   SpMat ap(n, n);
   ap.selfadjointView<Eigen::Upper>() = G.selfadjointView<Eigen::Lower>().twistedBy(p);
   const std::size_t size = std::size_t(n);
@@ -109,10 +111,14 @@ struct FastBackwardEuler::Impl {
   bool direct = true;  // ldlt or cholmod: A in compressed form; cg: A by blocks
 
   // Direct solvers: A, 2n x 2n, both triangles, its pattern fixed at the start.
+  // Its unknowns are numbered in the fill-reducing order found once (particle i's
+  // two are 2 at[i], 2 at[i] + 1): the factorisation then needs no permuted copy
+  // of A at each solve, and b and dv are permuted instead (2n numbers).
   SpMat A;
+  std::vector<int> place;     // per particle: its place in A (identity for CG)
   std::vector<BlockAt> diag;  // per particle: its diagonal block
   std::vector<BlockAt> at;    // per spring: ii, jj, ij, ji (4 entries)
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt;
   bool ldlt_analysed = false;
 #ifdef WB_HAVE_CHOLMOD
   Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> cholmod;
@@ -160,8 +166,9 @@ struct FastBackwardEuler::Impl {
     std::vector<Eigen::Triplet<double, int>> t;
     t.reserve(std::size_t(4 * n + 8 * net.springs.size()));
     auto block = [&](Eigen::Index i, Eigen::Index j) {
+      const int pi = place[std::size_t(i)], pj = place[std::size_t(j)];
       for (int rr = 0; rr < 2; ++rr)
-        for (int c = 0; c < 2; ++c) t.emplace_back(int(2 * i + rr), int(2 * j + c), 1.0);
+        for (int c = 0; c < 2; ++c) t.emplace_back(2 * pi + rr, 2 * pj + c, 1.0);
     };
     for (Eigen::Index i = 0; i < n; ++i) block(i, i);
     for (const NetworkSpring& s : net.springs) {
@@ -174,15 +181,18 @@ struct FastBackwardEuler::Impl {
     A.setFromTriplets(t.begin(), t.end());
     A.makeCompressed();
     diag.resize(std::size_t(n));
-    for (Eigen::Index i = 0; i < n; ++i) diag[std::size_t(i)] = block_at(A, i, i);
+    auto at_of = [&](Eigen::Index i, Eigen::Index j) {
+      return block_at(A, place[std::size_t(i)], place[std::size_t(j)]);
+    };
+    for (Eigen::Index i = 0; i < n; ++i) diag[std::size_t(i)] = at_of(i, i);
     at.assign(4 * net.springs.size(), BlockAt{});
     for (std::size_t k = 0; k < net.springs.size(); ++k) {
       const NetworkSpring& s = net.springs[k];
-      if (free_particle(s.i)) at[4 * k] = block_at(A, s.i, s.i);
-      if (free_particle(s.j)) at[4 * k + 1] = block_at(A, s.j, s.j);
+      if (free_particle(s.i)) at[4 * k] = at_of(s.i, s.i);
+      if (free_particle(s.j)) at[4 * k + 1] = at_of(s.j, s.j);
       if (coupled(s)) {
-        at[4 * k + 2] = block_at(A, s.i, s.j);
-        at[4 * k + 3] = block_at(A, s.j, s.i);
+        at[4 * k + 2] = at_of(s.i, s.j);
+        at[4 * k + 3] = at_of(s.j, s.i);
       }
     }
   }
@@ -233,7 +243,7 @@ struct FastBackwardEuler::Impl {
     SpMat G(n, n);
     G.setFromTriplets(t.begin(), t.end());
     double nnz_l = 0;
-    const double factor = 8.0 * factor_work(G, nnz_l);
+    const double factor = 8.0 * factor_work(G, nnz_l, place);
     const double iteration = 8.0 * double(n) + 16.0 * double(couplings) + 20.0 * double(n);
     const double ratio = factor / std::max(1.0, iteration);
     FastSolverOptions::Solver s = fo.solver;
@@ -252,6 +262,9 @@ struct FastBackwardEuler::Impl {
       reason += "; this build has no CHOLMOD (WB_CHOLMOD): ldlt instead";
     }
     direct = s != FastSolverOptions::kCG;
+    if (!direct || s == FastSolverOptions::kCholmod) {  // CHOLMOD orders A itself
+      for (Eigen::Index i = 0; i < n; ++i) place[std::size_t(i)] = int(i);
+    }
     solver = s == FastSolverOptions::kCG        ? "cg"
              : s == FastSolverOptions::kCholmod ? "cholmod"
                                                 : "ldlt";
@@ -328,7 +341,7 @@ struct FastBackwardEuler::Impl {
     // Pinned particles: dv = 0.
     for (Eigen::Index i = 0; i < n; ++i)
       if (net.is_pinned(i)) rhs.col(i).setZero();
-    b = Eigen::Map<const Eigen::VectorXd>(rhs.data(), 2 * n);
+    for (Eigen::Index i = 0; i < n; ++i) b.segment<2>(2 * place[std::size_t(i)]) = rhs.col(i);
   }
 
   // out = A in, row by row from the blocks. Returns in . out (= in^T A in).
@@ -441,6 +454,12 @@ struct FastBackwardEuler::Impl {
     return ok && dv.allFinite();
   }
 
+  // y += dv, dv in A's order.
+  void add_dv(Eigen::Map<Eigen::VectorXd>& yv) const {
+    for (Eigen::Index i = 0; i < net.n(); ++i)
+      yv.segment<2>(2 * i) += dv.segment<2>(2 * place[std::size_t(i)]);
+  }
+
   NewtonReport step(const Mat2X& f_ext, double h, const NewtonOptions& opt, Mat2X& x, Mat2X& v) {
     NewtonReport rep;
     const Eigen::Index n = net.n();
@@ -458,7 +477,7 @@ struct FastBackwardEuler::Impl {
       rep.solver_failed = true;
     } else {
       dv0 = dv;
-      yv += dv;
+      add_dv(yv);
       rep.iterations = 1;
     }
     if (opt.one_iteration) {
@@ -478,7 +497,7 @@ struct FastBackwardEuler::Impl {
         rep.solver_failed = true;
         break;
       }
-      yv += dv;
+      add_dv(yv);
       ++rep.iterations;
     }
     if (rep.solver_failed && rep.iterations == 0) rep.residual = std::nan("");
