@@ -17,6 +17,7 @@
 //   fast/second_<shape>_<solver>[1]/<n>  the same, over exactly the first simulated
 //                             second (60 steps from rest): the same motion at every n,
 //                             so that times per step compare across sizes
+//   fast_setup/<shape>/<n>    the fast path's analysis alone (once per run)
 //   se/<shape>/<n>            symplectic_euler_step on the same springs and
 //                             gravity (network_forces), h = 1e-4 s, inside its
 //                             stability limit (h sqrt(k/m) = 0.1 per spring)
@@ -149,6 +150,19 @@ void fast(benchmark::State& state, bool is_cloth, wb::FastSolverOptions::Solver 
   state.SetLabel(fbe.solver());
 }
 
+// The fast path's analysis, paid once per run (on its first step).
+void fast_setup(benchmark::State& state, bool is_cloth) {
+  Setup s = make(is_cloth, state.range(0));
+  std::string solver;
+  for (auto _ : state) {
+    wb::FastBackwardEuler fbe(s.net, wb::FastSolverOptions{});
+    solver = fbe.solver();
+    benchmark::DoNotOptimize(&fbe);
+  }
+  state.counters["n"] = double(s.x.cols());
+  state.SetLabel(solver);
+}
+
 void se(benchmark::State& state, bool is_cloth) {
   Setup s = make(is_cloth, state.range(0));
   const Eigen::Index n = s.x.cols();
@@ -185,6 +199,9 @@ BENCHMARK_CAPTURE(be, cloth_ldlt, true, NewtonOptions::kLDLT, false)->Apply(size
 BENCHMARK_CAPTURE(be, cloth_ldlt1, true, NewtonOptions::kLDLT, true)->Apply(sizes);
 BENCHMARK_CAPTURE(be, cloth_cg, true, NewtonOptions::kCG, false)->Apply(sizes);
 BENCHMARK_CAPTURE(se, cloth, true)->Apply(sizes);
+
+BENCHMARK_CAPTURE(fast_setup, rope, false)->Apply(sizes);
+BENCHMARK_CAPTURE(fast_setup, cloth, true)->Apply(sizes);
 
 using FS = wb::FastSolverOptions;
 void first_second(benchmark::internal::Benchmark* b) {

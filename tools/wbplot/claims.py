@@ -166,9 +166,11 @@ class Data:
         self.report_root = report_root or root  # files only tools/report makes (csv)
 
     def file(self, lab, name, report=False):
-        p = os.path.join(self.report_root if report else self.root, lab, name)
-        if report and not os.path.exists(p):  # made by tools/claims itself (claim_files)
-            p = os.path.join(self.root, lab, name)
+        # A report-only file that tools/claims made itself (a plug-in's CLAIM_FILES) is
+        # in root; the others come from the last tools/report.
+        p = os.path.join(self.root, lab, name)
+        if report and not os.path.exists(p):
+            p = os.path.join(self.report_root, lab, name)
         if not os.path.exists(p):
             raise InputError(f"{p}: not found (the run behind the claim did not happen)")
         return p

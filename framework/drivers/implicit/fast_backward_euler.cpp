@@ -44,18 +44,6 @@ struct BlockAt {
   int c0 = -1, c1 = -1;
 };
 
-// Offset of entry (row, col) in the compressed matrix (rows sorted per column).
-int offset(const SpMat& A, int row, int col) {
-  const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[col];
-  const int* end = A.innerIndexPtr() + A.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  return int(it - A.innerIndexPtr());
-}
-
-BlockAt block_at(const SpMat& A, Eigen::Index p, Eigen::Index q) {
-  return {offset(A, int(2 * p), int(2 * q)), offset(A, int(2 * p), int(2 * q + 1))};
-}
-
 // val[block] += s * B
 inline void add_block(double* val, const BlockAt& at, const Mat2& B, double s) {
   if (at.c0 < 0) return;
@@ -65,26 +53,27 @@ inline void add_block(double* val, const BlockAt& at, const Mat2& B, double s) {
   val[at.c1 + 1] += s * B(1, 1);
 }
 
-// Column counts of the Cholesky factor of a symmetric pattern G (n x n, both
-// triangles) after an approximate minimum degree ordering: the elimination
-// tree walk of Eigen's SimplicialCholesky (one pass over the rows of L).
-// Returns sum over columns of (count^2), the factorisation's multiply-adds.
-// Also returns the ordering: new_of_old[i] is particle i's place in it.
-double factor_work(const SpMat& G, double& nnz_l, std::vector<int>& new_of_old) {
-  const int n = int(G.rows());
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> pinv;
-  Eigen::AMDOrdering<int> amd;
-  amd(G, pinv);
-  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p = pinv.inverse();
-  new_of_old.assign(p.indices().data(), p.indices().data() + n);
-  SpMat ap(n, n);
-  ap.selfadjointView<Eigen::Upper>() = G.selfadjointView<Eigen::Lower>().twistedBy(p);
+// The particle graph: row i lists, sorted and once each, the free particles
+// joined to free particle i by a spring (compressed rows, no diagonal).
+struct Graph {
+  std::vector<int> start, adj;
+  int n() const { return int(start.size()) - 1; }
+};
+
+// Column counts of the Cholesky factor of the graph's matrix, taken in the
+// order `place` (place[i]: particle i's position): the elimination-tree walk
+// of Eigen's SimplicialCholesky, one pass over the rows of L. Returns the sum
+// over columns of count^2, the factorisation's multiply-adds, and nnz_l.
+double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l) {
+  const int n = g.n();
   const std::size_t size = std::size_t(n);
-  std::vector<int> parent(size, -1), tag(size, 0), count(size, 0);
+  std::vector<int> old_of(size), parent(size, -1), tag(size, 0), count(size, 0);
+  for (int i = 0; i < n; ++i) old_of[std::size_t(place[std::size_t(i)])] = i;
   for (int k = 0; k < n; ++k) {
     tag[std::size_t(k)] = k;
-    for (SpMat::InnerIterator it(ap, k); it; ++it) {
-      for (int i = int(it.index()); i < k && tag[std::size_t(i)] != k;
+    const int o = old_of[std::size_t(k)];
+    for (int e = g.start[std::size_t(o)]; e < g.start[std::size_t(o) + 1]; ++e) {
+      for (int i = place[std::size_t(g.adj[std::size_t(e)])]; i < k && tag[std::size_t(i)] != k;
            i = parent[std::size_t(i)]) {
         if (parent[std::size_t(i)] == -1) parent[std::size_t(i)] = k;
         ++count[std::size_t(i)];
@@ -99,6 +88,36 @@ double factor_work(const SpMat& G, double& nnz_l, std::vector<int>& new_of_old) 
     nnz_l += c;
   }
   return work;
+}
+
+// Approximate minimum degree order of the graph (Eigen's AMDOrdering):
+// place[i] is particle i's position.
+std::vector<int> amd_order(const Graph& g) {
+  const int n = g.n();
+  std::vector<int> outer(std::size_t(n) + 1), inner;
+  inner.reserve(g.adj.size() + std::size_t(n));
+  for (int i = 0; i < n; ++i) {  // the graph plus the diagonal
+    outer[std::size_t(i)] = int(inner.size());
+    bool diag = false;
+    for (int e = g.start[std::size_t(i)]; e < g.start[std::size_t(i) + 1]; ++e) {
+      const int j = g.adj[std::size_t(e)];
+      if (!diag && j > i) {
+        inner.push_back(i);
+        diag = true;
+      }
+      inner.push_back(j);
+    }
+    if (!diag) inner.push_back(i);
+  }
+  outer[std::size_t(n)] = int(inner.size());
+  std::vector<double> ones(inner.size(), 1.0);
+  const SpMat G = Eigen::Map<const SpMat>(n, n, Eigen::Index(inner.size()), outer.data(),
+                                          inner.data(), ones.data());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> pinv;
+  Eigen::AMDOrdering<int> amd;
+  amd(G, pinv);
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p = pinv.inverse();
+  return std::vector<int>(p.indices().data(), p.indices().data() + n);
 }
 
 }  // namespace
@@ -153,7 +172,38 @@ struct FastBackwardEuler::Impl {
     for (Mat2X* m : {&rhs, &w, &y, &xl}) m->resize(2, net.n());
   }
 
+  Graph graph;  // the particle graph (free particles joined by a spring)
+
   bool free_particle(Eigen::Index i) const { return i >= 0 && !net.is_pinned(i); }
+
+  void build_graph() {
+    const std::size_t n = std::size_t(net.n());
+    graph.start.assign(n + 1, 0);
+    for (const NetworkSpring& s : net.springs) {
+      if (!coupled(s)) continue;
+      ++graph.start[std::size_t(s.i) + 1];
+      ++graph.start[std::size_t(s.j) + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) graph.start[i + 1] += graph.start[i];
+    std::vector<int> fill(graph.start.begin(), graph.start.end() - 1);
+    graph.adj.resize(std::size_t(graph.start.back()));
+    for (const NetworkSpring& s : net.springs) {
+      if (!coupled(s)) continue;
+      graph.adj[std::size_t(fill[std::size_t(s.i)]++)] = int(s.j);
+      graph.adj[std::size_t(fill[std::size_t(s.j)]++)] = int(s.i);
+    }
+    // Sorted, each neighbour once (two springs between the same particles share blocks).
+    std::vector<int> start(n + 1, 0), adj;
+    adj.reserve(graph.adj.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      auto b = graph.adj.begin() + graph.start[i], e = graph.adj.begin() + graph.start[i + 1];
+      std::sort(b, e);
+      adj.insert(adj.end(), b, std::unique(b, e));
+      start[i + 1] = int(adj.size());
+    }
+    graph.start.swap(start);
+    graph.adj.swap(adj);
+  }
   bool coupled(const NetworkSpring& s) const {
     return free_particle(s.i) && free_particle(s.j) && s.i != s.j;
   }
@@ -162,28 +212,45 @@ struct FastBackwardEuler::Impl {
   // spring between two free particles its two off-diagonal blocks; then where
   // each spring's blocks sit in the value array.
   void build_pattern() {
+    // Column 2 p and 2 p + 1 (p = place[i]) hold rows 2 q, 2 q + 1 for q = p and
+    // the places of i's neighbours, sorted: the same rows in both columns.
     const Eigen::Index n = net.n();
-    std::vector<Eigen::Triplet<double, int>> t;
-    t.reserve(std::size_t(4 * n + 8 * net.springs.size()));
-    auto block = [&](Eigen::Index i, Eigen::Index j) {
-      const int pi = place[std::size_t(i)], pj = place[std::size_t(j)];
-      for (int rr = 0; rr < 2; ++rr)
-        for (int c = 0; c < 2; ++c) t.emplace_back(2 * pi + rr, 2 * pj + c, 1.0);
-    };
-    for (Eigen::Index i = 0; i < n; ++i) block(i, i);
-    for (const NetworkSpring& s : net.springs) {
-      if (coupled(s)) {
-        block(s.i, s.j);
-        block(s.j, s.i);
+    const std::size_t size = std::size_t(n);
+    std::vector<int> old_of(size);
+    for (Eigen::Index i = 0; i < n; ++i) old_of[std::size_t(place[std::size_t(i)])] = int(i);
+    std::vector<int> outer(std::size_t(2 * n) + 1, 0), inner;
+    inner.reserve(std::size_t(4 * n) + 4 * graph.adj.size());
+    std::vector<int> rows;  // the block rows of one column, in A's order
+    std::vector<std::vector<int>> rows_of(size);
+    for (Eigen::Index p = 0; p < n; ++p) {
+      const int i = old_of[std::size_t(p)];
+      rows.assign(1, int(p));
+      for (int e = graph.start[std::size_t(i)]; e < graph.start[std::size_t(i) + 1]; ++e)
+        rows.push_back(place[std::size_t(graph.adj[std::size_t(e)])]);
+      std::sort(rows.begin(), rows.end());
+      for (int c = 0; c < 2; ++c) {
+        outer[std::size_t(2 * p + c)] = int(inner.size());
+        for (int q : rows) {
+          inner.push_back(2 * q);
+          inner.push_back(2 * q + 1);
+        }
       }
+      rows_of[std::size_t(p)] = rows;
     }
+    outer[std::size_t(2 * n)] = int(inner.size());
     A.resize(2 * n, 2 * n);
-    A.setFromTriplets(t.begin(), t.end());
-    A.makeCompressed();
-    diag.resize(std::size_t(n));
+    A.resizeNonZeros(Eigen::Index(inner.size()));
+    std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), A.innerIndexPtr());
+    std::fill(A.valuePtr(), A.valuePtr() + inner.size(), 0.0);
+    // Where block (i, j) sits: column 2 place[j], at the position of place[i].
     auto at_of = [&](Eigen::Index i, Eigen::Index j) {
-      return block_at(A, place[std::size_t(i)], place[std::size_t(j)]);
+      const int pi = place[std::size_t(i)], pj = place[std::size_t(j)];
+      const std::vector<int>& r = rows_of[std::size_t(pj)];
+      const int k = int(std::lower_bound(r.begin(), r.end(), pi) - r.begin());
+      return BlockAt{outer[std::size_t(2 * pj)] + 2 * k, outer[std::size_t(2 * pj + 1)] + 2 * k};
     };
+    diag.resize(std::size_t(n));
     for (Eigen::Index i = 0; i < n; ++i) diag[std::size_t(i)] = at_of(i, i);
     at.assign(4 * net.springs.size(), BlockAt{});
     for (std::size_t k = 0; k < net.springs.size(); ++k) {
@@ -230,21 +297,18 @@ struct FastBackwardEuler::Impl {
     // entry there is a 2 x 2 block of A: 8 times the multiply-adds), against
     // one CG iteration: the product (a 2 x 2 block per particle and two per
     // coupling) and five vector operations.
-    std::vector<Eigen::Triplet<double, int>> t;
-    long couplings = 0;
-    for (Eigen::Index i = 0; i < n; ++i) t.emplace_back(int(i), int(i), 1.0);
-    for (const NetworkSpring& s : net.springs) {
-      if (coupled(s)) {
-        t.emplace_back(int(s.i), int(s.j), 1.0);
-        t.emplace_back(int(s.j), int(s.i), 1.0);
-        ++couplings;
-      }
-    }
-    SpMat G(n, n);
-    G.setFromTriplets(t.begin(), t.end());
+    build_graph();
+    const double couplings = 0.5 * double(graph.adj.size());
+    // The generator's order first (a rope's chain has no fill in it), else AMD.
+    place.resize(std::size_t(n));
+    for (Eigen::Index i = 0; i < n; ++i) place[std::size_t(i)] = int(i);
     double nnz_l = 0;
-    const double factor = 8.0 * factor_work(G, nnz_l, place);
-    const double iteration = 8.0 * double(n) + 16.0 * double(couplings) + 20.0 * double(n);
+    double factor = 8.0 * factor_work(graph, place, nnz_l);
+    if (nnz_l > couplings) {
+      place = amd_order(graph);
+      factor = 8.0 * factor_work(graph, place, nnz_l);
+    }
+    const double iteration = 8.0 * double(n) + 16.0 * couplings + 20.0 * double(n);
     const double ratio = factor / std::max(1.0, iteration);
     FastSolverOptions::Solver s = fo.solver;
     if (s == FastSolverOptions::kAuto) {

@@ -12,7 +12,8 @@ import math
 
 REPLACES_GENERIC = True
 
-IMPLICIT = ("backward-euler", "baraff-witkin", "implicit-trapezoid", "backward-euler-1")
+IMPLICIT = ("backward-euler", "baraff-witkin", "implicit-trapezoid", "backward-euler-1",
+            "backward-euler-fast", "baraff-witkin-fast")
 
 # The step matrix of each method on x' = v, v' = -x (omega = 1) at step size h.
 METHODS = ["explicit-euler", "symplectic-euler", "midpoint", "trapezoid", "rk4",
@@ -171,7 +172,9 @@ def scene_figures(ctx):
         if ctx.plot(a):
             ctx.figure(fig, f"Total energy against time of the implicit integrators alone on "
                        f"{name} at dt = {dt} s (the explicit ones are in the next figure: "
-                       "their blow-ups would flatten these curves).", a)
+                       "their blow-ups would flatten these curves). backward-euler-fast and "
+                       "baraff-witkin-fast take the same steps as backward-euler and "
+                       "baraff-witkin by the provided fast path: their curves lie on top.", a)
     if files:
         fig = ctx.path(f"{stem}-energy-compare.png")
         a = ["energy"] + files + ["--labels", ",".join(labels), "-o", fig, "--title",
@@ -215,8 +218,9 @@ def scene_figures(ctx):
         ctx.figure(prefix + "-convergence.png",
                    f"Convergence on {name}: final position error against dt, log-log; the "
                    "legend gives each integrator's measured order. On this linear spring "
-                   "backward-euler and baraff-witkin take identical steps (one curve; "
-                   "backward-euler-1 too, not drawn), as do midpoint and trapezoid. An x on "
+                   "backward-euler and baraff-witkin take identical steps, and so do their "
+                   "-fast versions (one curve; backward-euler-1 too, not drawn), as do "
+                   "midpoint and trapezoid. An x on "
                    "the top edge is a run that diverged.", a)
         ctx.figure(prefix + "-energy-error.png",
                    f"Largest relative energy error over the run against dt on {name}.", a)
