@@ -148,8 +148,9 @@ struct FastBackwardEuler::Impl {
   // springs from i to another free particle (each such spring appears in both
   // of its rows), so that the product A p gathers each row's sum in registers.
   Eigen::Matrix<double, 3, Eigen::Dynamic> dblk, dinv;  // per particle: (a00, a10, a11)
-  Eigen::Matrix<double, 3, Eigen::Dynamic> eblk;        // per row entry: -B of its spring
-  std::vector<int> row_start, ent_j;  // row i: entries row_start[i] .. row_start[i + 1] - 1
+  Eigen::Matrix<double, 4, Eigen::Dynamic> eblk;        // per row entry: -B (column-major)
+  std::vector<int> row_start, ent_j;  // row i: entries row_start[i] .. row_start[i + 1] - 1;
+                                      // ent_j: 2 j, j the entry's column particle
   std::vector<int> ent_of;            // per spring: its entries in rows i and j (or -1)
   Eigen::VectorXd r, z, p, q;         // CG's residual, preconditioned residual, direction, A p
 
@@ -280,14 +281,14 @@ struct FastBackwardEuler::Impl {
       const NetworkSpring& s = net.springs[k];
       if (!coupled(s)) continue;
       const int ei = fill[std::size_t(s.i)]++, ej = fill[std::size_t(s.j)]++;
-      ent_j[std::size_t(ei)] = int(s.j);
-      ent_j[std::size_t(ej)] = int(s.i);
+      ent_j[std::size_t(ei)] = 2 * int(s.j);  // where x_j starts in a 2n vector
+      ent_j[std::size_t(ej)] = 2 * int(s.i);
       ent_of[2 * k] = ei;
       ent_of[2 * k + 1] = ej;
     }
     dblk.resize(3, n);
     dinv.resize(3, n);
-    eblk.resize(3, Eigen::Index(ent_j.size()));
+    eblk.resize(4, Eigen::Index(ent_j.size()));
     for (Eigen::VectorXd* v : {&r, &z, &p, &q}) v->resize(2 * n);
   }
 
@@ -397,7 +398,7 @@ struct FastBackwardEuler::Impl {
         if (free_particle(s.i)) add_diag(s.i, B);
         if (free_particle(s.j)) add_diag(s.j, B);
         if (ent_of[2 * k] >= 0) {
-          eblk.col(ent_of[2 * k]) << -B(0, 0), -B(1, 0), -B(1, 1);
+          eblk.col(ent_of[2 * k]) = -Eigen::Map<const Eigen::Vector4d>(B.data());
           eblk.col(ent_of[2 * k + 1]) = eblk.col(ent_of[2 * k]);
         }
       }
@@ -408,23 +409,21 @@ struct FastBackwardEuler::Impl {
     for (Eigen::Index i = 0; i < n; ++i) b.segment<2>(2 * place[std::size_t(i)]) = rhs.col(i);
   }
 
-  // out = A in, row by row from the blocks. Returns in . out (= in^T A in).
+  // out = A in, row by row from the blocks (each a 2 x 2 product on two-double
+  // packets). Returns in . out (= in^T A in).
   double product(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {
     const Eigen::Index n = net.n();
+    const double* E = eblk.data();
+    const double* x = in.data();
+    const int* J = ent_j.data();
     double quad = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double x0 = in[2 * i], x1 = in[2 * i + 1];
-      double y0 = dblk(0, i) * x0 + dblk(1, i) * x1;
-      double y1 = dblk(1, i) * x0 + dblk(2, i) * x1;
-      for (int e = row_start[std::size_t(i)]; e < row_start[std::size_t(i) + 1]; ++e) {
-        const Eigen::Index j = ent_j[std::size_t(e)];
-        const double xj0 = in[2 * j], xj1 = in[2 * j + 1];
-        y0 += eblk(0, e) * xj0 + eblk(1, e) * xj1;
-        y1 += eblk(1, e) * xj0 + eblk(2, e) * xj1;
-      }
-      out[2 * i] = y0;
-      out[2 * i + 1] = y1;
-      quad += x0 * y0 + x1 * y1;
+      const Eigen::Map<const Vec2> xi(x + 2 * i);
+      Vec2 yi(dblk(0, i) * xi[0] + dblk(1, i) * xi[1], dblk(1, i) * xi[0] + dblk(2, i) * xi[1]);
+      for (int e = row_start[std::size_t(i)]; e < row_start[std::size_t(i) + 1]; ++e)
+        yi.noalias() += Eigen::Map<const Mat2>(E + 4 * e) * Eigen::Map<const Vec2>(x + J[e]);
+      out.segment<2>(2 * i) = yi;
+      quad += xi.dot(yi);
     }
     return quad;
   }

@@ -37,7 +37,7 @@ struct FastSolverOptions {
   // CG stops when |A dv - b| <= cg_tol * (|M v| + |b_0| + h |f_ext|): the
   // momenta the step moves, the scale of the lab's Newton test. In Newton's
   // later iterations, also when it is 1e-3 of the current residual |b|.
-  double cg_tol = 1e-3;
+  double cg_tol = 1e-2;
 };
 
 // True when this build has SuiteSparse's CHOLMOD (CMake option WB_CHOLMOD).
