@@ -8,6 +8,16 @@
 //                             one_iteration (Baraff and Witkin: one LDLT solve per
 //                             step); counters: Newton solves per step (iters),
 //                             steps that did not converge, particles (n)
+//   fast/<shape>_<solver>[1]/<n>  the same step by the provided fast path
+//                             (framework/drivers/implicit/fast_backward_euler.h): pattern
+//                             analysed once (outside the timing), values assembled in
+//                             place; solver auto, ldlt, cholmod or cg; "1" = one solve
+//                             (baraff-witkin-fast), else Newton to tol 1e-9
+//                             (backward-euler-fast); extra counter: cg_iters per step
+//   fast/second_<shape>_<solver>[1]/<n>  the same, over exactly the first simulated
+//                             second (60 steps from rest): the same motion at every n,
+//                             so that times per step compare across sizes
+//   fast_setup/<shape>/<n>    the fast path's analysis alone (once per run)
 //   se/<shape>/<n>            symplectic_euler_step on the same springs and
 //                             gravity (network_forces), h = 1e-4 s, inside its
 //                             stability limit (h sqrt(k/m) = 0.1 per spring)
@@ -24,6 +34,7 @@
 #include <string>
 
 #include "backward_euler.h"
+#include "fast_backward_euler.h"
 #include "network_forces.h"
 #include "symplectic_euler.h"
 #include "wb/dynamics.h"
@@ -112,6 +123,46 @@ void be(benchmark::State& state, bool is_cloth, NewtonOptions::Solver solver,
   state.counters["n"] = double(s.x.cols());
 }
 
+void fast(benchmark::State& state, bool is_cloth, wb::FastSolverOptions::Solver solver,
+          bool one_iteration) {
+  Setup s = make(is_cloth, state.range(0));
+  wb::FastSolverOptions fo;
+  fo.solver = solver;
+  if (solver == wb::FastSolverOptions::kCholmod && !wb::have_cholmod()) {
+    state.SkipWithError("this build has no CHOLMOD (WB_CHOLMOD)");
+    return;
+  }
+  wb::FastBackwardEuler fbe(s.net, fo);
+  NewtonOptions opt;
+  opt.one_iteration = one_iteration;
+  long solves = 0, steps = 0, failed = 0;
+  for (auto _ : state) {
+    const NewtonReport r = fbe.step(s.f_ext, 1.0 / 60.0, opt, s.x, s.v);
+    solves += r.iterations;
+    failed += r.converged ? 0 : 1;
+    ++steps;
+    benchmark::DoNotOptimize(s.x.data());
+  }
+  state.counters["iters"] = double(solves) / double(steps);
+  state.counters["cg_iters"] = double(fbe.cg_iterations()) / double(steps);
+  state.counters["not_converged"] = double(failed);
+  state.counters["n"] = double(s.x.cols());
+  state.SetLabel(fbe.solver());
+}
+
+// The fast path's analysis, paid once per run (on its first step).
+void fast_setup(benchmark::State& state, bool is_cloth) {
+  Setup s = make(is_cloth, state.range(0));
+  std::string solver;
+  for (auto _ : state) {
+    wb::FastBackwardEuler fbe(s.net, wb::FastSolverOptions{});
+    solver = fbe.solver();
+    benchmark::DoNotOptimize(&fbe);
+  }
+  state.counters["n"] = double(s.x.cols());
+  state.SetLabel(solver);
+}
+
 void se(benchmark::State& state, bool is_cloth) {
   Setup s = make(is_cloth, state.range(0));
   const Eigen::Index n = s.x.cols();
@@ -148,5 +199,29 @@ BENCHMARK_CAPTURE(be, cloth_ldlt, true, NewtonOptions::kLDLT, false)->Apply(size
 BENCHMARK_CAPTURE(be, cloth_ldlt1, true, NewtonOptions::kLDLT, true)->Apply(sizes);
 BENCHMARK_CAPTURE(be, cloth_cg, true, NewtonOptions::kCG, false)->Apply(sizes);
 BENCHMARK_CAPTURE(se, cloth, true)->Apply(sizes);
+
+BENCHMARK_CAPTURE(fast_setup, rope, false)->Apply(sizes);
+BENCHMARK_CAPTURE(fast_setup, cloth, true)->Apply(sizes);
+
+using FS = wb::FastSolverOptions;
+void first_second(benchmark::internal::Benchmark* b) {
+  for (long n : {1000, 10000, 100000}) b->Arg(n);
+  b->Iterations(60);
+  b->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK_CAPTURE(fast, second_rope_auto1, false, FS::kAuto, true)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, second_rope_auto, false, FS::kAuto, false)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, second_cloth_auto1, true, FS::kAuto, true)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, second_cloth_auto, true, FS::kAuto, false)->Apply(first_second);
+BENCHMARK_CAPTURE(fast, rope_auto1, false, FS::kAuto, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, rope_auto, false, FS::kAuto, false)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, rope_ldlt1, false, FS::kLDLT, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, rope_cholmod1, false, FS::kCholmod, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, rope_cg1, false, FS::kCG, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, cloth_auto1, true, FS::kAuto, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, cloth_auto, true, FS::kAuto, false)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, cloth_ldlt1, true, FS::kLDLT, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, cloth_cholmod1, true, FS::kCholmod, true)->Apply(sizes);
+BENCHMARK_CAPTURE(fast, cloth_cg1, true, FS::kCG, true)->Apply(sizes);
 
 BENCHMARK_MAIN();

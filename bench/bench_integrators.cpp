@@ -53,7 +53,72 @@
 #include "trapezoid.h"
 #endif
 #ifdef WB_BENCH_HAS_RK4
+#include <boost/numeric/odeint/algebra/default_operations.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <boost/numeric/odeint/util/is_resizeable.hpp>
+#include <boost/numeric/odeint/util/resize.hpp>
+#include <boost/numeric/odeint/util/same_size.hpp>
+
 #include "wb/rk4.h"
+
+// Boost.Odeint's runge_kutta4 on the same particles and forces (odeint/rk4/<n>).
+// Its state is the machinery's: positions and velocities, two 2 x n Eigen
+// arrays, and its system calls the same wb::Dynamics. The algebra applies each
+// of odeint's operations (default_operations' scale_sum2..scale_sum5) to the
+// positions and to the velocities: one Eigen loop each, as odeint's
+// vector_space_algebra would on one Eigen vector.
+namespace odebench {
+struct State {
+  wb::Mat2X x, v;
+};
+struct Algebra {
+  template <class Op, class... S>
+  static void apply(Op op, S&... s) {
+    op(s.x...);
+    op(s.v...);
+  }
+  template <class S1, class S2, class Op>
+  static void for_each2(S1& a, S2& b, Op op) {
+    apply(op, a, b);
+  }
+  template <class S1, class S2, class S3, class Op>
+  static void for_each3(S1& a, S2& b, S3& c, Op op) {
+    apply(op, a, b, c);
+  }
+  template <class S1, class S2, class S3, class S4, class Op>
+  static void for_each4(S1& a, S2& b, S3& c, S4& d, Op op) {
+    apply(op, a, b, c, d);
+  }
+  template <class S1, class S2, class S3, class S4, class S5, class Op>
+  static void for_each5(S1& a, S2& b, S3& c, S4& d, S5& e, Op op) {
+    apply(op, a, b, c, d, e);
+  }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class Op>
+  static void for_each6(S1& a, S2& b, S3& c, S4& d, S5& e, S6& f, Op op) {
+    apply(op, a, b, c, d, e, f);
+  }
+};
+using Stepper = boost::numeric::odeint::runge_kutta4<State, double, State, double, Algebra,
+                                                     boost::numeric::odeint::default_operations>;
+}  // namespace odebench
+
+namespace boost::numeric::odeint {
+template <>
+struct is_resizeable<odebench::State> : boost::true_type {};
+template <>
+struct same_size_impl<odebench::State, odebench::State> {
+  static bool same_size(const odebench::State& a, const odebench::State& b) {
+    return a.x.cols() == b.x.cols() && a.v.cols() == b.v.cols();
+  }
+};
+template <>
+struct resize_impl<odebench::State, odebench::State> {
+  static void resize(odebench::State& a, const odebench::State& b) {
+    a.x.resize(2, b.x.cols());
+    a.v.resize(2, b.v.cols());
+  }
+};
+}  // namespace boost::numeric::odeint
 #endif
 
 // ---------------------------------------------------------------------------
@@ -281,14 +346,6 @@ void hand_acceleration(Arrays& A, const double* v, double* a) {
   pass_divide_by_mass(a, A.f.data(), A.inv_m.data(), A.n);
 }
 
-// y = u (a copy, as `s.xs = v`)
-WB_PASS void pass_copy(double* __restrict y, const double* __restrict u, long len) {
-  for (long k = 0; k < len; ++k) y[k] = u[k];
-}
-// y += u
-WB_PASS void pass_add(double* __restrict y, const double* __restrict u, long len) {
-  for (long k = 0; k < len; ++k) y[k] += u[k];
-}
 // out = 0.5 (p + q)
 WB_PASS void pass_average(double* __restrict out, const double* __restrict p,
                           const double* __restrict q, long len) {
@@ -399,32 +456,43 @@ WB_PASS void trapezoid_fused(Arrays& A, double h) {
 #endif
 
 #ifdef WB_BENCH_HAS_RK4
-// classic RK4 as wb::rk4_step writes it: running sums xs, vs of the slopes,
-// stages through x1, v1
+// out = (y + s u) + t w
+WB_PASS void pass_waxpy2(double* __restrict out, const double* __restrict y, double s,
+                         const double* __restrict u, double t, const double* __restrict w,
+                         long len) {
+  for (long k = 0; k < len; ++k) out[k] = y[k] + s * u[k] + t * w[k];
+}
+// x += h v + c ((a0 + a1) + a2)   (rk4's position update)
+WB_PASS void pass_rk4_x(double* __restrict x, double h, const double* __restrict v, double c,
+                        const double* __restrict a0, const double* __restrict a1,
+                        const double* __restrict a2, long len) {
+  for (long k = 0; k < len; ++k) x[k] += h * v[k] + c * (a0[k] + a1[k] + a2[k]);
+}
+// v += c (((a0 + 2 a1) + 2 a2) + a3)   (rk4's velocity update)
+WB_PASS void pass_rk4_v(double* __restrict v, double c, const double* __restrict a0,
+                        const double* __restrict a1, const double* __restrict a2,
+                        const double* __restrict a3, long len) {
+  for (long k = 0; k < len; ++k) v[k] += c * (a0[k] + 2.0 * a1[k] + 2.0 * a2[k] + a3[k]);
+}
+// classic RK4 as wb::rk4_step writes it: stage points from x, v and the
+// accelerations (the position slopes are velocities), one pass per statement
 void rk4_passes(Arrays& A, double h) {
   const long len = 2 * A.n;
+  const double h2 = 0.5 * h, hh4 = 0.25 * h * h, hh2 = 0.5 * h * h;
   double *x = A.x.data(), *v = A.v.data(), *x1 = A.x1.data(), *v1 = A.v1.data();
-  double *xs = A.xs.data(), *vs = A.vs.data();
-  hand_acceleration(A, v, A.a0.data());
-  pass_copy(xs, v, len);
-  pass_copy(vs, A.a0.data(), len);
-  pass_waxpy(x1, x, 0.5 * h, v, len);
-  pass_waxpy(v1, v, 0.5 * h, A.a0.data(), len);
-  hand_acceleration(A, v1, A.a1.data());
-  pass_axpy(xs, 2.0, v1, len);
-  pass_axpy(vs, 2.0, A.a1.data(), len);
-  pass_waxpy(x1, x, 0.5 * h, v1, len);
-  pass_waxpy(v1, v, 0.5 * h, A.a1.data(), len);
-  hand_acceleration(A, v1, A.a2.data());
-  pass_axpy(xs, 2.0, v1, len);
-  pass_axpy(vs, 2.0, A.a2.data(), len);
-  pass_waxpy(x1, x, h, v1, len);
-  pass_waxpy(v1, v, h, A.a2.data(), len);
-  hand_acceleration(A, v1, A.a3.data());
-  pass_add(xs, v1, len);
-  pass_add(vs, A.a3.data(), len);
-  pass_axpy(x, h / 6.0, xs, len);
-  pass_axpy(v, h / 6.0, vs, len);
+  double *a0 = A.a0.data(), *a1 = A.a1.data(), *a2 = A.a2.data(), *a3 = A.a3.data();
+  hand_acceleration(A, v, a0);
+  pass_waxpy(x1, x, h2, v, len);
+  pass_waxpy(v1, v, h2, a0, len);
+  hand_acceleration(A, v1, a1);
+  pass_waxpy2(x1, x, h2, v, hh4, a0, len);
+  pass_waxpy(v1, v, h2, a1, len);
+  hand_acceleration(A, v1, a2);
+  pass_waxpy2(x1, x, h, v, hh2, a1, len);
+  pass_waxpy(v1, v, h, a2, len);
+  hand_acceleration(A, v1, a3);
+  pass_rk4_x(x, h, v, h * h / 6.0, a0, a1, a2, len);
+  pass_rk4_v(v, h / 6.0, a0, a1, a2, a3, len);
 }
 WB_PASS void rk4_fused(Arrays& A, double h) {
   fused_loop(A, [h](double g, double c, double& x, double& v) {
@@ -514,6 +582,37 @@ void bm_scene(benchmark::State& st, const Method& method) {
   report(st, std::string("scene/") + method.name, n, allocations() - before, dyn.evals());
   st.SetLabel(method.source);
 }
+
+#ifdef WB_BENCH_HAS_RK4
+// One step of odeint's runge_kutta4 (see odebench above).
+void odeint_step(odebench::Stepper& stepper, const wb::Dynamics& dyn, odebench::State& state,
+                 double h) {
+  auto system = [&dyn](const odebench::State& s, odebench::State& dsdt, double) {
+    dsdt.x = s.v;
+    dyn.acceleration(s.x, s.v, dsdt.v);
+  };
+  stepper.do_step(system, state, 0.0, h);
+}
+
+void bm_odeint(benchmark::State& st) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceList forces = wb::build_forces(scene);
+  const wb::ParticleDynamics dyn(forces, scene.m);
+  odebench::State state{scene.x, scene.v};
+  odebench::Stepper stepper;
+  odeint_step(stepper, dyn, state, kH);  // warm-up: odeint sizes its stage arrays
+  dyn.reset_evals();
+  const long before = allocations();
+  for (auto _ : st) {
+    odeint_step(stepper, dyn, state, kH);
+    benchmark::DoNotOptimize(state.x.data());
+    benchmark::ClobberMemory();
+  }
+  report(st, "odeint/rk4", n, allocations() - before, dyn.evals());
+  st.SetLabel("boost::numeric::odeint::runge_kutta4");
+}
+#endif
 
 void bm_hand(benchmark::State& st, const Method& method, bool fused) {
   const HandFn fn = fused ? method.fused : method.passes;
@@ -609,6 +708,42 @@ bool check_baselines(const std::vector<Method>& all) {
   return ok;
 }
 
+#ifdef WB_BENCH_HAS_RK4
+// odeint sums the stages in another order (h/6 k1 + h/3 k2 + ... in one
+// expression; wb::rk4_step folds the position slopes into v and the
+// accelerations): a few roundings (~1e-16 relative) per step, over 20 steps.
+constexpr double kOdeintTol = 1e-13;
+
+// wb::rk4_step and odeint's runge_kutta4 must take the same steps.
+bool check_odeint() {
+  const wb::Scene scene = make_scene(kCheckParticles);
+  const wb::ForceList forces = wb::build_forces(scene);
+  const wb::ParticleDynamics dyn(forces, scene.m);
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(kCheckParticles);
+  odebench::State state{scene.x, scene.v};
+  odebench::Stepper stepper;
+  for (int k = 0; k < kCheckSteps; ++k) {
+    wb::rk4_step(dyn, kH, x, v, s);
+    odeint_step(stepper, dyn, state, kH);
+  }
+  double worst = 0;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    const double* p[2] = {x.data(), v.data()};
+    const double* q[2] = {state.x.data(), state.v.data()};
+    for (int c = 0; c < 2; ++c)
+      worst = std::max(worst, std::abs(p[c][k] - q[c][k]) / std::max(1.0, std::abs(q[c][k])));
+  }
+  if (worst <= kOdeintTol) return true;
+  std::fprintf(stderr,
+               "FAIL: odeint/rk4 differs from scene/rk4 by %.3g (relative) after %d steps; "
+               "expected at most %.3g: the two do not compute the same trajectory\n",
+               worst, kCheckSteps, kOdeintTol);
+  return false;
+}
+#endif
+
 constexpr long kTriadDramLen = 1L << 25;  // 3 arrays of 256 MiB: far beyond any cache
 
 void register_all(const std::vector<Method>& all) {
@@ -621,6 +756,9 @@ void register_all(const std::vector<Method>& all) {
           ->Arg(n);
       benchmark::RegisterBenchmark(("hand_fused/" + tail).c_str(), bm_hand, method, true)->Arg(n);
     }
+#ifdef WB_BENCH_HAS_RK4
+    benchmark::RegisterBenchmark("odeint/rk4", bm_odeint)->Arg(n);
+#endif
     benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
   }
 }
@@ -651,6 +789,9 @@ int main(int argc, char** argv) {
   if (!check_counter()) return 1;
   const std::vector<Method> all = methods();
   if (!check_baselines(all)) return 1;
+#ifdef WB_BENCH_HAS_RK4
+  if (!check_odeint()) return 1;
+#endif
   register_all(all);
   benchmark::AddCustomContext("wb_integrators", [&] {
     std::string names;

@@ -9,7 +9,7 @@ import sys
 import tempfile
 
 TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
-KINDS = ("scene", "hand_passes", "hand_fused")
+KINDS = ("scene", "hand_passes", "hand_fused", "odeint")  # odeint: Boost.Odeint's runge_kutta4
 TARGET_RATIO = 1.1  # issue target for scene / hand_passes at 10^6 particles
 
 COLUMNS = [
@@ -81,7 +81,8 @@ def split_name(path, i, name):
     except ValueError:
         pass
     raise BadInput(f"{path}: benchmarks[{i}].run_name is {name!r}; expected "
-                   "<scene|hand_passes|hand_fused>/<integrator>/<n> or triad_<dram|fit>/<length>")
+                   "<scene|hand_passes|hand_fused|odeint>/<integrator>/<n> or "
+                   "triad_<dram|fit>/<length>")
 
 
 def collect(doc, path, time_key):
@@ -246,6 +247,17 @@ def main():
             f"n={k[2] // 3}: {24 * k[2] / times[k][0] / 1e9:.1f} GB/s" for k in fits))
     print()
     print_table(rows)
+    odeint = sorted(k for k in times if k[0] == "odeint" and ("scene",) + k[1:] in times)
+    if odeint:
+        print()
+        print("against Boost.Odeint (odeint/<integrator>/<n>, the same particles and forces): "
+              "odeint time / scene time, median (min max over paired repetitions); above 1 "
+              "means the provided step is faster")
+        for k in odeint:
+            scene = ("scene",) + k[1:]
+            lo, hi = ratio_range(times[k], times[scene])
+            print(f"  {k[1]:<6} n={k[2]:<8} {times[k][0] / times[scene][0]:.3f} "
+                  f"({lo:.3f} {hi:.3f})")
     big = [r for r in rows if r["n"] == 1000000]
     for r in big:
         if r["vs_hand_passes"] > TARGET_RATIO:

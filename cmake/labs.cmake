@@ -174,6 +174,11 @@ function(wb_lab_glue lab out)
     endif()
     target_include_directories(${target} ${scope} ${glue_dir} ${CMAKE_SOURCE_DIR}/labs/${lab})
     target_link_libraries(${target} ${scope} wb_run)
+    # A glue that needs a library of its own says so in glue.cmake (it sees
+    # ${target} and ${scope}), e.g. the implicit lab's CHOLMOD.
+    if(EXISTS ${glue_dir}/glue.cmake)
+      include(${glue_dir}/glue.cmake)
+    endif()
     if(glue AND NOT prebuilt)
       wb_use_pch(${target})
     endif()

@@ -23,11 +23,12 @@ set(WB_PREBUILT_DIR ${CMAKE_SOURCE_DIR}/prebuilt)
 
 # What decides whether compiled objects can be reused: the compiler, the
 # target, the build type and flags, the language standard, and the header
-# libraries the framework compiles against.
+# libraries the framework compiles against (and whether the implicit glue
+# was compiled with CHOLMOD: cmake/cholmod.cmake).
 function(wb_toolchain_key out)
   string(TOUPPER "${CMAKE_BUILD_TYPE}" config)
   set(${out}
-      "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} | ${CMAKE_SYSTEM_NAME} ${CMAKE_SYSTEM_PROCESSOR} | build type '${CMAKE_BUILD_TYPE}' | flags '${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${config}}' | C++${CMAKE_CXX_STANDARD} | Eigen ${Eigen3_VERSION} | nlohmann_json ${nlohmann_json_VERSION} | CLI11 ${CLI11_VERSION}"
+      "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} | ${CMAKE_SYSTEM_NAME} ${CMAKE_SYSTEM_PROCESSOR} | build type '${CMAKE_BUILD_TYPE}' | flags '${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${config}}' | C++${CMAKE_CXX_STANDARD} | Eigen ${Eigen3_VERSION} | nlohmann_json ${nlohmann_json_VERSION} | CLI11 ${CLI11_VERSION} | CHOLMOD ${WB_CHOLMOD_FOUND}"
       PARENT_SCOPE)
 endfunction()
 

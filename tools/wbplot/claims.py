@@ -166,7 +166,11 @@ class Data:
         self.report_root = report_root or root  # files only tools/report makes (csv)
 
     def file(self, lab, name, report=False):
-        p = os.path.join(self.report_root if report else self.root, lab, name)
+        # A report-only file that tools/claims made itself (a plug-in's CLAIM_FILES) is
+        # in root; the others come from the last tools/report.
+        p = os.path.join(self.root, lab, name)
+        if report and not os.path.exists(p):
+            p = os.path.join(self.report_root, lab, name)
         if not os.path.exists(p):
             raise InputError(f"{p}: not found (the run behind the claim did not happen)")
         return p
@@ -187,8 +191,9 @@ def needs(claim):
     """(lab, scene, what) the claim reads: what is None (as shipped), an integrator, 'sweep'
     or 'report' (files only tools/report makes)."""
     name, args = claim.measure[0], claim.measure[1:]
-    if name == "csv":
-        return []
+    if name == "csv":  # a file a lab plug-in writes: (lab, file, "csv")
+        lab, _, fname = (args[0] if args else "").partition("/")
+        return [(lab, fname, "csv")] if lab and fname else []
     if not args:
         raise InputError(f"{claim.where}: claim '{claim.body}': {name} needs LAB/SCENE")
     lab, stem, integ = _target(args[0])

@@ -188,7 +188,8 @@ NewtonOptions read_newton(const Scene& s) {
   JsonObject top(s.file, s.doc, "");
   if (!top.has("newton")) return opt;
   JsonObject o = top.object("newton");
-  o.only_keys({"solver", "tol", "max_iterations", "definite", "cg_tol"});
+  o.only_keys(
+      {"solver", "tol", "max_iterations", "definite", "cg_tol", "fast_solver", "fast_cg_tol"});
   const std::string solver = o.string_or("solver", "ldlt");
   if (solver == "cg") {
     opt.solver = NewtonOptions::kCG;
@@ -200,6 +201,26 @@ NewtonOptions read_newton(const Scene& s) {
   opt.definite = o.boolean_or("definite", opt.definite);
   opt.cg_tol = o.number_or("cg_tol", opt.cg_tol, kPositive);
   return opt;
+}
+
+// The provided fast path's keys (newton.fast_solver, newton.fast_cg_tol).
+FastSolverOptions read_fast(const Scene& s) {
+  FastSolverOptions fo;
+  JsonObject top(s.file, s.doc, "");
+  if (!top.has("newton")) return fo;
+  JsonObject o = top.object("newton");
+  const std::string solver = o.string_or("fast_solver", "auto");
+  if (solver == "ldlt") {
+    fo.solver = FastSolverOptions::kLDLT;
+  } else if (solver == "cholmod") {
+    fo.solver = FastSolverOptions::kCholmod;
+  } else if (solver == "cg") {
+    fo.solver = FastSolverOptions::kCG;
+  } else if (solver != "auto") {
+    o.fail("fast_solver", &o.raw().at("fast_solver"), "one of: auto, ldlt, cholmod, cg");
+  }
+  fo.cg_tol = o.number_or("fast_cg_tol", fo.cg_tol, kPositive);
+  return fo;
 }
 
 const ImplicitDynamics& implicit_dynamics(const Dynamics& dyn) {
@@ -265,6 +286,7 @@ ForceList implicit_forces(const Scene& scene, std::vector<std::string>* warnings
 ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
     : forces_(forces),
       opt_(read_newton(scene)),
+      fast_opt_(read_fast(scene)),
       file_(scene.file),
       inv_m_(scene.m.transpose().array().inverse()) {
   net_.m = scene.m;
@@ -299,6 +321,11 @@ ImplicitDynamics::~ImplicitDynamics() {
               << " implicit steps did not converge (most Newton solves in one step: "
               << max_iterations_ << ")\n";
   }
+}
+
+FastBackwardEuler& ImplicitDynamics::fast() const {
+  if (!fast_) fast_ = std::make_unique<FastBackwardEuler>(net_, fast_opt_);
+  return *fast_;
 }
 
 void ImplicitDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
@@ -412,6 +439,14 @@ void newton_adapter(const char* name, bool trapezoid, bool one_iteration, const 
                                    : backward_euler_step(d.network(), s.a0, h, opt, x, v);
   d.record(name, r);
 }
+void fast_adapter(const char* name, bool one_iteration, const Dynamics& dyn, double h, Mat2X& x,
+                  Mat2X& v, Scratch& s) {
+  const ImplicitDynamics& d = implicit_dynamics(dyn);
+  d.external_forces(x, v, s.a0);
+  NewtonOptions opt = d.options();
+  opt.one_iteration = one_iteration;
+  d.record(name, d.fast().step(s.a0, h, opt, x, v));
+}
 }  // namespace
 
 void backward_euler_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
@@ -422,6 +457,12 @@ void baraff_witkin_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Sc
 }
 void implicit_trapezoid_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
   newton_adapter("implicit-trapezoid", true, false, dyn, h, x, v, s);
+}
+void backward_euler_fast_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
+  fast_adapter("backward-euler-fast", false, dyn, h, x, v, s);
+}
+void baraff_witkin_fast_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
+  fast_adapter("baraff-witkin-fast", true, dyn, h, x, v, s);
 }
 
 void use_implicit(LabInfo& info) {
@@ -442,7 +483,8 @@ void use_implicit(LabInfo& info) {
       "  rope    {start, end, beads, m, k, damping, pin: start|ends|none}\n"
       "  cloth   {origin, rows, cols, spacing, m, k, k_shear, k_bend, damping,\n"
       "           pin: corners|top|none}\n"
-      "  newton  {solver: ldlt|cg, tol, max_iterations, definite, cg_tol}\n");
+      "  newton  {solver: ldlt|cg, tol, max_iterations, definite, cg_tol,\n"
+      "           fast_solver: auto|ldlt|cholmod|cg, fast_cg_tol}\n");
 }
 
 }  // namespace wb

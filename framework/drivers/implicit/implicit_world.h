@@ -5,9 +5,11 @@
 // "cloth" add particles, springs and pins (docs/scenes.md, ## implicit).
 #pragma once
 #include <optional>
+#include <memory>
 #include <string>
 
 #include "backward_euler.h"
+#include "fast_backward_euler.h"
 #include "forces_world.h"
 #include "spring_network.h"
 #include "wb/run.h"
@@ -87,6 +89,9 @@ class ImplicitDynamics : public Dynamics {
   ImplicitDynamics(const ForceList& forces, const Scene& scene);
   const SpringNetwork& network() const { return net_; }
   const NewtonOptions& options() const { return opt_; }
+  // The provided fast path (fast_backward_euler.h), made on its first use:
+  // its pattern analysis is paid once per run, by the runs that use it.
+  FastBackwardEuler& fast() const;
   const std::string& file() const { return file_; }
   // The forces other than springs and drag (N), at (x, v): one counted evaluation.
   void external_forces(const Mat2X& x, const Mat2X& v, Mat2X& f) const;
@@ -101,6 +106,8 @@ class ImplicitDynamics : public Dynamics {
   const ForceList& forces_;
   SpringNetwork net_;
   NewtonOptions opt_;
+  FastSolverOptions fast_opt_;
+  mutable std::unique_ptr<FastBackwardEuler> fast_;
   std::string file_;
   Eigen::Array<double, 1, Eigen::Dynamic> inv_m_;
   mutable bool external_only_ = false;
@@ -130,6 +137,9 @@ void backward_euler_1_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v,
 void backward_euler_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);
 void baraff_witkin_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);
 void implicit_trapezoid_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);
+// The same two steps by the provided fast path (FastBackwardEuler).
+void backward_euler_fast_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);
+void baraff_witkin_fast_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);
 
 // Sets make_world, expand_scene, scene_keys and the help paragraphs.
 void use_implicit(LabInfo& info);

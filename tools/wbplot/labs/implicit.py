@@ -14,7 +14,8 @@ from ..recipes import fmt_dt
 
 REPLACES_GENERIC = True
 
-IMPLICIT = ("backward-euler", "baraff-witkin", "implicit-trapezoid", "backward-euler-1")
+IMPLICIT = ("backward-euler", "baraff-witkin", "implicit-trapezoid", "backward-euler-1",
+            "backward-euler-fast", "baraff-witkin-fast")
 
 # The step matrix of each method on x' = v, v' = -x (omega = 1) at step size h.
 METHODS = ["explicit-euler", "symplectic-euler", "midpoint", "trapezoid", "rk4",
@@ -77,6 +78,12 @@ def plot_amplification(out, marks=(), title=None):
 
 
 def add_commands(sub):
+    c = sub.add_parser("implicit-cost",
+                       help="cost per simulated second and energy lost against k/m, from the "
+                            "cost-per-second.csv tools/report writes (implicit lab)")
+    c.add_argument("csv", metavar="COST.csv")
+    c.add_argument("-o", "--out", required=True, metavar="FIG.png")
+    c.add_argument("--title")
     s = sub.add_parser("amplification",
                        help="amplitude factor per step on an undamped spring against h*omega, "
                             "for the explicit and implicit methods (implicit lab)")
@@ -86,6 +93,9 @@ def add_commands(sub):
 
 
 def run(args):
+    if args.command == "implicit-cost":
+        plot_cost(args.csv, args.out, title=args.title)
+        return True
     if args.command != "amplification":
         return False
     from ..common import parse_list
@@ -181,7 +191,9 @@ def scene_figures(ctx):
         if ctx.plot(a):
             ctx.figure(fig, f"Total energy against time of the implicit integrators alone on "
                        f"{name} at dt = {dt} s (the explicit ones are in the next figure: "
-                       "their blow-ups would flatten these curves).", a)
+                       "their blow-ups would flatten these curves). backward-euler-fast and "
+                       "baraff-witkin-fast take the same steps as backward-euler and "
+                       "baraff-witkin by the provided fast path: their curves lie on top.", a)
     if files:
         fig = ctx.path(f"{stem}-energy-compare.png")
         a = ["energy"] + files + ["--labels", ",".join(labels), "-o", fig, "--title",
@@ -193,6 +205,9 @@ def scene_figures(ctx):
                        "finite, |E| past 1000 times its initial scale, or most Newton solves "
                        "failed).",
                        a)
+
+    if stem == COST_SCENE:
+        cost_figure(ctx)
 
     # The stability picture, with the scene's h*omega, and a sweep of the one-spring scene.
     if hw is None:
@@ -221,8 +236,258 @@ def scene_figures(ctx):
         ctx.figure(prefix + "-convergence.png",
                    f"Convergence on {name}: final position error against dt, log-log; the "
                    "legend gives each integrator's measured order. On this linear spring "
-                   "backward-euler and baraff-witkin take identical steps (one curve; "
-                   "backward-euler-1 too, not drawn), as do midpoint and trapezoid. An x on "
+                   "backward-euler and baraff-witkin take identical steps, and so do their "
+                   "-fast versions (one curve; backward-euler-1 too, not drawn), as do "
+                   "midpoint and trapezoid. An x on "
                    "the top edge is a run that diverged.", a)
         ctx.figure(prefix + "-energy-error.png",
                    f"Largest relative energy error over the run against dt on {name}.", a)
+
+
+# ----------------------------------------------------------------------------
+# What it costs: cost per simulated second against k/m (handouts/implicit.md,
+# "What it costs"). A quick run: a rope generated at each stiffness, semi-implicit
+# Euler at its largest stable step (searched), backward Euler at one frame.
+
+COST_CSV = "cost-per-second.csv"
+COST_SCENE = "stiff-rope"  # the scene whose report section gets the figure
+COST_COLUMNS = ["km", "km_value", "method", "dt", "steps", "wall_s", "cost", "vs_se", "status",
+                "energy_lost", "n"]
+COST_METHODS = ["symplectic-euler", "baraff-witkin-fast", "backward-euler-fast", "baraff-witkin"]
+COST_FRAME = 1.0 / 60.0
+COST_KM = [1e2, 1e3, 1e4, 1e5, 1e6, 1e7]
+COST_BEADS = 1000  # the report's rope: large enough that a step is not all overhead
+
+
+def cost_scene(beads, km, t_end, cloth=False):
+    """A rope of `beads` beads of 10 g (or a side x side cloth) with k = km * m, pinned, under
+    gravity: the stiff-rope scene at another size and stiffness."""
+    m = 0.01
+    doc = {"name": f"cost-{'cloth' if cloth else 'rope'}", "dt": COST_FRAME, "t_end": t_end,
+           "forces": [{"type": "gravity", "g": [0.0, -9.81]}]}
+    if cloth:
+        side = int(round(math.sqrt(beads)))
+        doc["cloth"] = {"origin": [0.0, 0.0], "rows": side, "cols": side, "spacing": 0.05,
+                        "m": m, "k": km * m, "k_bend": 0.1 * km * m, "pin": "corners"}
+    else:
+        doc["rope"] = {"start": [0.0, 0.0], "end": [0.05 * (beads - 1), 0.0], "beads": beads,
+                       "m": m, "k": km * m, "pin": "start"}
+    return doc
+
+
+def _summary(stdout):
+    import json
+    lines = [s for s in stdout.splitlines() if s.strip()]
+    try:
+        s = json.loads(lines[-1]) if lines else None
+    except ValueError:
+        return None
+    return s if isinstance(s, dict) else None
+
+
+def _run(exe, scene, integrator, dt, t_end, repeats, log):
+    """The fastest of `repeats` runs (its summary), or the first failure."""
+    import subprocess
+    best = None
+    for _ in range(repeats):
+        argv = [exe, "--scene", scene, "--integrator", integrator, "--dt", repr(dt),
+                "--t-end", repr(t_end)]
+        if log:
+            log(" ".join(argv))
+        p = subprocess.run(argv, capture_output=True, text=True)
+        s = _summary(p.stdout)
+        if p.returncode != 0 or s is None:
+            raise RuntimeError(f"{' '.join(argv)}: exit status {p.returncode}: "
+                               + (p.stderr.strip().splitlines() or [""])[-1])
+        if s.get("status") != "ok":
+            return s
+        if best is None or s.get("wall_s", 0) < best.get("wall_s", 0):
+            best = s
+    return best
+
+
+COST_SEARCH_T = 5.0  # s: a step just above the limit may take seconds to blow up
+
+
+def _se_limit(exe, scene, km, mgl, log):
+    """Semi-implicit Euler's largest stable step (at most one frame): the largest of
+    c / sqrt(k/m), c from 1.1 down, whose run of COST_SEARCH_T seconds stays finite and
+    changes the energy by at most 1 % of M g L (an unstable step makes it grow without
+    bound; a stable one keeps it within a small fraction). On a free rope the whip of its
+    end makes later seconds need smaller steps still: this limit holds for the timed runs
+    (1 s), not for ever."""
+    for c in (1.1, 1.05, 1.0, 0.95, 0.9, 0.85, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2):
+        dt = min(COST_FRAME, c / math.sqrt(km))
+        s = _run(exe, scene, "symplectic-euler", dt, COST_SEARCH_T, 1, log)
+        e0, e1 = s.get("energy0"), s.get("energy")
+        if (s.get("status") == "ok" and isinstance(e0, (int, float))
+                and isinstance(e1, (int, float)) and abs(e1 - e0) <= 0.01 * mgl):
+            return dt
+    return None
+
+
+def cost_sweep(exe, out_dir, beads=1000, kms=COST_KM, t_end=1.0, repeats=3, cloth=False,
+               methods=COST_METHODS, log=None):
+    """Runs every method on the rope (or cloth) at each k/m; writes out_dir/COST_CSV (and
+    the generated scenes beside it); returns the rows."""
+    import json
+    import os
+    m = 0.01
+    rows = []
+    for km in kms:
+        label = f"{km:.0e}".replace("e+0", "e").replace("e+", "e")
+        scene = os.path.join(out_dir, f"cost-{'cloth' if cloth else 'rope'}-{label}.json")
+        with open(scene, "w", encoding="utf-8") as f:
+            json.dump(cost_scene(beads, km, t_end, cloth), f, indent=1)
+        n = beads if not cloth else int(round(math.sqrt(beads))) ** 2
+        length = 0.05 * ((beads - 1) if not cloth else (math.sqrt(n) - 1))
+        mgl = n * m * 9.81 * length
+        se_dt = _se_limit(exe, scene, km, mgl, log)
+        per = {}
+        for meth in methods:
+            dt = se_dt if meth == "symplectic-euler" else COST_FRAME
+            if dt is None:
+                continue
+            s = _run(exe, scene, meth, dt, t_end, repeats, log)
+            e0, e1 = s.get("energy0"), s.get("energy")
+            lost = (e0 - e1) / mgl if isinstance(e0, (int, float)) and isinstance(
+                e1, (int, float)) else math.nan
+            per[meth] = {"km": label, "km_value": km, "method": meth, "dt": dt,
+                         "steps": s.get("steps"), "wall_s": s.get("wall_s"),
+                         "cost": s.get("wall_s", math.nan) / t_end, "status": s.get("status"),
+                         "energy_lost": lost, "n": n}
+        se_cost = per.get("symplectic-euler", {}).get("cost", math.nan)
+        for r in per.values():
+            r["vs_se"] = r["cost"] / se_cost if se_cost and se_cost > 0 else math.nan
+            rows.append(r)
+    # Where each implicit method's cost crosses semi-implicit Euler's (log-log interpolation
+    # between the two stiffnesses around the sign change of log(vs_se)).
+    for meth in methods[1:]:
+        pts = [(r["km_value"], r["vs_se"]) for r in rows if r["method"] == meth
+               and r["status"] == "ok" and r["vs_se"] > 0]
+        cross = math.nan
+        for (k0, r0), (k1, r1) in zip(pts, pts[1:]):
+            if r0 > 1.0 >= r1:
+                t = math.log(r0) / (math.log(r0) - math.log(r1))
+                cross = math.exp(math.log(k0) + t * (math.log(k1) - math.log(k0)))
+                break
+        rows.append({"km": "crossover", "km_value": cross, "method": meth, "dt": COST_FRAME,
+                     "steps": "", "wall_s": "", "cost": "", "vs_se": "", "status": "",
+                     "energy_lost": "", "n": ""})
+    path = os.path.join(out_dir, COST_CSV)
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(",".join(COST_COLUMNS) + "\n")
+        for r in rows:
+            f.write(",".join(_cell(r.get(c, "")) for c in COST_COLUMNS) + "\n")
+    os.replace(tmp, path)
+    return rows
+
+
+def _cell(v):
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def plot_cost(path, out, title=None):
+    """Two panels from COST_CSV: cost per simulated second against k/m (the crossover
+    marked), and the energy each run lost (in units of M g L)."""
+    from ..common import InputError, integrator_style, new_figure, read_csv, save_figure
+    rows = read_csv(path, COST_COLUMNS, "cost-per-second CSV (tools/report writes it)")
+
+    def num(s):
+        try:
+            return float(s)
+        except ValueError:
+            return math.nan
+
+    methods = [m for m in COST_METHODS if any(r["method"] == m for r in rows)]
+    if not methods:
+        raise InputError(f"{path}: no rows of the methods {', '.join(COST_METHODS)}")
+    fig, (ax, bx) = new_figure(1, 2, figsize=(11, 5.2))
+    names = {"symplectic-euler": "semi-implicit Euler at its largest stable step",
+             "baraff-witkin-fast": "backward Euler, one solve (provided fast path), h = 1/60",
+             "backward-euler-fast": "backward Euler, Newton to tol (fast path), h = 1/60",
+             "baraff-witkin": "backward Euler, one solve (the lab's I3-I4), h = 1/60"}
+    for m in methods:
+        pts = [r for r in rows if r["method"] == m and r["km"] != "crossover"]
+        ok = [r for r in pts if r["status"] == "ok"]
+        colour, marker = integrator_style(m, methods)
+        style = "--" if m == "baraff-witkin" else "-"
+        ax.plot([num(r["km_value"]) for r in ok], [num(r["cost"]) for r in ok], style,
+                color=colour, marker=marker, label=names.get(m, m))
+        bad = [r for r in pts if r["status"] != "ok"]
+        if bad:  # never expected: shown, not hidden
+            ax.plot([num(r["km_value"]) for r in bad], [num(r["cost"]) for r in bad], "x",
+                    color=colour, ms=9, label=f"{m}: run {bad[0]['status']}")
+        lost = [(num(r["km_value"]), num(r["energy_lost"])) for r in ok]
+        bx.plot([k for k, _ in lost], [max(abs(e), 1e-12) for _, e in lost], style,
+                color=colour, marker=marker, label=m)
+    for r in rows:
+        if r["km"] == "crossover" and r["method"] == "baraff-witkin-fast":
+            k = num(r["km_value"])
+            if math.isfinite(k):
+                ax.axvline(k, color="0.3", ls=":", lw=1.0)
+                ax.annotate(f"crossover\nk/m ≈ {k:.2g} s⁻² ", (k, 0.03), xycoords=("data",
+                            "axes fraction"), ha="right", va="bottom", fontsize=8)
+    for a in (ax, bx):
+        a.set_xscale("log")
+        a.set_yscale("log")
+        a.set_xlabel("k/m (s⁻²) of every spring")
+    ax.set_ylabel("wall time per simulated second (s/s)")
+    ax.set_title(title or "Cost per simulated second (lower is cheaper)")
+    handles, labels = ax.get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=8, loc="lower center", ncol=2)
+    bx.set_ylabel("energy lost over the run / (M g L)")
+    lost = {m: [r["energy_lost"] for r in rows if r["method"] == m and r["km"] != "crossover"]
+            for m in methods if m != "symplectic-euler"}
+    same = len(lost) > 1 and all(
+        all(abs(num(a) - num(b)) <= 0.02 * abs(num(b)) for a, b in zip(v, next(iter(lost.values()))))
+        for v in lost.values())
+    bx.set_title("What each pays in accuracy: energy lost"
+                 + ("\n(the backward Euler curves coincide)" if same else ""))
+    bx.legend(fontsize=7.5, loc="lower left")
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
+    save_figure(fig, out)
+
+
+def cost_figure(ctx):
+    """The report's cost figure: cost_sweep on a rope of COST_BEADS, then plot_cost."""
+    try:
+        rows = cost_sweep(ctx.exe, ctx.out_dir, beads=COST_BEADS)
+    except (RuntimeError, OSError) as e:
+        ctx.fail(f"cost per simulated second: {e}")
+        return
+    ctx.table("Cost per simulated second (rope of %d beads, 1 s simulated; fastest of 3 runs)"
+              % COST_BEADS, _cost_table(rows))
+    fig = ctx.path("cost-per-second.png")
+    a = ["implicit-cost", ctx.path(COST_CSV), "-o", fig]
+    if ctx.plot(a):
+        ctx.figure(fig, f"Left: wall time per simulated second on a rope of {COST_BEADS} beads "
+                   "of 10 g, pinned at one end, for stiffnesses k/m from 1e2 to 1e7: "
+                   "semi-implicit Euler at its largest stable step (found by trying steps "
+                   "c/sqrt(k/m), at most 1/60 s), backward Euler at h = 1/60 s with one "
+                   "linear solve and with Newton to the default tolerance (the provided fast "
+                   "path), and the lab's own one-solve step (dashed). The dotted line marks "
+                   "where one solve becomes cheaper than the explicit method. Right: the "
+                   "energy each run lost in 1 s, in units of M g L (the rope's weight times "
+                   "its length): backward Euler pays for its large step in damping. "
+                   "Timings are the fastest of 3 runs on the machine that drew this report.",
+                   a)
+
+
+def _cost_table(rows):
+    out = ["| k/m | method | dt (s) | wall s per simulated s | / semi-implicit Euler | "
+           "energy lost / MgL |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        if r["km"] == "crossover":
+            out.append(f"| crossover | {r['method']} | | | 1 (k/m ≈ {_cell(r['km_value'])}) | |")
+        else:
+            out.append(f"| {r['km']} | {r['method']} | {_cell(r['dt'])} | {_cell(r['cost'])} | "
+                       f"{_cell(r['vs_se'])} | {_cell(r['energy_lost'])} |")
+    return "\n".join(out)
+
+
+# tools/claims makes this file itself when build/report has none (docs/report.md, Claims).
+CLAIM_FILES = {COST_CSV: lambda exe, out: cost_sweep(exe, out, beads=COST_BEADS)}

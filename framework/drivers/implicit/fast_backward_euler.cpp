@@ -1,0 +1,587 @@
+// The provided fast path of backward Euler (see fast_backward_euler.h).
+#include "fast_backward_euler.h"
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+#ifdef WB_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+#include "spring_derivatives.h"
+
+namespace wb {
+
+bool have_cholmod() {
+#ifdef WB_HAVE_CHOLMOD
+  return true;
+#else
+  return false;
+#endif
+}
+
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// auto chooses a direct solver when one factorisation costs at most this many
+// CG iterations (flops against flops). A CG solve on the stiff networks of the
+// lab takes tens to hundreds of iterations; a refactorisation also pays for its
+// triangular solves and its memory traffic, hence a budget below that.
+constexpr double kDirectBudget = 30.0;
+// Newton's later solves (not one_iteration) with CG: |r| <= this * |b|, so
+// that each iteration still gains three digits (inexact Newton).
+constexpr double kNewtonForcing = 1e-3;
+constexpr int kCgMaxIterations = 5000;  // a cap far above what a solve needs
+
+// Where a 2 x 2 block (p, q) of A sits in the value array: c0 is the entry
+// (2p, 2q) of column 2q (the next one is (2p + 1, 2q)), c1 the entry
+// (2p, 2q + 1) of column 2q + 1. -1: the block is not stored.
+struct BlockAt {
+  int c0 = -1, c1 = -1;
+};
+
+// val[block] += s * B
+inline void add_block(double* val, const BlockAt& at, const Mat2& B, double s) {
+  if (at.c0 < 0) return;
+  val[at.c0] += s * B(0, 0);
+  val[at.c0 + 1] += s * B(1, 0);
+  val[at.c1] += s * B(0, 1);
+  val[at.c1 + 1] += s * B(1, 1);
+}
+
+// The particle graph: row i lists, sorted and once each, the free particles
+// joined to free particle i by a spring (compressed rows, no diagonal).
+struct Graph {
+  std::vector<int> start, adj;
+  int n() const { return int(start.size()) - 1; }
+};
+
+// Column counts of the Cholesky factor of the graph's matrix, taken in the
+// order `place` (place[i]: particle i's position): the elimination-tree walk
+// of Eigen's SimplicialCholesky, one pass over the rows of L. Returns the sum
+// over columns of count^2, the factorisation's multiply-adds, and nnz_l.
+double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l) {
+  const int n = g.n();
+  const std::size_t size = std::size_t(n);
+  std::vector<int> old_of(size), parent(size, -1), tag(size, 0), count(size, 0);
+  for (int i = 0; i < n; ++i) old_of[std::size_t(place[std::size_t(i)])] = i;
+  for (int k = 0; k < n; ++k) {
+    tag[std::size_t(k)] = k;
+    const int o = old_of[std::size_t(k)];
+    for (int e = g.start[std::size_t(o)]; e < g.start[std::size_t(o) + 1]; ++e) {
+      for (int i = place[std::size_t(g.adj[std::size_t(e)])]; i < k && tag[std::size_t(i)] != k;
+           i = parent[std::size_t(i)]) {
+        if (parent[std::size_t(i)] == -1) parent[std::size_t(i)] = k;
+        ++count[std::size_t(i)];
+        tag[std::size_t(i)] = k;
+      }
+    }
+  }
+  double work = 0;
+  nnz_l = 0;
+  for (int c : count) {
+    work += double(c) * double(c);
+    nnz_l += c;
+  }
+  return work;
+}
+
+// Approximate minimum degree order of the graph (Eigen's AMDOrdering):
+// place[i] is particle i's position.
+std::vector<int> amd_order(const Graph& g) {
+  const int n = g.n();
+  std::vector<int> outer(std::size_t(n) + 1), inner;
+  inner.reserve(g.adj.size() + std::size_t(n));
+  for (int i = 0; i < n; ++i) {  // the graph plus the diagonal
+    outer[std::size_t(i)] = int(inner.size());
+    bool diag = false;
+    for (int e = g.start[std::size_t(i)]; e < g.start[std::size_t(i) + 1]; ++e) {
+      const int j = g.adj[std::size_t(e)];
+      if (!diag && j > i) {
+        inner.push_back(i);
+        diag = true;
+      }
+      inner.push_back(j);
+    }
+    if (!diag) inner.push_back(i);
+  }
+  outer[std::size_t(n)] = int(inner.size());
+  std::vector<double> ones(inner.size(), 1.0);
+  const SpMat G = Eigen::Map<const SpMat>(n, n, Eigen::Index(inner.size()), outer.data(),
+                                          inner.data(), ones.data());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> pinv;
+  Eigen::AMDOrdering<int> amd;
+  amd(G, pinv);
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p = pinv.inverse();
+  return std::vector<int>(p.indices().data(), p.indices().data() + n);
+}
+
+}  // namespace
+
+struct FastBackwardEuler::Impl {
+  const SpringNetwork& net;
+  FastSolverOptions fo;
+  std::string solver, reason;
+  long cg_iterations = 0, factorisations = 0;
+  bool direct = true;  // ldlt or cholmod: A in compressed form; cg: A by blocks
+
+  // Direct solvers: A, 2n x 2n, both triangles, its pattern fixed at the start.
+  // Its unknowns are numbered in the fill-reducing order found once (particle i's
+  // two are 2 at[i], 2 at[i] + 1): the factorisation then needs no permuted copy
+  // of A at each solve, and b and dv are permuted instead (2n numbers).
+  SpMat A;
+  std::vector<int> place;     // per particle: its place in A (identity for CG)
+  std::vector<BlockAt> diag;  // per particle: its diagonal block
+  std::vector<BlockAt> at;    // per spring: ii, jj, ij, ji (4 entries)
+  Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt;
+  bool ldlt_analysed = false;
+#ifdef WB_HAVE_CHOLMOD
+  Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> cholmod;
+#endif
+
+  // CG: A by its 2 x 2 blocks (symmetric: 3 numbers each), row by row. Every
+  // particle has a diagonal block; row i lists the off-diagonal blocks of the
+  // springs from i to another free particle (each such spring appears in both
+  // of its rows), so that the product A p gathers each row's sum in registers.
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dblk, dinv;  // per particle: (a00, a10, a11)
+  Eigen::Matrix<double, 4, Eigen::Dynamic> eblk;        // per row entry: -B (column-major)
+  std::vector<int> row_start, ent_j;  // row i: entries row_start[i] .. row_start[i + 1] - 1;
+                                      // ent_j: 2 j, j the entry's column particle
+  std::vector<int> ent_of;            // per spring: its entries in rows i and j (or -1)
+  Eigen::VectorXd r, z, p, q;         // CG's residual, preconditioned residual, direction, A p
+
+  Eigen::VectorXd b, dv, dv0, zero;  // right-hand side, solution, last step's first dv, 0
+  Mat2X rhs, w, y, xl;               // 2 x n work arrays (b is rhs's storage)
+
+  Impl(const SpringNetwork& n, const FastSolverOptions& o) : net(n), fo(o) {
+    choose_solver();
+    if (direct) {
+      build_pattern();
+      analyse();
+    } else {
+      build_blocks();
+    }
+    const Eigen::Index n2 = 2 * net.n();
+    b.resize(n2);
+    dv.setZero(n2);
+    dv0.setZero(n2);
+    zero.setZero(n2);
+    for (Mat2X* m : {&rhs, &w, &y, &xl}) m->resize(2, net.n());
+  }
+
+  Graph graph;  // the particle graph (free particles joined by a spring)
+
+  bool free_particle(Eigen::Index i) const { return i >= 0 && !net.is_pinned(i); }
+
+  void build_graph() {
+    const std::size_t n = std::size_t(net.n());
+    graph.start.assign(n + 1, 0);
+    for (const NetworkSpring& s : net.springs) {
+      if (!coupled(s)) continue;
+      ++graph.start[std::size_t(s.i) + 1];
+      ++graph.start[std::size_t(s.j) + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) graph.start[i + 1] += graph.start[i];
+    std::vector<int> fill(graph.start.begin(), graph.start.end() - 1);
+    graph.adj.resize(std::size_t(graph.start.back()));
+    for (const NetworkSpring& s : net.springs) {
+      if (!coupled(s)) continue;
+      graph.adj[std::size_t(fill[std::size_t(s.i)]++)] = int(s.j);
+      graph.adj[std::size_t(fill[std::size_t(s.j)]++)] = int(s.i);
+    }
+    // Sorted, each neighbour once (two springs between the same particles share blocks).
+    std::vector<int> start(n + 1, 0), adj;
+    adj.reserve(graph.adj.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      auto b = graph.adj.begin() + graph.start[i], e = graph.adj.begin() + graph.start[i + 1];
+      std::sort(b, e);
+      adj.insert(adj.end(), b, std::unique(b, e));
+      start[i + 1] = int(adj.size());
+    }
+    graph.start.swap(start);
+    graph.adj.swap(adj);
+  }
+  bool coupled(const NetworkSpring& s) const {
+    return free_particle(s.i) && free_particle(s.j) && s.i != s.j;
+  }
+
+  // The compressed pattern, once: every particle's diagonal block, and for each
+  // spring between two free particles its two off-diagonal blocks; then where
+  // each spring's blocks sit in the value array.
+  void build_pattern() {
+    // Column 2 p and 2 p + 1 (p = place[i]) hold rows 2 q, 2 q + 1 for q = p and
+    // the places of i's neighbours, sorted: the same rows in both columns.
+    const Eigen::Index n = net.n();
+    const std::size_t size = std::size_t(n);
+    std::vector<int> old_of(size);
+    for (Eigen::Index i = 0; i < n; ++i) old_of[std::size_t(place[std::size_t(i)])] = int(i);
+    std::vector<int> outer(std::size_t(2 * n) + 1, 0), inner;
+    inner.reserve(std::size_t(4 * n) + 4 * graph.adj.size());
+    std::vector<int> rows;  // the block rows of one column, in A's order
+    std::vector<std::vector<int>> rows_of(size);
+    for (Eigen::Index p = 0; p < n; ++p) {
+      const int i = old_of[std::size_t(p)];
+      rows.assign(1, int(p));
+      for (int e = graph.start[std::size_t(i)]; e < graph.start[std::size_t(i) + 1]; ++e)
+        rows.push_back(place[std::size_t(graph.adj[std::size_t(e)])]);
+      std::sort(rows.begin(), rows.end());
+      for (int c = 0; c < 2; ++c) {
+        outer[std::size_t(2 * p + c)] = int(inner.size());
+        for (int q : rows) {
+          inner.push_back(2 * q);
+          inner.push_back(2 * q + 1);
+        }
+      }
+      rows_of[std::size_t(p)] = rows;
+    }
+    outer[std::size_t(2 * n)] = int(inner.size());
+    A.resize(2 * n, 2 * n);
+    A.resizeNonZeros(Eigen::Index(inner.size()));
+    std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), A.innerIndexPtr());
+    std::fill(A.valuePtr(), A.valuePtr() + inner.size(), 0.0);
+    // Where block (i, j) sits: column 2 place[j], at the position of place[i].
+    auto at_of = [&](Eigen::Index i, Eigen::Index j) {
+      const int pi = place[std::size_t(i)], pj = place[std::size_t(j)];
+      const std::vector<int>& r = rows_of[std::size_t(pj)];
+      const int k = int(std::lower_bound(r.begin(), r.end(), pi) - r.begin());
+      return BlockAt{outer[std::size_t(2 * pj)] + 2 * k, outer[std::size_t(2 * pj + 1)] + 2 * k};
+    };
+    diag.resize(std::size_t(n));
+    for (Eigen::Index i = 0; i < n; ++i) diag[std::size_t(i)] = at_of(i, i);
+    at.assign(4 * net.springs.size(), BlockAt{});
+    for (std::size_t k = 0; k < net.springs.size(); ++k) {
+      const NetworkSpring& s = net.springs[k];
+      if (free_particle(s.i)) at[4 * k] = at_of(s.i, s.i);
+      if (free_particle(s.j)) at[4 * k + 1] = at_of(s.j, s.j);
+      if (coupled(s)) {
+        at[4 * k + 2] = at_of(s.i, s.j);
+        at[4 * k + 3] = at_of(s.j, s.i);
+      }
+    }
+  }
+
+  void build_blocks() {
+    const Eigen::Index n = net.n();
+    row_start.assign(std::size_t(n) + 1, 0);
+    for (const NetworkSpring& s : net.springs) {
+      if (!coupled(s)) continue;
+      ++row_start[std::size_t(s.i) + 1];
+      ++row_start[std::size_t(s.j) + 1];
+    }
+    for (std::size_t i = 0; i < std::size_t(n); ++i) row_start[i + 1] += row_start[i];
+    std::vector<int> fill(row_start.begin(), row_start.end() - 1);
+    ent_j.resize(std::size_t(row_start.back()));
+    ent_of.assign(2 * net.springs.size(), -1);
+    for (std::size_t k = 0; k < net.springs.size(); ++k) {
+      const NetworkSpring& s = net.springs[k];
+      if (!coupled(s)) continue;
+      const int ei = fill[std::size_t(s.i)]++, ej = fill[std::size_t(s.j)]++;
+      ent_j[std::size_t(ei)] = 2 * int(s.j);  // where x_j starts in a 2n vector
+      ent_j[std::size_t(ej)] = 2 * int(s.i);
+      ent_of[2 * k] = ei;
+      ent_of[2 * k + 1] = ej;
+    }
+    dblk.resize(3, n);
+    dinv.resize(3, n);
+    eblk.resize(4, Eigen::Index(ent_j.size()));
+    for (Eigen::VectorXd* v : {&r, &z, &p, &q}) v->resize(2 * n);
+  }
+
+  void choose_solver() {
+    const Eigen::Index n = net.n();
+    // The factorisation's work, estimated on the particle graph (a scalar
+    // entry there is a 2 x 2 block of A: 8 times the multiply-adds), against
+    // one CG iteration: the product (a 2 x 2 block per particle and two per
+    // coupling) and five vector operations.
+    build_graph();
+    const double couplings = 0.5 * double(graph.adj.size());
+    // The generator's order first (a rope's chain has no fill in it), else AMD.
+    place.resize(std::size_t(n));
+    for (Eigen::Index i = 0; i < n; ++i) place[std::size_t(i)] = int(i);
+    double nnz_l = 0;
+    double factor = 8.0 * factor_work(graph, place, nnz_l);
+    if (nnz_l > couplings) {
+      place = amd_order(graph);
+      factor = 8.0 * factor_work(graph, place, nnz_l);
+    }
+    const double iteration = 8.0 * double(n) + 16.0 * couplings + 20.0 * double(n);
+    const double ratio = factor / std::max(1.0, iteration);
+    FastSolverOptions::Solver s = fo.solver;
+    if (s == FastSolverOptions::kAuto) {
+      s = ratio <= kDirectBudget ? FastSolverOptions::kLDLT : FastSolverOptions::kCG;
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "auto: a factorisation costs %.3g CG iterations (budget %g): %s", ratio,
+                    kDirectBudget, ratio <= kDirectBudget ? "direct" : "conjugate gradients");
+      reason = buf;
+    } else {
+      reason = "chosen in the scene (newton.fast_solver)";
+    }
+    if (s == FastSolverOptions::kCholmod && !have_cholmod()) {
+      s = FastSolverOptions::kLDLT;
+      reason += "; this build has no CHOLMOD (WB_CHOLMOD): ldlt instead";
+    }
+    direct = s != FastSolverOptions::kCG;
+    if (!direct || s == FastSolverOptions::kCholmod) {  // CHOLMOD orders A itself
+      for (Eigen::Index i = 0; i < n; ++i) place[std::size_t(i)] = int(i);
+    }
+    solver = s == FastSolverOptions::kCG        ? "cg"
+             : s == FastSolverOptions::kCholmod ? "cholmod"
+                                                : "ldlt";
+  }
+
+  // The direct solver's analysis of the pattern (ordering, elimination tree,
+  // the factor's structure): once, here; each solve refactorises numerically.
+  void analyse() {
+#ifdef WB_HAVE_CHOLMOD
+    if (solver == "cholmod") cholmod.analyzePattern(A);
+#endif
+    if (solver == "ldlt") analyse_ldlt();
+  }
+  void analyse_ldlt() {
+    ldlt.analyzePattern(A);
+    ldlt_analysed = true;
+  }
+
+  // Adds B to particle i's diagonal block (CG storage).
+  void add_diag(Eigen::Index i, const Mat2& B) {
+    dblk(0, i) += B(0, 0);
+    dblk(1, i) += B(1, 0);
+    dblk(2, i) += B(1, 1);
+  }
+
+  // A and b linearised at (xl, vl), the formulas of assemble_system.h, written
+  // straight into A's values (or blocks).
+  void assemble(const Mat2X& x0, const Mat2X& v0, const Mat2X& xl_, const Mat2X& vl,
+                const Mat2X& f_ext, double h, bool definite) {
+    double* val = direct ? A.valuePtr() : nullptr;
+    if (direct) std::fill(val, val + A.nonZeros(), 0.0);
+    const Eigen::Index n = net.n();
+    // Mass and drag, and the right-hand side's terms that need no spring.
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double d = net.is_pinned(i) ? net.m[i] : net.m[i] + h * net.drag;
+      if (direct) {
+        val[diag[std::size_t(i)].c0] = d;
+        val[diag[std::size_t(i)].c1 + 1] = d;
+      } else {
+        dblk.col(i) << d, 0.0, d;
+      }
+    }
+    w = x0 + h * vl - xl_;  // where the positions are, minus where K is taken
+    rhs = (v0 - vl) * net.m.asDiagonal();
+    rhs += h * (f_ext - net.drag * vl);
+    // Springs: force and the blocks of -h D - h^2 K.
+    Vec2 f;
+    Mat2 K, D;
+    for (std::size_t k = 0; k < net.springs.size(); ++k) {
+      const NetworkSpring& s = net.springs[k];
+      const bool anchored = s.j < 0;
+      const Vec2 xj = anchored ? s.anchor : Vec2(xl_.col(s.j));
+      const Vec2 vj = anchored ? Vec2::Zero() : Vec2(vl.col(s.j));
+      spring_derivatives(xl_.col(s.i), xj, vl.col(s.i), vj, s.k, s.rest, s.kd, definite, f, K, D);
+      const Mat2 B = -h * D - h * h * K;
+      const Vec2 dw = anchored ? Vec2(w.col(s.i)) : Vec2(w.col(s.i) - w.col(s.j));
+      const Vec2 fi = f + K * dw;
+      rhs.col(s.i) += h * fi;
+      if (!anchored) rhs.col(s.j) -= h * fi;
+      if (direct) {
+        add_block(val, at[4 * k], B, 1.0);
+        add_block(val, at[4 * k + 1], B, 1.0);
+        add_block(val, at[4 * k + 2], B, -1.0);
+        add_block(val, at[4 * k + 3], B, -1.0);
+      } else {
+        if (free_particle(s.i)) add_diag(s.i, B);
+        if (free_particle(s.j)) add_diag(s.j, B);
+        if (ent_of[2 * k] >= 0) {
+          eblk.col(ent_of[2 * k]) = -Eigen::Map<const Eigen::Vector4d>(B.data());
+          eblk.col(ent_of[2 * k + 1]) = eblk.col(ent_of[2 * k]);
+        }
+      }
+    }
+    // Pinned particles: dv = 0.
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (net.is_pinned(i)) rhs.col(i).setZero();
+    for (Eigen::Index i = 0; i < n; ++i) b.segment<2>(2 * place[std::size_t(i)]) = rhs.col(i);
+  }
+
+  // out = A in, row by row from the blocks (each a 2 x 2 product on two-double
+  // packets). Returns in . out (= in^T A in).
+  double product(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {
+    const Eigen::Index n = net.n();
+    const double* E = eblk.data();
+    const double* x = in.data();
+    const int* J = ent_j.data();
+    double quad = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Map<const Vec2> xi(x + 2 * i);
+      Vec2 yi(dblk(0, i) * xi[0] + dblk(1, i) * xi[1], dblk(1, i) * xi[0] + dblk(2, i) * xi[1]);
+      for (int e = row_start[std::size_t(i)]; e < row_start[std::size_t(i) + 1]; ++e)
+        yi.noalias() += Eigen::Map<const Mat2>(E + 4 * e) * Eigen::Map<const Vec2>(x + J[e]);
+      out.segment<2>(2 * i) = yi;
+      quad += xi.dot(yi);
+    }
+    return quad;
+  }
+
+  // Preconditioned conjugate gradients on A dv = b from `start`, until
+  // |b - A dv| <= abs_tol (kCgMaxIterations: a failure). The preconditioner is
+  // the inverse of each particle's 2 x 2 diagonal block (block Jacobi): a
+  // spring acts along its direction, and the block sees that direction where a
+  // scalar (Jacobi) preconditioner would see only x and y. One iteration is
+  // two passes over the vectors besides the product.
+  bool solve_cg(const Eigen::VectorXd& start, double abs_tol) {
+    const Eigen::Index n = net.n();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = dblk(0, i), c = dblk(1, i), d = dblk(2, i), det = a * d - c * c;
+      if (det > 0.0) {
+        dinv.col(i) << d / det, -c / det, a / det;
+      } else {
+        dinv.col(i) << 1.0, 0.0, 1.0;  // never for A = M - h D - h^2 K with definite blocks
+      }
+    }
+    // r = b - A dv, z = P r (P the preconditioner), p = z.
+    dv = start;
+    product(dv, q);
+    double rz = 0, rr = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double r0 = b[2 * i] - q[2 * i], r1 = b[2 * i + 1] - q[2 * i + 1];
+      const double z0 = dinv(0, i) * r0 + dinv(1, i) * r1, z1 = dinv(1, i) * r0 + dinv(2, i) * r1;
+      r[2 * i] = r0;
+      r[2 * i + 1] = r1;
+      p[2 * i] = z0;
+      p[2 * i + 1] = z1;
+      rz += r0 * z0 + r1 * z1;
+      rr += r0 * r0 + r1 * r1;
+    }
+    const double tol2 = abs_tol * abs_tol;
+    for (int it = 0; it < kCgMaxIterations && rr > tol2; ++it) {
+      const double pq = product(p, q);
+      if (!(pq > 0.0)) return false;  // A not positive definite along p
+      const double alpha = rz / pq;
+      // dv += alpha p, r -= alpha q, z = P r, and the new r.z and r.r, in one pass.
+      double rz_new = 0;
+      rr = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        dv[2 * i] += alpha * p[2 * i];
+        dv[2 * i + 1] += alpha * p[2 * i + 1];
+        const double r0 = r[2 * i] - alpha * q[2 * i], r1 = r[2 * i + 1] - alpha * q[2 * i + 1];
+        const double z0 = dinv(0, i) * r0 + dinv(1, i) * r1;
+        const double z1 = dinv(1, i) * r0 + dinv(2, i) * r1;
+        r[2 * i] = r0;
+        r[2 * i + 1] = r1;
+        z[2 * i] = z0;
+        z[2 * i + 1] = z1;
+        rz_new += r0 * z0 + r1 * z1;
+        rr += r0 * r0 + r1 * r1;
+      }
+      p = z + (rz_new / rz) * p;
+      rz = rz_new;
+      ++cg_iterations;
+    }
+    return rr <= tol2;
+  }
+
+  bool solve_ldlt() {
+    if (!ldlt_analysed) analyse_ldlt();  // cholmod's fallback, the first time
+    ldlt.factorize(A);
+    ++factorisations;
+    if (ldlt.info() != Eigen::Success) return false;
+    dv = ldlt.solve(b);
+    return ldlt.info() == Eigen::Success;
+  }
+
+  // A dv = b; start: CG's starting point; abs_tol: CG's bound on |A dv - b|.
+  bool solve(const Eigen::VectorXd& start, double abs_tol) {
+    bool ok = false;
+    if (!direct) {
+      ok = solve_cg(start, abs_tol);
+#ifdef WB_HAVE_CHOLMOD
+    } else if (solver == "cholmod") {
+      cholmod.factorize(A);
+      ++factorisations;
+      if (cholmod.info() == Eigen::Success) {
+        dv = cholmod.solve(b);
+        ok = cholmod.info() == Eigen::Success;
+      } else {
+        ok = solve_ldlt();  // not positive definite (definite: false): LDLT still works
+      }
+#endif
+    } else {
+      ok = solve_ldlt();
+    }
+    return ok && dv.allFinite();
+  }
+
+  // y += dv, dv in A's order.
+  void add_dv(Eigen::Map<Eigen::VectorXd>& yv) const {
+    for (Eigen::Index i = 0; i < net.n(); ++i)
+      yv.segment<2>(2 * i) += dv.segment<2>(2 * place[std::size_t(i)]);
+  }
+
+  NewtonReport step(const Mat2X& f_ext, double h, const NewtonOptions& opt, Mat2X& x, Mat2X& v) {
+    NewtonReport rep;
+    const Eigen::Index n = net.n();
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (net.is_pinned(i)) v.col(i).setZero();
+    y = v;
+    Eigen::Map<Eigen::VectorXd> yv(y.data(), 2 * n);
+
+    // First solve, linearised at the start (Baraff and Witkin). CG starts from
+    // the last step's first dv: in a smooth motion dv changes little from one
+    // step to the next.
+    assemble(x, v, x, v, f_ext, h, opt.definite);
+    rep.scale = (v * net.m.asDiagonal()).norm() + b.norm() + h * f_ext.norm();
+    if (!solve(dv0, fo.cg_tol * rep.scale)) {
+      rep.solver_failed = true;
+    } else {
+      dv0 = dv;
+      add_dv(yv);
+      rep.iterations = 1;
+    }
+    if (opt.one_iteration) {
+      // Not measured: it would cost one more assembly.
+      rep.residual = std::nan("");
+      rep.converged = !rep.solver_failed;
+    }
+
+    // Newton iterations on the residual G(y) = -b at (x + h y, y).
+    while (!rep.solver_failed && !opt.one_iteration) {
+      xl = x + h * y;
+      assemble(x, v, xl, y, f_ext, h, opt.definite);
+      rep.residual = b.norm();
+      rep.converged = rep.residual <= opt.tol * rep.scale;
+      if (rep.converged || rep.iterations >= opt.max_iterations) break;
+      if (!solve(zero, std::max(kNewtonForcing * rep.residual, 0.1 * opt.tol * rep.scale))) {
+        rep.solver_failed = true;
+        break;
+      }
+      add_dv(yv);
+      ++rep.iterations;
+    }
+    if (rep.solver_failed && rep.iterations == 0) rep.residual = std::nan("");
+
+    x += h * y;
+    v = y;
+    return rep;
+  }
+};
+
+FastBackwardEuler::FastBackwardEuler(const SpringNetwork& net, const FastSolverOptions& fo)
+    : impl_(std::make_unique<Impl>(net, fo)) {}
+FastBackwardEuler::~FastBackwardEuler() = default;
+
+NewtonReport FastBackwardEuler::step(const Mat2X& f_ext, double h, const NewtonOptions& opt,
+                                     Mat2X& x, Mat2X& v) {
+  return impl_->step(f_ext, h, opt, x, v);
+}
+const std::string& FastBackwardEuler::solver() const { return impl_->solver; }
+const std::string& FastBackwardEuler::reason() const { return impl_->reason; }
+long FastBackwardEuler::cg_iterations() const { return impl_->cg_iterations; }
+long FastBackwardEuler::factorisations() const { return impl_->factorisations; }
+
+}  // namespace wb
