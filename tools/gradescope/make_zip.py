@@ -17,7 +17,8 @@ import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ENTRIES = ["CMakeLists.txt", "CMakePresets.json", "cmake", "framework", "labs", "scenes",
-           "tests/common", "tools/grade", "tools/setup", "tools/gradescope/sandbox.c"]
+           "tests/common", "tools/grade", "tools/grader", "tools/setup",
+           "tools/gradescope/sandbox.c"]
 AT_ROOT = ["tools/gradescope/setup.sh", "tools/gradescope/run_autograder"]
 DATE = (2020, 1, 1, 0, 0, 0)  # fixed: the same tree gives the same zip
 
