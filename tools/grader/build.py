@@ -10,6 +10,7 @@ import json
 import os
 import re
 import secrets
+import shlex
 import shutil
 import tempfile
 import threading
@@ -21,10 +22,14 @@ from .common import (CACHE_VERSION, COMPILE_TAIL, FORBIDDEN_NAME_CHARS, LAB_BUDG
 from .procs import kill_all, run_capped
 from .project import digest, pristine_files, student_files
 from .results import write_atomic
-from .sandbox import Sandbox
+from .procs import signal_name
+from .sandbox import BUILD_ADDRESS_SPACE, BUILD_CPU, BUILD_FSIZE, BUILD_UID, Sandbox
 from .screen import Refused, Screen
 from .submission import _is_dir
-from .project import known_labs
+from .project import known_labs, lab_deps
+from .stubs import lab_headers
+from .stubs import parse as parse_header
+from .symbols import check_objects
 from .worker import WORKER_DIR, run_test, worker_files
 
 # ------------------------------------------------------------- scratch build
@@ -207,9 +212,29 @@ class Grader:
             except FileNotFoundError:
                 pass
         t0 = time.monotonic()
-        rc, out = run_capped(["cmake", "--build", self.build, "--target", f"{lab}-tests",
-                              f"{lab}-worker", "-j", str(self.jobs)], common.BUILD_TIMEOUT,
-                             256 * 1024, keep_tail=True)
+        cmd = [shutil.which("cmake") or "cmake", "--build", self.build, "--target", f"{lab}-tests",
+               f"{lab}-worker", "-j",
+               str(self.jobs)]
+        wrapped = self.sandbox.build_command(cmd, self.build)
+        if wrapped is None:  # no launcher: the limits through prlimit when present
+            if shutil.which("prlimit"):
+                cmd = ["prlimit", f"--as={BUILD_ADDRESS_SPACE}", f"--fsize={BUILD_FSIZE}",
+                       f"--cpu={BUILD_CPU}", "--core=0", "--"] + cmd
+            rc, out = run_capped(cmd, common.BUILD_TIMEOUT, 256 * 1024, keep_tail=True)
+        else:
+            if "user" in self.sandbox.layers:  # the build user owns the build folder only
+                for d, dirs, names in os.walk(self.build):
+                    for e in dirs + names + ([] if d != self.build else ["."]):
+                        os.lchown(os.path.join(d, e), BUILD_UID, BUILD_UID)
+            run = self.sandbox.start(cmd, self.build, stdout_cap=256 * 1024,
+                                     stderr_cap=64 * 1024, wrapped=wrapped, keep_tail=True)
+            status, _, err = run.finish(common.BUILD_TIMEOUT)
+            out = run.report.text() + ("\n" + err if err.strip() else "")
+            rc = None if status[0] == "timeout" else (status[1] if status[0] == "exit" else -1)
+            if status[0] == "signal":
+                out += f"\nthe build was killed ({signal_name(status[1])}): a limit reached?"
+            if status[0] == "error":
+                raise Defect(f"the sandbox could not start the build: {status[1]}")
         self.say(f"grade: built {lab}-tests in {time.monotonic() - t0:.1f} s")
         out = out.replace(self.src + "/", "").replace(self.build + "/", "")
         if rc is None:
@@ -317,19 +342,46 @@ class Grader:
         write_atomic(os.path.join(self.root, "screened.json"),
                      json.dumps({"accepted": accepted, "mac": self._mac(self._screen_context + body)}))
 
-    def screen_lab(self, lab, files):
-        """The first refusal among a lab's submitted files, or "" (see Screen)."""
+    def check_objects(self, lab):
+        """The first problem with the lab's compiled student objects, or "" (symbols.py)."""
+        headers = [h for l in [lab] + lab_deps(self.repo, lab) for h in lab_headers(self.repo, l)]
+        wb = os.path.join(self.repo, "framework", "include", "wb")
+        headers += [os.path.join(wb, f) for f in sorted(os.listdir(wb)) if f.endswith(".h")]
+        api = [f[2] for h in lab_headers(self.repo, lab) for f in parse_header(h).functions]
+        return check_objects(os.path.join(self.build, "CMakeFiles", f"{lab}_student.dir"), api,
+                             headers)
+
+    def compile_commands(self):
+        """{absolute source path: compiler command as a list} of the configured build."""
+        try:
+            with open(os.path.join(self.build, "compile_commands.json"), encoding="utf-8") as f:
+                entries = json.load(f)
+        except (OSError, ValueError) as e:
+            raise Defect(f"the scratch build has no compile_commands.json: {e}")
+        out = {}
+        for e in entries:
+            path = os.path.normpath(os.path.join(e.get("directory", ""), e["file"]))
+            out[path] = e.get("arguments") or shlex.split(e["command"])
+        return out
+
+    def screen_lab(self, lab, files, commands=None):
+        """The first refusal among a lab's submitted files, or "" (see Screen). With the
+        build's commands, each file is written into the scratch copy and preprocessed there
+        with its own compile command (a refused one is then put back by sync())."""
         if not self.screen:
             return ""
-        keys = {name: hashlib.sha256(f"{lab}\0{name}\0".encode() + files[name]).hexdigest()
-                for name in files}
+        commands = commands or {}
+        paths = {n: os.path.join(self.src, "labs", lab, n) for n in files}
+        keys = {name: hashlib.sha256(f"{lab}\0{name}\0{commands.get(paths[name])}\0".encode()
+                                     + files[name]).hexdigest() for name in files}
         todo = [name for name in sorted(files) if keys[name] not in self._screened]
         if todo:
-            screen = Screen(self.repo, lab)
+            screen = Screen(self.src if commands else self.repo, lab)  # the headers built
 
             def check(name):
                 try:
-                    screen.check(name, files[name])
+                    cmd = commands.get(paths[name])
+                    screen.check(name, files[name], (paths[name], cmd) if cmd else None)
                     return ""
                 except Refused as e:
                     return str(e)
@@ -352,11 +404,15 @@ class Grader:
             self._load_screened(grader_digest() + digest(pristine))
         files = dict(pristine)
         refusals = dict(refused or {})
+        # The screening preprocesses each file with the build's own command: configure first.
+        self.sync(files)
+        self.configure(labs)
+        commands = self.compile_commands() if self.screen else {}
         for lab in labs:
             allowed = set(student_files(self.repo, lab))
             mine = {n: d for n, d in overlays.get(lab, {}).items() if n in allowed}
             if lab not in refusals:
-                refusals[lab] = self.screen_lab(lab, mine)
+                refusals[lab] = self.screen_lab(lab, mine, commands)
             if refusals[lab]:
                 continue  # a refused lab keeps its skeleton and is not built
             for name, data in mine.items():  # anything else stays pristine, whatever it is
@@ -369,7 +425,9 @@ class Grader:
                 reports[lab] = LabReport(lab, [], refused=refusals[lab])
                 continue
             ok, out = self.build_lab(lab)
-            reports[lab] = LabReport(lab, [], compile_error="" if ok else out)
+            why = self.check_objects(lab) if ok else ""
+            reports[lab] = LabReport(lab, [], compile_error="" if ok else out,
+                                     refused=f"after compiling: {why}" if why else "")
         jobs = [(lab, t) for lab in labs if reports[lab].gradable for t in lists[lab]]
         runnable, workers = {}, {}
         for lab in labs:
@@ -423,7 +481,7 @@ class Grader:
                 raise Defect(f"the test binary of {lab} changed while grading")
             for t in lists[lab]:
                 if rep.refused:
-                    rep.results.append(TestResult(t, 0, "failed", "refused by the screening: " +
+                    rep.results.append(TestResult(t, 0, "failed", "refused: " +
                                                   short(rep.refused, 60),
                                                   "A submitted file was refused before building, "
                                                   "so the lab scores 0:\n" + rep.refused))

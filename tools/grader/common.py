@@ -79,8 +79,25 @@ class LabReport:
     def max_score(self):
         return sum(r.test.points for r in self.results)
 
+_UNSAFE = re.compile(r"[^\x20-\x7e\n\t\u00a0-\u00ff\u0370-\u03ff\u2190-\u22ff]")
+
+
+def printable(s, keep_newlines=True):
+    """Text from a test or a submission made safe to print: control characters (escape
+    sequences, carriage returns) and look-alike letters outside Latin-1, Greek and the math
+    symbols become \\xNN / \\uNNNN, so nothing can draw fake lines or fake names."""
+    s = _UNSAFE.sub(lambda m: f"\\x{ord(m.group()):02x}" if ord(m.group()) < 256
+                    else f"\\u{ord(m.group()):04x}", s)
+    return s if keep_newlines else s.replace("\n", "\\n").replace("\t", "\\t")
+
+
+def capped(s, cap):
+    """s cut to `cap` characters, saying how many were left out."""
+    return s if len(s) <= cap else s[:cap] + f"\n[... {len(s) - cap} more characters not shown]"
+
+
 def short(s, width=REASON_WIDTH):
-    s = " ".join(s.split())
+    s = printable(" ".join(s.split()), keep_newlines=False)
     return s if len(s) <= width else s[:width - 3] + "..."
 
 

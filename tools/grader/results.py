@@ -1,9 +1,32 @@
 """The table and Gradescope's results.json, written last and atomically.
 
 Trust: formats what the verdict decided; every text from a test is capped and escaped."""
+import json
 import os
 import sys
 import tempfile
+
+from .common import RESULTS_CAP, printable
+
+# The hint hook: a function hints_for(lab, failed_test_names, all_test_names) -> [str] (the
+# hint module, tools/grader/hints.py when present) adds its lines under a lab's rows in the
+# table and to the output of each failed test in results.json. None: no hints.
+try:
+    from .hints import hints_for as HINTS_FOR
+except ImportError:
+    HINTS_FOR = None
+
+
+def lab_hints(lab, rep):
+    """The hint lines for one lab's failures (never more than 5, each one line, printable)."""
+    failed = [r.test.name for r in rep.results if r.status == "failed"]
+    if HINTS_FOR is None or not failed or not rep.gradable:
+        return []
+    try:
+        hints = HINTS_FOR(lab, failed, [r.test.name for r in rep.results]) or []
+    except Exception as e:  # a broken hint never changes a score
+        return [f"(no hints: the hint module failed: {type(e).__name__})"]
+    return [printable(" ".join(str(h).split()), keep_newlines=False)[:300] for h in hints[:5]]
 
 # ---------------------------------------------------------------- reporting
 
@@ -26,9 +49,9 @@ def print_table(reports, notes, out=sys.stdout):
     name_w = min(80, max([4] + [len(r.test.name) for r in results]))
     for lab, rep in reports.items():
         for n in notes.get(lab, []):
-            print(f"{lab}: note: {n}", file=out)
+            print(f"{lab}: note: {printable(n, keep_newlines=False)}", file=out)
         if rep.refused:
-            print(f"{lab}: REFUSED: {rep.refused}", file=out)
+            print(f"{lab}: REFUSED: {printable(rep.refused)}", file=out)
     print(f"{'lab':<{lab_w}}  {'points':>7}  {'status':<6}  {'test':<{name_w}}  reason", file=out)
     for r in results:
         pts = f"{r.score}/{r.test.points}"
@@ -36,7 +59,10 @@ def print_table(reports, notes, out=sys.stdout):
               file=out)
     print(file=out)
     for lab, rep in reports.items():
-        extra = (" (refused by the screening: every test scores 0)" if rep.refused else
+        for h in lab_hints(lab, rep):
+            print(f"{lab}: hint: {h}", file=out)
+    for lab, rep in reports.items():
+        extra = (" (refused: every test scores 0)" if rep.refused else
                  " (does not compile: every test scores 0)" if rep.compile_error else "")
         print(f"{lab}: {rep.score}/{rep.max_score}{extra}", file=out)
     total = sum(rep.score for rep in reports.values())
@@ -51,13 +77,13 @@ def summary(reports, notes, layers=""):
     lines = []
     for lab, rep in reports.items():
         failed = sum(1 for r in rep.results if r.status == "failed")
-        state = ("refused by the screening: every test scores 0" if rep.refused else
+        state = ("refused: every test scores 0" if rep.refused else
                  "does not compile: every test scores 0" if rep.compile_error else
                  f"{len(rep.results) - failed} of {len(rep.results)} tests passed")
         lines.append(f"{lab}: {rep.score}/{rep.max_score} ({state})")
         if rep.refused:
-            lines.append("  refused: " + rep.refused.replace("\n", "\n    "))
-        lines += [f"  note: {n}" for n in notes.get(lab, [])]
+            lines.append("  refused: " + printable(rep.refused).replace("\n", "\n    "))
+        lines += [f"  note: {printable(n, keep_newlines=False)}" for n in notes.get(lab, [])]
     lines.append("Each test ran in its own process with a time limit; open a failed test "
                  "below for what was expected and what came out.")
     if layers:
@@ -66,18 +92,30 @@ def summary(reports, notes, layers=""):
 
 
 def results_json(reports, notes, layers="", layer_data=None):
+    """Gradescope's results.json as a dict; its JSON text is at most RESULTS_CAP bytes (each
+    test's output is already capped; if they still add up to more, each is cut further)."""
     tests = []
-    for rep in reports.values():
+    for lab, rep in reports.items():
+        hints = "".join(f"\nhint: {h}" for h in lab_hints(lab, rep))
         for r in rep.results:
+            out = r.output if r.status == "failed" else (r.output or "passed")
+            if hints and r.status == "failed":
+                out = out.rstrip() + "\n" + hints
             tests.append({"name": f"{r.test.lab}: {r.test.name}", "score": r.score,
-                          "max_score": r.test.points, "status": r.status,
-                          "output": r.output if r.status == "failed" else (r.output or "passed"),
+                          "max_score": r.test.points, "status": r.status, "output": out,
                           "visibility": "visible"})
-    return {"score": sum(rep.score for rep in reports.values()),
+    data = {"score": sum(rep.score for rep in reports.values()),
             "output": summary(reports, notes, layers), "output_format": "text",
             "test_output_format": "text", "test_name_format": "text",
             "visibility": "visible", "stdout_visibility": "hidden", "tests": tests,
             "extra_data": {"defences": layer_data or {}}}
+    size = len(json.dumps(data, indent=2).encode("utf-8"))
+    if size > RESULTS_CAP and tests:
+        each = max(256, (RESULTS_CAP - 64 * 1024) // (2 * len(tests)))
+        for t in tests:
+            if len(t["output"]) > each:
+                t["output"] = t["output"][:each] + "\n[... cut: results.json is capped]"
+    return data
 
 
 def write_atomic(path, text):

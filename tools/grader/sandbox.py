@@ -16,6 +16,10 @@ from .procs import _Capture, _close_unless_busy, _finish, _start
 
 SANDBOX_SOURCE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "gradescope",
                               "sandbox.c")
+BUILD_UID = 60999  # the build (compiler, assembler, linker) runs as this user when root
+BUILD_ADDRESS_SPACE = 4 * 1024 * 1024 * 1024  # RLIMIT_AS of each compiler process
+BUILD_FSIZE = 512 * 1024 * 1024  # largest file a build may write (the precompiled headers: 100 MB)
+BUILD_CPU = 900  # s, RLIMIT_CPU of each build process
 TEST_UID_BASE = 61000  # tests run as user 61000 + k (k cycles over 1000 values), never root
 LAYER_TEXT = {
     "seccomp": "seccomp filter: no processes, threads, exec, signals to others, sockets; "
@@ -117,8 +121,24 @@ class Sandbox:
                   for l, why in self.missing.items()]
         return "\n".join(lines)
 
+    def build_command(self, cmd, cwd):
+        """The launcher's layers for a build (the compiler, assembler and linker): limits
+        (BUILD_* in common.py), and when root another user (BUILD_UID, which owns only the
+        build folder) in its own PID and network namespaces; no seccomp (compilers start
+        processes). None without a launcher."""
+        if self.launcher is None:
+            return None
+        f = []
+        if "namespaces" in self.layers:
+            f.append("--ns")
+        if "user" in self.layers:
+            f += ["--uid", str(BUILD_UID)]
+        return [self.launcher] + f + ["--as", str(BUILD_ADDRESS_SPACE), "--fsize", str(BUILD_FSIZE),
+                                      "--cpu", str(BUILD_CPU), "--nofile", "1024", "--cwd", cwd,
+                                      "--"] + cmd
+
     def start(self, cmd, cwd, pass_fds=(), env=None, stdout_cap=REPORT_CAP + 1,
-              stderr_cap=OUTPUT_CAP):
+              stderr_cap=OUTPUT_CAP, wrapped=None, keep_tail=False):
         """Starts one process in the sandbox (its standard output and error captured, capped,
         read in linear time); `pass_fds` are inherited, `env` is one "NAME=VALUE" added to
         its clean environment. Returns a Running; Running.finish() waits for it."""
@@ -138,15 +158,19 @@ class Sandbox:
         else:
             status_r, status_w = os.pipe()
             os.set_inheritable(status_w, True)
-            full = [self.launcher, "--status-fd", str(status_w)] + self.flags(self.next_uid()) + [
-                "--as", str(TEST_ADDRESS_SPACE), "--fsize", str(REPORT_FSIZE), "--cpu",
-                str(TEST_CPU), "--cwd", cwd] + (["--env", env] if env else []) + ["--"] + cmd
+            if wrapped:  # a prepared launcher command (build_command)
+                full = [wrapped[0], "--status-fd", str(status_w)] + wrapped[1:]
+            else:
+                full = [self.launcher, "--status-fd", str(status_w)] + \
+                    self.flags(self.next_uid()) + [
+                    "--as", str(TEST_ADDRESS_SPACE), "--fsize", str(REPORT_FSIZE), "--cpu",
+                    str(TEST_CPU), "--cwd", cwd] + (["--env", env] if env else []) + ["--"] + cmd
             try:
                 proc = _start(full, subprocess.PIPE, subprocess.PIPE, cwd=cwd,
                               pass_fds=(status_w,) + tuple(pass_fds))
             finally:
                 os.close(status_w)
-        return Running(proc, status_r, stdout_cap, stderr_cap)
+        return Running(proc, status_r, stdout_cap, stderr_cap, keep_tail)
 
     def run(self, cmd, timeout, cwd):
         """Runs one process. Returns (status, stdout bytes or None if over the cap, stderr
@@ -157,10 +181,10 @@ class Sandbox:
 class Running:
     """One sandboxed process under way."""
 
-    def __init__(self, proc, status_r, stdout_cap, stderr_cap):
+    def __init__(self, proc, status_r, stdout_cap, stderr_cap, keep_tail=False):
         self.proc, self.status_r, self.cap = proc, status_r, stdout_cap - 1
-        self.report = _Capture(proc.stdout, stdout_cap)
-        self.output = _Capture(proc.stderr, stderr_cap)
+        self.report = _Capture(proc.stdout, stdout_cap, keep_tail)
+        self.output = _Capture(proc.stderr, stderr_cap, keep_tail)
         self.report.start()
         self.output.start()
 

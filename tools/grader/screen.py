@@ -2,6 +2,7 @@
 verdict never depends on it). The allow-list and deny-list live here, at the top.
 
 Trust: reads untrusted text; runs the preprocessor on it (never the code)."""
+import itertools
 import os
 import re
 import tempfile
@@ -81,57 +82,132 @@ SCREEN_TIMEOUT = 60  # s, preprocessing one student file
 SCREEN_OUTPUT_CAP = 64 * 1024 * 1024  # bytes of preprocessed text (a macro bomb is refused)
 
 _DENIED = {w: why for why, words in DENIED_IDENTIFIERS.items() for w in words.split()}
-_TOKEN = re.compile(r"""
-    (?P<raw>(?:u8|[uUL])?R"(?P<delim>[^()\\ \t\n]{0,16})\((?:.|\n)*?\)(?P=delim)")
-  | (?P<str>(?:u8|[uUL])?"(?:\\.|[^"\\\n])*")
-  | (?P<chr>(?:u8|[uUL])?'(?:\\.|[^'\\\n])*')
-  | (?P<num>\.?\d(?:[eEpP][+-]|[\w.'])*)
-  | (?P<id>[A-Za-z_$][\w$]*)
-  | (?P<other>\S)
-""", re.X)
-
-
 class Refused(Exception):
     """A student file that breaks a screening rule (the message names line and rule)."""
 
 
-def _strip_comments(text):
-    """The source with comments replaced by a space and backslash-newlines joined,
-    keeping line numbers (each removed newline is put back at the end of its line)."""
-    out, i, n, pending = [], 0, len(text), 0
+_ID_START = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_$")
+_ID_CHAR = _ID_START | set("0123456789")
+_RAW_PREFIXES = {"R", "u8R", "uR", "UR", "LR"}
+_STR_PREFIXES = {"u8", "u", "U", "L"}
+_TRIGRAPH = re.compile(r"\?\?[=/'()!<>-]")
+
+
+def tokenize(text, name="", first_line=1):
+    """The C++ tokens of `text` as (kind, text, line, at_line_start): kind is "id", "num",
+    "str" (also char literals), "raw" (raw string literals), "punct" or "hash" (a # or %:
+    that starts a logical line, i.e. a directive). Linear, one pass, as the compiler reads:
+    line splices, // comments continued by a splice, raw strings spanning lines (verbatim, no
+    splices or escapes), pp-numbers with digit separators (1'000), string and user-defined
+    literal prefixes and suffixes. Raises Refused on an unterminated comment or literal."""
+    out, i, n, line, start = [], 0, len(text), first_line, True
+
+    def splice(k):
+        """Index past any backslash-newlines at k (and the lines they join)."""
+        nonlocal line
+        while text.startswith("\\\n", k) or text.startswith("\\\r\n", k):
+            k += 2 if text[k + 1] == "\n" else 3
+            line += 1
+        return k
+
+    def quoted(k, q, what):
+        """Index past the literal whose opening quote is at k."""
+        nonlocal line
+        k += 1
+        while True:
+            k = splice(k)
+            if k >= n or text[k] == "\n":
+                raise Refused(f"{name}:{line}: an unterminated {what} literal")
+            if text[k] == "\\":
+                k = splice(k + 1) + 1
+            elif text[k] == q:
+                return k + 1
+            else:
+                k += 1
+
+    def suffix(k):  # a user-defined literal suffix
+        while k < n and text[k] in _ID_CHAR:
+            k += 1
+        return k
+
     while i < n:
         c = text[i]
-        if c == "\\" and text.startswith("\n", i + 1):
-            pending += 1
-            i += 2
+        if c == "\\" and (text.startswith("\\\n", i) or text.startswith("\\\r\n", i)):
+            i = splice(i)
             continue
         if c == "\n":
-            out.append("\n" * (1 + pending))
-            pending = 0
+            line, start, i = line + 1, True, i + 1
+            continue
+        if c in " \t\r\f\v":
             i += 1
             continue
+        tl = line
         if text.startswith("//", i):
             while i < n and text[i] != "\n":
-                i += 2 if text.startswith("\\\n", i) else 1
-            out.append(" ")
+                j = splice(i) if text[i] == "\\" else i
+                i = j if j != i else i + 1
             continue
         if text.startswith("/*", i):
             j = text.find("*/", i + 2)
-            j = n if j < 0 else j + 2
-            pending += text.count("\n", i, j)
-            out.append(" ")
-            i = j
+            if j < 0:
+                raise Refused(f"{name}:{line}: an unterminated /* comment")
+            line += text.count("\n", i, j)
+            i = j + 2
             continue
-        m = _TOKEN.match(text, i) if c in "\"'RuUL" else None
-        if m and (m.group("raw") or m.group("str") or m.group("chr")):
-            tok = m.group(0)
-            pending += tok.count("\n")
-            out.append(tok.replace("\n", " "))
-            i = m.end()
+        if c in _ID_START:
+            j = i
+            while j < n and (text[j] in _ID_CHAR or text.startswith("\\\n", j)):
+                j = splice(j) if text[j] == "\\" else j + 1
+            word = text[i:j].replace("\\\n", "").replace("\\\r\n", "")
+            if word in _RAW_PREFIXES and j < n and text[j] == '"':
+                m = re.match(r'"([^()\\\s]{0,16})\(', text[j:j + 20])
+                if not m:
+                    raise Refused(f"{name}:{line}: a raw string literal with a bad delimiter")
+                end = text.find(")" + m.group(1) + '"', j + m.end())
+                if end < 0:
+                    raise Refused(f"{name}:{line}: an unterminated raw string literal")
+                k = suffix(end + len(m.group(1)) + 2)
+                out.append(("raw", text[i:k], tl, start))
+                line += text.count("\n", i, k)
+                i, start = k, False
+                continue
+            if word in _STR_PREFIXES and j < n and text[j] in "\"'":
+                k = suffix(quoted(j, text[j], "string" if text[j] == '"' else "character"))
+                out.append(("str", text[i:k], tl, start))
+                i, start = k, False
+                continue
+            out.append(("id", word, tl, start))
+            i, start = j, False
             continue
-        out.append(c)
-        i += 1
-    return "".join(out)
+        if c.isdigit() or (c == "." and i + 1 < n and text[i + 1].isdigit()):
+            j = i + 1
+            while j < n:
+                if text[j] in _ID_CHAR or text[j] == ".":
+                    j += 1
+                elif text[j] == "\'" and j + 1 < n and text[j + 1] in _ID_CHAR:
+                    j += 2
+                elif text[j] in "+-" and text[j - 1] in "eEpP":
+                    j += 1
+                elif text.startswith("\\\n", j):
+                    j = splice(j)
+                else:
+                    break
+            out.append(("num", text[i:j], tl, start))
+            i, start = j, False
+            continue
+        if c in "\"'":
+            k = suffix(quoted(i, c, "string" if c == '"' else "character"))
+            out.append(("str", text[i:k], tl, start))
+            i, start = k, False
+            continue
+        if c == "#" or text.startswith("%:", i):
+            width = 1 if c == "#" else 2
+            out.append(("hash" if start else "punct", text[i:i + width], tl, start))
+            i, start = i + width, False
+            continue
+        out.append(("punct", c, tl, start))
+        i, start = i + 1, False
+    return out
 
 
 class Screen:
@@ -159,8 +235,11 @@ class Screen:
                                                re.fullmatch(r"[A-Za-z0-9_/]+", name) is not None
                                                and ".." not in name)
 
-    def check(self, name, data):
-        """Raises Refused naming the line and the rule; returns None if the file may be built."""
+    def check(self, name, data, build=None):
+        """Raises Refused naming the line and the rule; returns None if the file may be built.
+        build: (path, compiler command) of the file in the scratch build: the file is written
+        there and preprocessed with exactly the build's command (flags, dialect, the
+        force-included precompiled header), so that the text screened is the text compiled."""
         if b"\0" in data:
             raise Refused(f"{name}: not a text file (it contains NUL bytes)")
         try:
@@ -168,43 +247,58 @@ class Screen:
         except UnicodeDecodeError as e:
             raise Refused(f"{name}: not UTF-8 text (byte {e.start})")
         self._directives(name, text)
-        self._preprocessed(name, data)
+        self._preprocessed(name, data, build)
 
     def _directives(self, name, text):
-        for no, line in enumerate(_strip_comments(text).split("\n"), 1):
-            s = line.strip()
-            if s.startswith("%:"):
-                s = "#" + s[2:]
-            if not s.startswith("#"):
+        m = _TRIGRAPH.search(text)
+        if m:
+            raise Refused(f"{name}:{text.count(chr(10), 0, m.start()) + 1}: trigraphs (??x) are "
+                          "not allowed in student code")
+        toks = tokenize(text, name)
+        for kind, tok, no, _ in toks:
+            if kind == "raw" and re.search(r"\n\s*(#|%:)", tok):
+                raise Refused(f"{name}:{no}: a raw string literal with a line that starts with "
+                              "# (it would look like a directive to the screening)")
+        for k, (kind, tok, no, _) in enumerate(toks):
+            if kind != "hash":
                 continue
-            rest = s[1:].strip()
-            word = re.match(r"[A-Za-z_]*", rest).group(0)
-            if rest[:1].isdigit():
-                word = "line"
+            rest = list(itertools.takewhile(lambda t: not t[3], toks[k + 1:]))  # logical line
+            first = rest[0] if rest else ("id", "", no, False)
+            word = first[1] if first[0] == "id" else ("line" if first[0] == "num" else first[1])
             if word not in ALLOWED_DIRECTIVES:
-                raise Refused(f"{name}:{no}: #{word or rest[:10]} is not allowed in student code "
+                raise Refused(f"{name}:{no}: #{word[:10]} is not allowed in student code "
                               f"(allowed: {', '.join('#' + d for d in sorted(ALLOWED_DIRECTIVES) if d)})")
             if word == "include":
-                m = re.fullmatch(r'include\s*(?:"([^"]+)"|<([^>]+)>)', rest)
-                if not m:
+                args = rest[1:]
+                inc = None
+                if len(args) == 1 and args[0][0] == "str" and args[0][1].startswith('"'):
+                    inc = args[0][1][1:-1]
+                elif len(args) >= 3 and args[0][1] == "<" and args[-1][1] == ">":
+                    inc = "".join(t[1] for t in args[1:-1])
+                if not inc:
                     raise Refused(f"{name}:{no}: #include must name a header literally, as "
                                   '"header.h" or <header>')
-                inc = m.group(1) or m.group(2)
                 if not self.allowed_include(inc):
                     raise Refused(f"{name}:{no}: #include {inc}: not on the allow-list (the lab's "
                                   "headers, wb/*.h, <Eigen/...> and the numeric and container "
                                   "headers of the standard library, docs/grading.md)")
 
-    def _preprocessed(self, name, data):
+    def _preprocessed(self, name, data, build=None):
         with tempfile.TemporaryDirectory(prefix="wb-screen-") as tmp:
-            path = os.path.join(tmp, name)
-            with open(path, "wb") as f:
-                f.write(data)
-            cmd = ["g++", "-E", "-std=gnu++17", "-DNDEBUG"]  # as the Release build compiles it
-            for d in self.lab_dirs:
-                cmd += ["-I", d]
-            cmd += ["-I", os.path.join(self.repo, "framework", "include"), "-isystem", self.eigen,
-                    path]
+            if build:  # the build's own command, -c/-o replaced by -E
+                path, cmd = build
+                with open(path, "wb") as f:
+                    f.write(data)
+                cmd = preprocess_command(cmd, path)
+            else:  # no build folder yet: as the Release build compiles it
+                path = os.path.join(tmp, name)
+                with open(path, "wb") as f:
+                    f.write(data)
+                cmd = ["g++", "-E", "-std=c++17", "-O3", "-DNDEBUG"]
+                for d in self.lab_dirs:
+                    cmd += ["-I", d]
+                cmd += ["-I", os.path.join(self.repo, "framework", "include"), "-isystem",
+                        self.eigen, path]
             rc, out, err = run_collect(cmd, SCREEN_TIMEOUT, SCREEN_OUTPUT_CAP)
             if rc is None:
                 raise Refused(f"{name}: preprocessing took longer than {SCREEN_TIMEOUT} s")
@@ -212,30 +306,58 @@ class Screen:
                 raise Refused(f"{name}: preprocesses to more than "
                               f"{SCREEN_OUTPUT_CAP // (1024 * 1024)} MiB of text")
             if rc != 0:
-                msg = err.decode("utf-8", "replace").replace(tmp + "/", "").strip().splitlines()
-                raise Refused(f"{name}: the preprocessor refused it:\n" + "\n".join(msg[-20:]))
+                msg = err.decode("utf-8", "replace").replace(os.path.dirname(path) + "/", "")
+                raise Refused(f"{name}: the preprocessor refused it:\n" +
+                              "\n".join(msg.strip().splitlines()[-20:]))
             self._tokens(name, path, out.decode("utf-8", "replace"))
 
     def _tokens(self, name, path, text):
-        current, line, region = None, 0, []
+        """Checks the tokens that come from the student file itself in the preprocessed text.
+        The linemarkers (# N "file" flags) say where each line came from; a marker that
+        leaves the student file other than by entering an #include (flag 1), or comes back
+        to a file other than the one that included (flag 2), is a #line in disguise."""
+        stack, line, segments, seg, started = [], 0, [], None, False
         quoted = '"' + path + '"'
         for raw in text.split("\n"):
             m = re.match(r'^# (\d+) ("(?:\\.|[^"\\])*")((?: \d)*)\s*$', raw)
             if m:
                 target, flags = m.group(2), m.group(3).split()
-                if "1" in flags and current == quoted:
-                    self._direct_include(name, line - 1, target[1:-1])
-                current, line = target, int(m.group(1))
+                current = stack[-1] if stack else None
+                if "1" in flags:
+                    if current == quoted:
+                        self._direct_include(name, line - 1, target[1:-1])
+                    stack.append(target)
+                elif "2" in flags:
+                    if len(stack) < 2 or stack[-2] != target:
+                        raise Refused(f"{name}:{line}: the preprocessor's line markers do not "
+                                      "nest (a #line directive?)")
+                    stack.pop()
+                elif not stack:
+                    stack.append(target)
+                elif target != current:
+                    # GCC's prelude switches between the file, <built-in> and <command-line>
+                    # until the file's line 1; after that a switch is a #line directive.
+                    if started:
+                        raise Refused(f"{name}:{line}: a line marker switches files inside the "
+                                      "student file (a #line directive?)")
+                    stack[-1] = target
+                if len(stack) == 1 and stack[0] == quoted and int(m.group(1)) >= 1 and \
+                        not flags:
+                    started = True
+                line, seg = int(m.group(1)), None
                 continue
-            if current == quoted:
+            if stack and stack[-1] == quoted:
                 if raw.lstrip().startswith("#"):
                     raise Refused(f"{name}:{line}: #pragma is not allowed in student code")
-                region.append((line, raw))
+                if seg is None:
+                    seg = [line, []]
+                    segments.append(seg)
+                seg[1].append(raw)
+            else:
+                seg = None
             line += 1
-        for no, raw in region:
-            for m in _TOKEN.finditer(raw):
-                kind = m.lastgroup
-                tok = m.group(0)
+        for first, lines in segments:
+            for kind, tok, no, _ in tokenize("\n".join(lines), name, first):
                 if kind in ("raw", "str"):
                     for bad in DENIED_IN_STRINGS:
                         if bad in tok:
@@ -265,3 +387,21 @@ class Screen:
                           "allow-list")
 
 
+
+
+def preprocess_command(cmd, path):
+    """A compile command (compile_commands.json) turned into the same preprocessing: every
+    flag kept (dialect, optimisation, definitions, include paths, -include of the precompiled
+    header's text), dependency-file flags, -c and -o dropped, -E added."""
+    out, k = [], 0
+    while k < len(cmd):
+        a = cmd[k]
+        if a in ("-o", "-MF", "-MT", "-MQ"):
+            k += 2
+            continue
+        if a in ("-c", "-MD", "-MMD") or a == path:
+            k += 1
+            continue
+        out.append(a)
+        k += 1
+    return out + ["-E", path]

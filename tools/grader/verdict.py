@@ -6,14 +6,16 @@ import re
 import signal
 import xml.etree.ElementTree as ET
 
-from .common import Defect, OUTPUT_CAP, REPORT_CAP, TestResult, short
+from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, Defect, TestResult,
+                     capped, printable, short)
 from .procs import signal_name
 
 # -------------------------------------------------------------- the XML report
 
 def _text(el):
+    """One message of the report: printable, at most MESSAGE_CAP characters."""
     lines = [l.strip() for l in "".join(el.itertext()).strip().splitlines()]
-    return "\n".join(l for l in lines if l)
+    return printable(capped("\n".join(l for l in lines if l), MESSAGE_CAP))
 
 
 def read_report(data, name, nonce, strip):
@@ -134,10 +136,11 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
     if details:
         parts.append(details)
     if captured.strip():
-        parts.append("output of the test process:\n" + captured.rstrip())
+        parts.append("output of the test process:\n" + printable(captured.rstrip()))
     if worker_output.strip():
-        parts.append("output of the lab's code:\n" + worker_output.rstrip())
+        parts.append("output of the lab's code:\n" + printable(worker_output.rstrip()))
     return TestResult(test, test.points if passed else 0, "passed" if passed else "failed",
-                      "" if passed else short(reason), "\n\n".join(parts))
+                      "" if passed else short(reason),
+                      capped("\n\n".join(parts), TEST_OUTPUT_CAP))
 
 

@@ -1,7 +1,7 @@
 // wb-sandbox: runs one graded test process inside the layers tools/grade asks for.
 //
 //   wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] [--fsize B]
-//              [--cpu S] [--cwd DIR] [--env NAME=VALUE] -- PROGRAM ARGS...
+//              [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE] -- PROGRAM ARGS...
 //
 // Layers (each one is set up or the launcher fails with status 125 and says
 // why on the status descriptor: a layer asked for is never silently missing):
@@ -18,7 +18,7 @@
 //              select, alarm...), and files open read-only: every call
 //              that creates, writes, renames, removes or changes a file fails.
 //   rlimits    always: address space (--as), largest file (--fsize), CPU
-//              seconds (--cpu), no core files, 64 open files.
+//              seconds (--cpu), no core files, 64 open files (--nofile).
 // The test always gets a clean environment (PATH, LANG, HOME, and at most one --env).
 // The status descriptor receives one line when the test has ended:
 // "exit N", "signal N", or "error MESSAGE" (the launcher could not start it).
@@ -162,7 +162,7 @@ static void install_seccomp(const char* exec_path, char* const* exec_argv) {
 int main(int argc, char** argv) {
   int use_ns = 0, use_seccomp = 0;
   long uid = -1;
-  unsigned long long as = 0, fsize = 0, cpu = 0;
+  unsigned long long as = 0, fsize = 0, cpu = 0, nofile = 64;
   const char* cwd = NULL;
   char* extra_env = NULL;
   int i = 1;
@@ -185,6 +185,8 @@ int main(int argc, char** argv) {
       fsize = strtoull(argv[++i], NULL, 10);
     } else if (i + 1 < argc && !strcmp(a, "--cpu")) {
       cpu = strtoull(argv[++i], NULL, 10);
+    } else if (i + 1 < argc && !strcmp(a, "--nofile")) {
+      nofile = strtoull(argv[++i], NULL, 10);
     } else if (i + 1 < argc && !strcmp(a, "--cwd")) {
       cwd = argv[++i];
     } else if (i + 1 < argc && !strcmp(a, "--env") && strchr(argv[i + 1], '=')) {
@@ -196,7 +198,8 @@ int main(int argc, char** argv) {
   }
   if (i >= argc) {
     fprintf(stderr, "usage: wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] "
-                    "[--fsize B] [--cpu S] [--cwd DIR] [--env NAME=VALUE] -- PROGRAM ARGS...\n");
+                    "[--fsize B] [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE] -- "
+                    "PROGRAM ARGS...\n");
     return 125;
   }
   if (status_fd >= 0) fcntl(status_fd, F_SETFD, FD_CLOEXEC);
@@ -227,7 +230,7 @@ int main(int argc, char** argv) {
     if (fsize) limit(RLIMIT_FSIZE, fsize, "RLIMIT_FSIZE");
     if (cpu) limit(RLIMIT_CPU, cpu, "RLIMIT_CPU");
     limit(RLIMIT_CORE, 0, "RLIMIT_CORE");
-    limit(RLIMIT_NOFILE, 64, "RLIMIT_NOFILE");
+    limit(RLIMIT_NOFILE, nofile, "RLIMIT_NOFILE");
     if (cwd && chdir(cwd) != 0) fail("chdir");
     if (uid >= 0) {
       if (setgroups(0, NULL) != 0) fail("setgroups");
