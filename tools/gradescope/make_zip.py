@@ -5,7 +5,7 @@ The zip holds setup.sh and run_autograder at its root, and the pristine
 project the grader needs: CMakeLists.txt, CMakePresets.json, cmake/,
 framework/, labs/ (whole: a lab may link another lab's skeleton), scenes/,
 tests/common/ and tests/<LAB>/ (the grader grades the labs whose tests it
-has), tools/grade, tools/setup and the sandbox launcher's source. Never
+has), tools/grade and tools/grader/, tools/setup and the sandbox launcher's source. Never
 solutions/, tests/mutants/, other labs' tests or a build folder. Files are
 the checkout's tracked files (git ls-files) as they are in the work tree.
 """
