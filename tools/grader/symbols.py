@@ -12,6 +12,7 @@ import subprocess
 LIBRARY_NAMESPACES = {"std", "Eigen", "__gnu_cxx", "wb"}
 STRONG = set("TDBRGSCiu")  # global, non-weak definitions (nm -P type letters)
 WEAK = set("WV")
+COMPILER_SYMBOLS = ("DW.ref.",)  # what the compiler itself emits (exception personality)
 STARTUP_SECTIONS = re.compile(r"\s(\.init_array|\.ctors|\.preinit_array)\S*\s")
 
 
@@ -68,6 +69,8 @@ def check_objects(object_dir, api, header_paths):
             if len(parts) < 2:
                 continue
             sym, kind = parts[0], parts[1]
+            if sym.startswith(COMPILER_SYMBOLS):
+                continue
             first = first_component(sym)
             if kind in STRONG and first not in api:
                 return (f"{shown}: defines '{demangle(sym)}' with external linkage: only the "
