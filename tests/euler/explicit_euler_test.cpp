@@ -3,8 +3,8 @@
 // and what it implies in closed form; never from a run of the solution.
 #include <cmath>
 
-#include "euler_test_helpers.h"
 #include "euler_kernels.h"
+#include "euler_test_helpers.h"
 #include "explicit_euler.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its

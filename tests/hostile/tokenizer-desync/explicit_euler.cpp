@@ -1,4 +1,6 @@
 // Hostile: desynchronises a naive tokenizer to hide a #line directive.
+// The spacing is the attack:
+// clang-format off
 #include <cstdlib>
 
 #include "explicit_euler.h"

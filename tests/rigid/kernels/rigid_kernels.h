@@ -10,7 +10,8 @@
 // The tumbling motion of R4's long run: omega at time t (changes direction all the time, up
 // to ~0.04 rad per step of 1e-3 s).
 inline rigid::Vec3 tumble_omega(double t) {
-  return rigid::Vec3(30.0 * std::sin(t), 20.0 * std::cos(2.0 * t), 10.0 + 5.0 * std::sin(3.0 * t));
+  return rigid::Vec3(30.0 * std::sin(t), 20.0 * std::cos(2.0 * t),
+                     10.0 + 5.0 * std::sin(3.0 * t));
 }
 
 // n steps of integrate_position with b.omega = tumble_omega(k h) before step k.

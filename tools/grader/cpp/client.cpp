@@ -20,9 +20,8 @@ Session& session() {
 }
 
 [[noreturn]] void worker_gone(const char* name, const std::exception& e) {
-  throw std::runtime_error(std::string("the lab's code stopped answering during ") + name +
-                           " (" + e.what() +
-                           "): its process crashed, called exit() or hit a limit");
+  throw std::runtime_error(std::string("the lab's code stopped answering during ") + name + " (" +
+                           e.what() + "): its process crashed, called exit() or hit a limit");
 }
 
 template <class T>

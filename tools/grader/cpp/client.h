@@ -18,7 +18,7 @@ namespace wbrpc {
 
 struct Session {
   Channel ch;
-  std::vector<const wb::Dynamics*> dyn;                               // callbacks of the calls
+  std::vector<const wb::Dynamics*> dyn;                                // callbacks of the calls
   std::vector<const std::vector<std::unique_ptr<wb::Force>>*> forces;  // under way
   std::exception_ptr callback_error;  // the first exception a callback threw in this call
   int depth = 0;

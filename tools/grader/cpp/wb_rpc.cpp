@@ -2,8 +2,8 @@
 // process and the worker.
 #include "wb_rpc.h"
 
-#include <cerrno>
 #include <unistd.h>
+#include <cerrno>
 
 namespace wbrpc {
 

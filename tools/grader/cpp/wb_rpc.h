@@ -27,12 +27,12 @@ constexpr std::uint32_t kMaxMessage = 64u << 20;  // bytes: larger is a protocol
 constexpr std::size_t kMaxText = 2048;            // bytes of an error message kept
 
 enum Kind : std::int32_t {
-  kCall = 1,        // trusted -> worker: function id, arguments
-  kResult = 2,      // worker -> trusted: the outputs, then the return value
-  kError = 3,       // worker -> trusted: the lab's code threw (message)
-  kCallback = 4,    // worker -> trusted: a callback (dynamics, force) with its arguments
-  kCbResult = 5,    // trusted -> worker: the callback's outputs
-  kCbError = 6,     // trusted -> worker: the callback threw
+  kCall = 1,      // trusted -> worker: function id, arguments
+  kResult = 2,    // worker -> trusted: the outputs, then the return value
+  kError = 3,     // worker -> trusted: the lab's code threw (message)
+  kCallback = 4,  // worker -> trusted: a callback (dynamics, force) with its arguments
+  kCbResult = 5,  // trusted -> worker: the callback's outputs
+  kCbError = 6,   // trusted -> worker: the callback threw
 };
 
 struct ProtocolError : std::runtime_error {
@@ -134,11 +134,12 @@ inline void get(In& in, Eigen::SparseMatrix<double>& a) {
   // A malformed structure would make Eigen read out of bounds: check it first.
   if (outer[0] != 0 || outer[std::size_t(c)] != nnz) throw ProtocolError("bad sparse columns");
   for (std::int64_t k = 0; k < c; ++k)
-    if (outer[std::size_t(k)] > outer[std::size_t(k + 1)]) throw ProtocolError("bad sparse columns");
+    if (outer[std::size_t(k)] > outer[std::size_t(k + 1)])
+      throw ProtocolError("bad sparse columns");
   for (int i : inner)
     if (i < 0 || i >= r) throw ProtocolError("a sparse row index out of range");
   a = Eigen::Map<const Eigen::SparseMatrix<double>>(r, c, nnz, outer.data(), inner.data(),
-                                                     values.data());
+                                                    values.data());
 }
 
 // ---- strings, vectors, pairs
