@@ -77,6 +77,7 @@ class Grader:
                  lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET):
         self.repo, self.jobs, self.timeout, self.verbose = repo, max(1, jobs), timeout, verbose
         self.lab_budget, self.submission_budget = lab_budget, submission_budget
+        self._deadline = None
         self.started = time.monotonic()
         self._tmp = None
         if build_root is None:
@@ -204,6 +205,13 @@ class Grader:
     def worker(self, lab):
         return os.path.join(self.build, "bin", f"{lab}-worker")
 
+    def build_timeout(self):
+        """--build-timeout, or less when the submission's budget ends sooner (only while
+        grading: the pristine build of the test list has no budget)."""
+        if self._deadline is None:
+            return common.BUILD_TIMEOUT
+        return max(1.0, min(common.BUILD_TIMEOUT, self._deadline - time.monotonic()))
+
     def build_lab(self, lab):
         """Builds <lab>-tests; returns (ok, trimmed output)."""
         for old in (self.binary(lab), self.worker(lab)):
@@ -220,7 +228,7 @@ class Grader:
             if shutil.which("prlimit"):
                 cmd = ["prlimit", f"--as={BUILD_ADDRESS_SPACE}", f"--fsize={BUILD_FSIZE}",
                        f"--cpu={BUILD_CPU}", "--core=0", "--"] + cmd
-            rc, out = run_capped(cmd, common.BUILD_TIMEOUT, 256 * 1024, keep_tail=True)
+            rc, out = run_capped(cmd, self.build_timeout(), 256 * 1024, keep_tail=True)
         else:
             if "user" in self.sandbox.layers:  # the build user owns the build folder only
                 for d, dirs, names in os.walk(self.build):
@@ -228,7 +236,7 @@ class Grader:
                         os.lchown(os.path.join(d, e), BUILD_UID, BUILD_UID)
             run = self.sandbox.start(cmd, self.build, stdout_cap=256 * 1024,
                                      stderr_cap=64 * 1024, wrapped=wrapped, keep_tail=True)
-            status, _, err = run.finish(common.BUILD_TIMEOUT)
+            status, _, err = run.finish(self.build_timeout())
             out = run.report.text() + ("\n" + err if err.strip() else "")
             rc = None if status[0] == "timeout" else (status[1] if status[0] == "exit" else -1)
             if status[0] == "signal":
@@ -238,7 +246,8 @@ class Grader:
         self.say(f"grade: built {lab}-tests in {time.monotonic() - t0:.1f} s")
         out = out.replace(self.src + "/", "").replace(self.build + "/", "")
         if rc is None:
-            out += f"\nthe build took longer than {common.BUILD_TIMEOUT} s and was stopped"
+            out += (f"\nthe build took longer than {common.BUILD_TIMEOUT:g} s (or the submission's "
+                    "time budget ran out) and was stopped")
         lines = out.rstrip().splitlines()
         if len(lines) > COMPILE_TAIL:
             lines = [f"[... {len(lines) - COMPILE_TAIL} earlier lines not shown]"] + lines[-COMPILE_TAIL:]
@@ -396,10 +405,11 @@ class Grader:
         """overlays: {lab: {student file name: bytes}} (missing names keep the
         skeleton); refused: {lab: reason} of labs refused before screening (a
         file that is not a regular file). Returns {lab: LabReport}."""
-        self.started = time.monotonic()
+        self.started, self._deadline = time.monotonic(), None
         pristine = pristine_files(self.repo)
         pristine.update(worker_files(self.repo, known_labs(self.repo)))
         lists = self.test_lists(labs, pristine)
+        self._deadline = self.started + self.submission_budget
         if self.screen:
             self._load_screened(grader_digest() + digest(pristine))
         files = dict(pristine)
