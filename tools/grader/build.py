@@ -448,7 +448,7 @@ class Grader:
                     shutil.copyfile(built, tmp)
                     os.chmod(tmp, 0o755)
                     os.replace(tmp, table[lab])
-        stamps = {lab: file_stamp(path) for lab, path in runnable.items()}
+        stamps = {lab: (file_stamp(path), file_stamp(workers[lab])) for lab, path in runnable.items()}
         t0 = time.monotonic()
         # Time budgets (docs/grading.md): each lab's tests together, and the whole submission.
         budget_lock = threading.Lock()
@@ -456,8 +456,8 @@ class Grader:
         submission_end = self.started + self.submission_budget
 
         def one(lab, t):
-            if file_stamp(runnable[lab]) != stamps[lab]:
-                raise Defect(f"the test binary of {lab} changed while grading")
+            if (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
+                raise Defect(f"the test binary or the worker of {lab} changed while grading")
             with budget_lock:
                 left = min(self.lab_budget - used[lab], submission_end - time.monotonic())
             if left <= 0:
@@ -487,8 +487,8 @@ class Grader:
             self.say(f"grade: ran {len(jobs)} test processes in {time.monotonic() - t0:.1f} s")
         for lab in labs:
             rep = reports[lab]
-            if rep.gradable and file_stamp(runnable[lab]) != stamps[lab]:
-                raise Defect(f"the test binary of {lab} changed while grading")
+            if rep.gradable and (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
+                raise Defect(f"the test binary or the worker of {lab} changed while grading")
             for t in lists[lab]:
                 if rep.refused:
                     rep.results.append(TestResult(t, 0, "failed", "refused: " +
