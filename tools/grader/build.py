@@ -78,6 +78,7 @@ class Grader:
         self.repo, self.jobs, self.timeout, self.verbose = repo, max(1, jobs), timeout, verbose
         self.lab_budget, self.submission_budget = lab_budget, submission_budget
         self._deadline = None
+        self.build_isolation = "not built yet"
         self.started = time.monotonic()
         self._tmp = None
         if build_root is None:
@@ -223,14 +224,22 @@ class Grader:
         cmd = [shutil.which("cmake") or "cmake", "--build", self.build, "--target", f"{lab}-tests",
                f"{lab}-worker", "-j",
                str(self.jobs)]
-        wrapped = self.sandbox.build_command(cmd, self.build)
+        as_user = "user" in self.sandbox.layers and _world_traversable(self.build)
+        self.build_isolation = (
+            f"as user {BUILD_UID} (owns the build folder only), own PID and network namespaces, "
+            "limits (memory, file size, CPU time)" if as_user else
+            "limits (memory, file size, CPU time)" + (
+                ", own PID and network namespaces; NOT as another user: the build folder is not "
+                "reachable by other users (its parents must be o+x)"
+                if "user" in self.sandbox.layers else ""))
+        wrapped = self.sandbox.build_command(cmd, self.build, as_user)
         if wrapped is None:  # no launcher: the limits through prlimit when present
             if shutil.which("prlimit"):
                 cmd = ["prlimit", f"--as={BUILD_ADDRESS_SPACE}", f"--fsize={BUILD_FSIZE}",
                        f"--cpu={BUILD_CPU}", "--core=0", "--"] + cmd
             rc, out = run_capped(cmd, self.build_timeout(), 256 * 1024, keep_tail=True)
         else:
-            if "user" in self.sandbox.layers:  # the build user owns the build folder only
+            if as_user:  # the build user owns the build folder only
                 for d, dirs, names in os.walk(self.build):
                     for e in dirs + names + ([] if d != self.build else ["."]):
                         os.lchown(os.path.join(d, e), BUILD_UID, BUILD_UID)

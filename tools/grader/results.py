@@ -34,12 +34,14 @@ def layers_text(grader):
     """Which defences were active for this run (never one that was not)."""
     lines = ["screening: " + ("active (allow-listed headers, denied identifiers, regular files)"
                               if grader.screen else "OFF (--no-screen: for testing the sandbox)"),
-             "sandbox of each test process:", grader.sandbox.describe()]
+             "sandbox of each test process:", grader.sandbox.describe(),
+             "build (compiler, assembler, linker): " + grader.build_isolation]
     return "\n".join(lines)
 
 
 def layers_data(grader):
     return {"screening": bool(grader.screen), "sandbox": list(grader.sandbox.layers),
+            "build": grader.build_isolation,
             "sandbox_missing": dict(grader.sandbox.missing)}
 
 

@@ -121,7 +121,7 @@ class Sandbox:
                   for l, why in self.missing.items()]
         return "\n".join(lines)
 
-    def build_command(self, cmd, cwd):
+    def build_command(self, cmd, cwd, as_user=True):
         """The launcher's layers for a build (the compiler, assembler and linker): limits
         (BUILD_* in common.py), and when root another user (BUILD_UID, which owns only the
         build folder) in its own PID and network namespaces; no seccomp (compilers start
@@ -131,7 +131,7 @@ class Sandbox:
         f = []
         if "namespaces" in self.layers:
             f.append("--ns")
-        if "user" in self.layers:
+        if "user" in self.layers and as_user:
             f += ["--uid", str(BUILD_UID)]
         return [self.launcher] + f + ["--as", str(BUILD_ADDRESS_SPACE), "--fsize", str(BUILD_FSIZE),
                                       "--cpu", str(BUILD_CPU), "--nofile", "1024", "--cwd", cwd,
