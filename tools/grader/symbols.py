@@ -10,8 +10,8 @@ import re
 import subprocess
 
 LIBRARY_NAMESPACES = {"std", "Eigen", "__gnu_cxx", "wb"}
-STRONG = set("TDBRGSCiu")  # global, non-weak definitions (nm -P type letters)
-WEAK = set("WV")
+STRONG = set("TDBRGSCi")  # global, non-weak definitions (nm -P type letters)
+WEAK = set("WVu")  # weak, and unique (the static variables of inline functions)
 COMPILER_SYMBOLS = ("DW.ref.",)  # what the compiler itself emits (exception personality)
 STARTUP_SECTIONS = re.compile(r"\s(\.init_array|\.ctors|\.preinit_array)\S*\s")
 
