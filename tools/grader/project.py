@@ -2,6 +2,7 @@
 
 Trust: reads the checkout only (never the submission)."""
 import hashlib
+import itertools
 import os
 import re
 
@@ -80,9 +81,12 @@ def lab_deps(repo, lab):
             text = f.read()
     except OSError:
         return []
-    direct = {m.group(1): (m.group(2) or "").split()
-              for m in re.finditer(r"^\s*wb_lab\(\s*([A-Za-z0-9_-]+)(?:\s+DEPS\s+([^)]*))?\)",
-                                   text, re.M)}
+    direct = {}
+    for m in re.finditer(r"^\s*wb_lab\(\s*([A-Za-z0-9_-]+)([^)]*)\)", text, re.M):
+        words = m.group(2).split()
+        deps = words[words.index("DEPS") + 1:] if "DEPS" in words else []
+        # DEPS ends at the next keyword (TESTS_USE_GLUE, TEST_UNITS n, ...)
+        direct[m.group(1)] = list(itertools.takewhile(lambda w: not w.isupper(), deps))
     out, todo = [], list(direct.get(lab, []))
     while todo:
         d = todo.pop(0)
