@@ -78,7 +78,7 @@ class Grader:
         self.repo, self.jobs, self.timeout, self.verbose = repo, max(1, jobs), timeout, verbose
         self.lab_budget, self.submission_budget = lab_budget, submission_budget
         self._deadline = None
-        self.build_isolation = "not built yet"
+        self.build_isolation = "nothing built in this run (the build folder was up to date)"
         self.started = time.monotonic()
         self._tmp = None
         if build_root is None:

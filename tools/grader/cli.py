@@ -94,6 +94,7 @@ def main(argv):
     finally:
         grader.close()
     print_table(reports, notes)
+    layers = layers_text(grader)  # now with how the build ran
     print("\n" + layers)
     if args.verbose:
         for rep in reports.values():
