@@ -50,7 +50,8 @@ def parse_args(argv):
                    help="wall-clock time all of one lab's tests may take together, seconds "
                         f"(default {common.LAB_BUDGET}); tests not started by then score 0")
     p.add_argument("--budget", type=float, default=common.SUBMISSION_BUDGET, metavar="S",
-                   help="wall-clock time a whole submission may take, builds included, seconds "
+                   help="wall-clock time a whole submission may take, its builds included (not the "
+                        "one-time pristine build of the test list), seconds "
                         f"(default {common.SUBMISSION_BUDGET}); tests not started by then score 0")
     p.add_argument("--build-dir", metavar="DIR",
                    help="keep the scratch copy and build here to reuse across runs (default: a temporary folder)")
