@@ -287,8 +287,14 @@ class Screen:
         with tempfile.TemporaryDirectory(prefix="wb-screen-") as tmp:
             if build:  # the build's own command, -c/-o replaced by -E
                 path, cmd = build
-                with open(path, "wb") as f:
-                    f.write(data)
+                try:
+                    with open(path, "rb") as f:
+                        same = f.read() == data
+                except OSError:
+                    same = False
+                if not same:  # (rewriting it would make the build recompile it)
+                    with open(path, "wb") as f:
+                        f.write(data)
                 cmd = preprocess_command(cmd, path)
             else:  # no build folder yet: as the Release build compiles it
                 path = os.path.join(tmp, name)
