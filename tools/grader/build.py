@@ -242,7 +242,9 @@ class Grader:
             if as_user:  # the build user owns the build folder only
                 for d, dirs, names in os.walk(self.build):
                     for e in dirs + names + ([] if d != self.build else ["."]):
-                        os.lchown(os.path.join(d, e), BUILD_UID, BUILD_UID)
+                        p = os.path.join(d, e)
+                        if os.lstat(p).st_uid != BUILD_UID:  # what configure (root) wrote
+                            os.lchown(p, BUILD_UID, BUILD_UID)
             run = self.sandbox.start(cmd, self.build, stdout_cap=256 * 1024,
                                      stderr_cap=64 * 1024, wrapped=wrapped, keep_tail=True)
             status, _, err = run.finish(self.build_timeout())
