@@ -191,6 +191,41 @@ function(wb_lab_glue lab out)
   set(${out} ${target} PARENT_SCOPE)
 endfunction()
 
+# The grader's worker of one lab on one side (WB_WORKER_DIR holds tools/grader/cpp/ and the
+# files tools/grader/stubs.py generated from the lab's headers): <lab>_client, the stubs the
+# tests link, and the executable <lab>[-solution]-worker, the only one with the lab's code.
+function(wb_lab_worker lab side suffix)
+  set(dir ${WB_WORKER_DIR})
+  wb_lab_closure(${lab} labs)
+  set(include_dirs ${dir} ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels)
+  file(GLOB kernel_sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels/*.cpp)
+  foreach(l IN LISTS labs)
+    list(APPEND include_dirs ${CMAKE_SOURCE_DIR}/labs/${l})
+  endforeach()
+  if(NOT TARGET wb_rpc_client)
+    # Compiled once for every lab: the wire format, the client's runtime, the worker's loop.
+    add_library(wb_rpc_client OBJECT ${dir}/client.cpp ${dir}/wb_rpc.cpp)
+    add_library(wb_rpc_worker OBJECT ${dir}/worker_main.cpp ${dir}/wb_rpc.cpp)
+    foreach(t IN ITEMS wb_rpc_client wb_rpc_worker)
+      target_include_directories(${t} PRIVATE ${dir})
+      target_link_libraries(${t} PRIVATE wb_headers)
+      wb_use_pch(${t} LAB)
+    endforeach()
+  endif()
+  if(NOT TARGET ${lab}_client)
+    add_library(${lab}_client STATIC ${dir}/${lab}_client.cpp $<TARGET_OBJECTS:wb_rpc_client>)
+    target_include_directories(${lab}_client PRIVATE ${include_dirs})
+    target_link_libraries(${lab}_client PUBLIC wb_headers)
+    wb_use_pch(${lab}_client LAB)
+  endif()
+  set(worker ${lab}${suffix}-worker)
+  add_executable(${worker} ${dir}/${lab}_worker.cpp ${kernel_sources}
+                           $<TARGET_OBJECTS:wb_rpc_worker>)
+  target_include_directories(${worker} PRIVATE ${include_dirs})
+  target_link_libraries(${worker} PRIVATE ${lab}_${side} wb_headers)
+  wb_use_pch(${worker} LAB)
+endfunction()
+
 function(wb_add_lab lab side)
   wb_lab_library(${lab} ${side})
   wb_lab_glue(${lab} glue)
@@ -228,7 +263,8 @@ function(wb_add_lab lab side)
   if(NOT TARGET ${lab}_tests_obj)
     add_library(${lab}_tests_obj OBJECT ${test_sources})
     target_include_directories(${lab}_tests_obj PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
-                                                        ${CMAKE_SOURCE_DIR}/tests/${lab})
+                                                        ${CMAKE_SOURCE_DIR}/tests/${lab}
+                                                        ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels)
     # Not the glue unless asked for (TESTS_USE_GLUE): linking it would make the
     # tests wait for the glue and the run contract to be built.
     get_property(use_glue GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab})
@@ -273,12 +309,30 @@ function(wb_add_lab lab side)
     endforeach()
   endif()
   set(tests ${lab}${suffix}-tests)
-  add_executable(${tests} $<TARGET_OBJECTS:${lab}_tests_obj>)
+  # tests/<lab>/kernels/: the loops of long tests as functions (one call instead of millions
+  # through the grader's worker); they run beside the lab's code: in the tests here, in the
+  # worker in the grader's build.
+  file(GLOB kernel_sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels/*.cpp)
+  if(WB_WORKER_DIR)
+    add_executable(${tests} $<TARGET_OBJECTS:${lab}_tests_obj>)
+  else()
+    add_executable(${tests} $<TARGET_OBJECTS:${lab}_tests_obj> ${kernel_sources})
+    target_include_directories(${tests} PRIVATE ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels)
+    target_link_libraries(${tests} PRIVATE ${lab}_${side})
+  endif()
   get_property(use_glue GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab})
   if(use_glue)
     target_link_libraries(${tests} PRIVATE ${link_items} wb_run)
   endif()
-  target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+  if(WB_WORKER_DIR)
+    # The grader's build (tools/grader/worker.py, docs/grading.md "The worker"): the tests
+    # link generated stubs that call the lab's functions in a separate, sandboxed worker
+    # process (<lab>[-solution]-worker), so that no student code runs in the test process.
+    wb_lab_worker(${lab} ${side} "${suffix}")
+    target_link_libraries(${tests} PRIVATE ${lab}_client Catch2::Catch2WithMain)
+  else()
+    target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+  endif()
   catch_discover_tests(${tests}
     TEST_PREFIX "${side}/"
     EXTRA_ARGS -w NoTests

@@ -16,7 +16,10 @@
 
 #include "wb/types.h"
 
+// Every helper has internal linkage (the unnamed namespace): no other object linked into a
+// test binary can replace one (in the grader's build no student object is linked at all).
 namespace wbtest {
+namespace {
 
 // |a - b| <= abs_tol + rel_tol * max(|a|, |b|)
 inline bool near(double a, double b, double abs_tol, double rel_tol = 0.0) {
@@ -66,6 +69,7 @@ inline void require_finite(const wb::Mat2X& m, const std::string& what) {
   REQUIRE(m.allFinite());
 }
 
+}  // namespace
 }  // namespace wbtest
 
 // ---- Appended for the forces tests (random clusters, finite differences) ----
@@ -74,6 +78,7 @@ inline void require_finite(const wb::Mat2X& m, const std::string& what) {
 #include <random>
 
 namespace wbtest {
+namespace {
 
 // n points with coordinates uniform in [lo, hi), from a fixed seed: the same
 // numbers on every platform (mt19937_64 is fully specified, and the mapping to
@@ -107,4 +112,5 @@ inline wb::Mat2X minus_gradient(const std::function<double(const wb::Mat2X&)>& V
   return g;
 }
 
+}  // namespace
 }  // namespace wbtest

@@ -5,7 +5,8 @@ The zip holds setup.sh and run_autograder at its root, and the pristine
 project the grader needs: CMakeLists.txt, CMakePresets.json, cmake/,
 framework/, labs/ (whole: a lab may link another lab's skeleton), scenes/,
 tests/common/ and tests/<LAB>/ (the grader grades the labs whose tests it
-has), tools/grade, tools/setup and the sandbox launcher's source. Never
+has), tools/grade and tools/grader/, the hint matcher tools/wbgrade_hints.py with the
+lab's tests/mutants/<LAB>/signatures.json, tools/setup and the sandbox launcher's source. Never
 solutions/, tests/mutants/, other labs' tests or a build folder. Files are
 the checkout's tracked files (git ls-files) as they are in the work tree.
 """
@@ -17,7 +18,8 @@ import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ENTRIES = ["CMakeLists.txt", "CMakePresets.json", "cmake", "framework", "labs", "scenes",
-           "tests/common", "tools/grade", "tools/setup", "tools/gradescope/sandbox.c"]
+           "tests/common", "tools/grade", "tools/grader", "tools/setup", "tools/wbgrade_hints.py",
+           "tools/gradescope/sandbox.c"]
 AT_ROOT = ["tools/gradescope/setup.sh", "tools/gradescope/run_autograder"]
 DATE = (2020, 1, 1, 0, 0, 0)  # fixed: the same tree gives the same zip
 
@@ -43,7 +45,8 @@ def labs_with_tests(root):
 
 
 def wanted(rel, lab):
-    for e in ENTRIES + [f"tests/{lab}"]:
+    # The lab's tests, and its mistakes' failure signatures (the grader's hints), never the mutants.
+    for e in ENTRIES + [f"tests/{lab}", f"tests/mutants/{lab}/signatures.json"]:
         if rel == e or rel.startswith(e + "/"):
             return True
     return False

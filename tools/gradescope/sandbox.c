@@ -1,7 +1,7 @@
 // wb-sandbox: runs one graded test process inside the layers tools/grade asks for.
 //
 //   wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] [--fsize B]
-//              [--cpu S] [--cwd DIR] -- PROGRAM ARGS...
+//              [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE] -- PROGRAM ARGS...
 //
 // Layers (each one is set up or the launcher fails with status 125 and says
 // why on the status descriptor: a layer asked for is never silently missing):
@@ -14,11 +14,12 @@
 //   --seccomp  a seccomp filter (after no_new_privs): no fork, vfork, clone
 //              (so no threads and no children), no exec after the first, no
 //              signals except to itself, no ptrace, no sockets, no namespaces
-//              or mounts, no io_uring, and files open read-only: every call
+//              or mounts, no io_uring, no sleeping or timers (nanosleep, poll,
+//              select, alarm...), and files open read-only: every call
 //              that creates, writes, renames, removes or changes a file fails.
 //   rlimits    always: address space (--as), largest file (--fsize), CPU
-//              seconds (--cpu), no core files, 64 open files.
-// The test always gets a clean environment (PATH, LANG, HOME only).
+//              seconds (--cpu), no core files, 64 open files (--nofile).
+// The test always gets a clean environment (PATH, LANG, HOME, and at most one --env).
 // The status descriptor receives one line when the test has ended:
 // "exit N", "signal N", or "error MESSAGE" (the launcher could not start it).
 // It is closed (close-on-exec) in the test process itself.
@@ -108,6 +109,14 @@ static void install_seccomp(const char* exec_path, char* const* exec_argv) {
   for (size_t i = 0; i < sizeof no_processes / sizeof *no_processes; ++i)
     deny(ctx, no_processes[i], EPERM);
   deny(ctx, "clone3", ENOSYS);  // glibc then tries clone, refused above
+  // No sleeping: a test that idles would otherwise hold its time slot without using the CPU
+  // (waiting on a pipe, which the worker does between calls, is still allowed).
+  const char* no_sleeping[] = {"nanosleep", "clock_nanosleep", "pause", "alarm", "setitimer",
+                               "timer_create", "timerfd_create", "select", "pselect6", "poll",
+                               "ppoll", "epoll_create", "epoll_create1", "epoll_wait",
+                               "epoll_pwait", "epoll_pwait2"};
+  for (size_t i = 0; i < sizeof no_sleeping / sizeof *no_sleeping; ++i)
+    deny(ctx, no_sleeping[i], EPERM);
   // No network.
   const char* no_network[] = {"socket", "socketpair", "connect", "bind", "listen", "accept",
                               "accept4"};
@@ -153,8 +162,9 @@ static void install_seccomp(const char* exec_path, char* const* exec_argv) {
 int main(int argc, char** argv) {
   int use_ns = 0, use_seccomp = 0;
   long uid = -1;
-  unsigned long long as = 0, fsize = 0, cpu = 0;
+  unsigned long long as = 0, fsize = 0, cpu = 0, nofile = 64;
   const char* cwd = NULL;
+  char* extra_env = NULL;
   int i = 1;
   for (; i < argc; ++i) {
     const char* a = argv[i];
@@ -175,8 +185,12 @@ int main(int argc, char** argv) {
       fsize = strtoull(argv[++i], NULL, 10);
     } else if (i + 1 < argc && !strcmp(a, "--cpu")) {
       cpu = strtoull(argv[++i], NULL, 10);
+    } else if (i + 1 < argc && !strcmp(a, "--nofile")) {
+      nofile = strtoull(argv[++i], NULL, 10);
     } else if (i + 1 < argc && !strcmp(a, "--cwd")) {
       cwd = argv[++i];
+    } else if (i + 1 < argc && !strcmp(a, "--env") && strchr(argv[i + 1], '=')) {
+      extra_env = argv[++i];
     } else {
       fprintf(stderr, "wb-sandbox: unknown argument '%s'\n", a);
       return 125;
@@ -184,7 +198,8 @@ int main(int argc, char** argv) {
   }
   if (i >= argc) {
     fprintf(stderr, "usage: wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] "
-                    "[--fsize B] [--cpu S] [--cwd DIR] -- PROGRAM ARGS...\n");
+                    "[--fsize B] [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE] -- "
+                    "PROGRAM ARGS...\n");
     return 125;
   }
   if (status_fd >= 0) fcntl(status_fd, F_SETFD, FD_CLOEXEC);
@@ -215,7 +230,7 @@ int main(int argc, char** argv) {
     if (fsize) limit(RLIMIT_FSIZE, fsize, "RLIMIT_FSIZE");
     if (cpu) limit(RLIMIT_CPU, cpu, "RLIMIT_CPU");
     limit(RLIMIT_CORE, 0, "RLIMIT_CORE");
-    limit(RLIMIT_NOFILE, 64, "RLIMIT_NOFILE");
+    limit(RLIMIT_NOFILE, nofile, "RLIMIT_NOFILE");
     if (cwd && chdir(cwd) != 0) fail("chdir");
     if (uid >= 0) {
       if (setgroups(0, NULL) != 0) fail("setgroups");
@@ -228,7 +243,7 @@ int main(int argc, char** argv) {
     }
     if (use_seccomp) install_seccomp(child_argv[0], child_argv);
     // A clean environment: nothing of the grader's (tokens, paths) reaches the test.
-    char* env[] = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8", "HOME=/nonexistent", NULL};
+    char* env[] = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8", "HOME=/nonexistent", extra_env, NULL};
     execve(child_argv[0], child_argv, env);
     fail("exec");
   }

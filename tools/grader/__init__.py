@@ -1,0 +1,1 @@
+"""tools/grade split into layers: submission, screen, build, sandbox, verdict, results (docs/grading.md)."""

@@ -1,0 +1,107 @@
+// The trusted side of the grader's worker (docs/grading.md "The worker"): in the grader's
+// build, every lab function a test calls is a generated stub (<lab>_client.cpp) that sends
+// its arguments to the worker process holding the student's code and reads back the outputs.
+// Callbacks the student's code makes (a wb::Dynamics it evaluates, the wb::Force terms it
+// adds up) come back here and run in this process. Nothing of the student's runs here: what
+// the worker can do is send values, which are read as values.
+#pragma once
+#include <exception>
+#include <memory>
+#include <tuple>
+#include <vector>
+
+#include "wb/dynamics.h"
+#include "wb/force.h"
+#include "wb_rpc.h"
+
+namespace wbrpc {
+
+struct Session {
+  Channel ch;
+  std::vector<const wb::Dynamics*> dyn;                                // callbacks of the calls
+  std::vector<const std::vector<std::unique_ptr<wb::Force>>*> forces;  // under way
+  std::exception_ptr callback_error;  // the first exception a callback threw in this call
+  int depth = 0;
+};
+
+Session& session();  // the worker named by WB_WORKER_FDS ("<read fd>,<write fd>")
+void run_callback(Session& s, In& in);
+[[noreturn]] void worker_gone(const char* name, const std::exception& e);
+
+// Callbacks are sent as an index into the session's tables.
+inline void put(Out& o, const wb::Dynamics& d) {
+  Session& s = session();
+  put(o, std::int32_t(s.dyn.size()));
+  s.dyn.push_back(&d);
+}
+inline void put(Out& o, const std::vector<std::unique_ptr<wb::Force>>& f) {
+  Session& s = session();
+  put(o, std::int32_t(s.forces.size()));
+  put(o, std::int64_t(f.size()));
+  s.forces.push_back(&f);
+}
+
+template <class Sig>
+struct Caller;
+
+template <class R, class... A>
+struct Caller<R(A...)> {
+  static R call(std::int32_t id, const char* name, A... a) {
+    Session& s = session();
+    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size();
+    if (s.depth++ == 0) s.callback_error = nullptr;
+    struct Restore {
+      Session& s;
+      std::size_t d, f;
+      ~Restore() {
+        s.dyn.resize(d), s.forces.resize(f);
+        --s.depth;
+      }
+    } restore{s, dyn0, forces0};
+    Out o;
+    put(o, kCall), put(o, id);
+    (put(o, a), ...);
+    try {
+      s.ch.send(o);
+      for (;;) {
+        In in = s.ch.receive();
+        std::int32_t kind = 0;
+        get(in, kind);
+        if (kind == kCallback) {
+          run_callback(s, in);
+          continue;
+        }
+        if (kind == kError) {
+          std::string what;
+          get(in, what);
+          rethrow_callback_error(s);
+          throw std::runtime_error(printable(what));
+        }
+        if (kind != kResult) throw ProtocolError("an unknown message");
+        (read_back<A>(in, a), ...);
+        if constexpr (std::is_void_v<R>) {
+          rethrow_callback_error(s);
+          return;
+        } else {
+          std::remove_cv_t<R> r{};
+          get(in, r);
+          rethrow_callback_error(s);
+          return r;
+        }
+      }
+    } catch (const ProtocolError& e) {
+      worker_gone(name, e);
+    }
+  }
+
+ private:
+  template <class T, class V>
+  static void read_back(In& in, V& v) {
+    if constexpr (is_output_v<T>) get(in, v);
+  }
+  static void rethrow_callback_error(Session& s) {
+    if (s.depth == 1 && s.callback_error) std::rethrow_exception(s.callback_error);
+  }
+};
+
+}  // namespace wbrpc

@@ -1,0 +1,215 @@
+"""The sandbox around every process that runs code built from a submission (tools/gradescope/
+sandbox.c): seccomp, namespaces, another user, limits, as this machine allows.
+
+Trust: this is the wall around student code."""
+import hashlib
+import os
+import re
+import shutil
+import subprocess
+import threading
+
+from .common import Defect, REPORT_CAP, REPORT_FSIZE, OUTPUT_CAP, TEST_ADDRESS_SPACE, TEST_CPU
+from .procs import _Capture, _close_unless_busy, _finish, _start
+
+# ------------------------------------------------------------------ the sandbox
+
+SANDBOX_SOURCE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "gradescope",
+                              "sandbox.c")
+BUILD_UID = 60999  # the build (compiler, assembler, linker) runs as this user when root
+BUILD_ADDRESS_SPACE = 4 * 1024 * 1024 * 1024  # RLIMIT_AS of each compiler process
+BUILD_FSIZE = 512 * 1024 * 1024  # largest file a build may write (the precompiled headers: 100 MB)
+BUILD_CPU = 900  # s, RLIMIT_CPU of each build process
+TEST_UID_BASE = 61000  # tests run as user 61000 + k (k cycles over 1000 values), never root
+LAYER_TEXT = {
+    "seccomp": "seccomp filter: no processes, threads, exec, signals to others, sockets; "
+               "files read-only",
+    "namespaces": "own PID, network and IPC namespaces: everything the test started ends with it",
+    "user": "unprivileged user (cannot write the grader's files or signal it)",
+    "rlimits": "limits: memory (address space), file size, CPU time, no core files",
+}
+
+
+class Sandbox:
+    """The layers around each test process that this machine can give (see
+    tools/gradescope/sandbox.c). `layers` lists the active ones, in order."""
+
+    def __init__(self, root, say):
+        self.launcher, self.layers, self.missing = None, [], {}
+        self._uid, self._uid_lock = 0, threading.Lock()
+        self.layers.append("rlimits")
+        try:
+            self.launcher = self._compile(root)
+        except Exception as e:  # no compiler or no libseccomp: the limits alone
+            self.launcher = None
+            reason = str(e).strip().splitlines()[-1:] or ["unknown"]
+            for layer in ("seccomp", "namespaces", "user"):
+                self.missing[layer] = f"the launcher could not be built: {reason[0]}"
+            return
+        wanted = {"seccomp": ["--seccomp"], "namespaces": ["--ns"],
+                  "user": ["--uid", str(TEST_UID_BASE)]}
+        disabled = set(os.environ.get("WB_SANDBOX_DISABLE", "").replace(",", " ").split())
+        for layer, flags in wanted.items():
+            if layer in disabled:  # to see what the other layers hold alone
+                self.missing[layer] = "disabled by WB_SANDBOX_DISABLE"
+                continue
+            ok, why = self._probe(flags)
+            if ok:
+                self.layers.append(layer)
+            else:
+                self.missing[layer] = why
+        ok, why = self._probe(self.flags(0))
+        if not ok:  # each works alone but not together: keep the safest single one
+            raise Defect(f"the sandbox layers {', '.join(self.layers)} do not work together: {why}")
+
+    def _compile(self, root):
+        if not os.path.isfile(SANDBOX_SOURCE):
+            raise RuntimeError("tools/gradescope/sandbox.c is not in this copy of the project")
+        with open(SANDBOX_SOURCE, "rb") as f:
+            src = f.read()
+        exe = os.path.join(root, "wb-sandbox-" + hashlib.sha256(src).hexdigest()[:16])
+        if not os.path.isfile(exe):
+            tmp = exe + ".tmp"
+            out = subprocess.run(["gcc", "-O2", "-o", tmp, SANDBOX_SOURCE, "-lseccomp"],
+                                 stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, timeout=120)
+            if out.returncode != 0:
+                raise RuntimeError(out.stdout.decode("utf-8", "replace"))
+            os.chmod(tmp, 0o755)
+            os.replace(tmp, exe)
+        return exe
+
+    def _probe(self, flags):
+        true = shutil.which("true") or "/bin/true"
+        r, w = os.pipe()
+        try:
+            proc = subprocess.run([self.launcher, "--status-fd", str(w)] + flags + ["--", true],
+                                  stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                  stderr=subprocess.PIPE, pass_fds=(w,), timeout=30, cwd="/")
+            os.close(w)
+            w = -1
+            status = os.read(r, 4096).decode("utf-8", "replace").strip()
+        except (OSError, subprocess.SubprocessError) as e:
+            return False, str(e)
+        finally:
+            os.close(r)
+            if w >= 0:
+                os.close(w)
+        if proc.returncode == 0 and status == "exit 0":
+            return True, ""
+        return False, status.split("\n")[0].removeprefix("error ") or \
+            proc.stderr.decode("utf-8", "replace").strip()
+
+    def next_uid(self):
+        with self._uid_lock:
+            self._uid = (self._uid + 1) % 1000
+            return TEST_UID_BASE + self._uid
+
+    def flags(self, uid):
+        f = []
+        if "seccomp" in self.layers:
+            f.append("--seccomp")
+        if "namespaces" in self.layers:
+            f.append("--ns")
+        if "user" in self.layers:
+            f += ["--uid", str(uid or TEST_UID_BASE)]
+        return f
+
+    def describe(self):
+        lines = [f"  active: {LAYER_TEXT[l]}" for l in self.layers]
+        lines += [f"  NOT active: {LAYER_TEXT[l].split(':')[0].split(' (')[0]} ({why})"
+                  for l, why in self.missing.items()]
+        return "\n".join(lines)
+
+    def build_command(self, cmd, cwd, as_user=True):
+        """The launcher's layers for a build (the compiler, assembler and linker): limits
+        (BUILD_* in common.py), and when root another user (BUILD_UID, which owns only the
+        build folder) in its own PID and network namespaces; no seccomp (compilers start
+        processes). None without a launcher."""
+        if self.launcher is None:
+            return None
+        f = []
+        if "namespaces" in self.layers:
+            f.append("--ns")
+        if "user" in self.layers and as_user:
+            f += ["--uid", str(BUILD_UID)]
+        return [self.launcher] + f + ["--as", str(BUILD_ADDRESS_SPACE), "--fsize", str(BUILD_FSIZE),
+                                      "--cpu", str(BUILD_CPU), "--nofile", "1024", "--cwd", cwd,
+                                      "--"] + cmd
+
+    def start(self, cmd, cwd, pass_fds=(), env=None, stdout_cap=REPORT_CAP + 1,
+              stderr_cap=OUTPUT_CAP, wrapped=None, keep_tail=False):
+        """Starts one process in the sandbox (its standard output and error captured, capped,
+        read in linear time); `pass_fds` are inherited, `env` is one "NAME=VALUE" added to
+        its clean environment. Returns a Running; Running.finish() waits for it."""
+        if self.launcher is None:  # no launcher: the limits through prlimit, if present
+            wrapped = (["prlimit", f"--fsize={REPORT_FSIZE}", f"--as={TEST_ADDRESS_SPACE}",
+                        f"--cpu={TEST_CPU}", "--core=0", "--"] if shutil.which("prlimit")
+                       else [])
+            if not wrapped and "rlimits" in self.layers:
+                self.layers.remove("rlimits")
+                self.missing["rlimits"] = "prlimit is not installed"
+            clean = {"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8"}
+            if env:
+                clean[env.split("=", 1)[0]] = env.split("=", 1)[1]
+            proc = _start(wrapped + cmd, subprocess.PIPE, subprocess.PIPE, cwd=cwd,
+                          pass_fds=pass_fds, env=clean)
+            status_r = None
+        else:
+            status_r, status_w = os.pipe()
+            os.set_inheritable(status_w, True)
+            if wrapped:  # a prepared launcher command (build_command)
+                full = [wrapped[0], "--status-fd", str(status_w)] + wrapped[1:]
+            else:
+                full = [self.launcher, "--status-fd", str(status_w)] + \
+                    self.flags(self.next_uid()) + [
+                    "--as", str(TEST_ADDRESS_SPACE), "--fsize", str(REPORT_FSIZE), "--cpu",
+                    str(TEST_CPU), "--cwd", cwd] + (["--env", env] if env else []) + ["--"] + cmd
+            try:
+                proc = _start(full, subprocess.PIPE, subprocess.PIPE, cwd=cwd,
+                              pass_fds=(status_w,) + tuple(pass_fds))
+            finally:
+                os.close(status_w)
+        return Running(proc, status_r, stdout_cap, stderr_cap, keep_tail)
+
+    def run(self, cmd, timeout, cwd):
+        """Runs one process. Returns (status, stdout bytes or None if over the cap, stderr
+        text) where status is ("exit", N), ("signal", N), ("timeout", None) or ("error", message)."""
+        return self.start(cmd, cwd).finish(timeout)
+
+
+class Running:
+    """One sandboxed process under way."""
+
+    def __init__(self, proc, status_r, stdout_cap, stderr_cap, keep_tail=False):
+        self.proc, self.status_r, self.cap = proc, status_r, stdout_cap - 1
+        self.report = _Capture(proc.stdout, stdout_cap, keep_tail)
+        self.output = _Capture(proc.stderr, stderr_cap, keep_tail)
+        self.report.start()
+        self.output.start()
+
+    def finish(self, timeout):
+        proc = self.proc
+        rc = _finish(proc, timeout)
+        # Nothing the process started can still hold the pipes (no children with the
+        # seccomp filter, the namespace ends with its init, the group was killed):
+        # a reader still blocked after that gives up, and what it has is all that counts.
+        self.report.join(timeout=5)
+        self.output.join(timeout=5)
+        _close_unless_busy(proc.stdout, self.report)
+        _close_unless_busy(proc.stderr, self.output)
+        status = None
+        if self.status_r is not None:
+            with os.fdopen(self.status_r, "rb") as f:
+                line = f.read(4096).decode("utf-8", "replace").strip().split("\n")[0]
+            m = re.fullmatch(r"(exit|signal) (\d+)", line)
+            if line.startswith("error "):
+                status = ("error", line[6:])
+            elif m:
+                status = (m.group(1), int(m.group(2)))
+        if rc is None:
+            status = ("timeout", None)
+        elif status is None:  # without the launcher, or it was killed
+            status = ("exit", rc) if rc >= 0 else ("signal", -rc)
+        data = self.report.data if self.report.total <= self.cap else None
+        return status, data, self.output.text()

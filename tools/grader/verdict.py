@@ -1,0 +1,146 @@
+"""The verdict of one test case: how its process ended (from the launcher) and the test
+framework's report (from a pipe only the grader reads), checked for this run and this test.
+
+Trust: decides the score; reads untrusted bytes as data only (capped, parsed defensively)."""
+import re
+import signal
+import xml.etree.ElementTree as ET
+
+from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, Defect, TestResult,
+                     capped, printable, short)
+from .procs import signal_name
+
+# -------------------------------------------------------------- the XML report
+
+def _text(el):
+    """One message of the report: printable, at most MESSAGE_CAP characters."""
+    lines = [l.strip() for l in "".join(el.itertext()).strip().splitlines()]
+    return printable(capped("\n".join(l for l in lines if l), MESSAGE_CAP))
+
+
+def read_report(data, name, nonce, strip):
+    """Checks and reads Catch's XML report (the test process's standard output).
+    Returns (verdict, short reason, details).
+
+    verdict: "passed", "failed" (the test case ran and failed) or "missing"
+    (no complete, well-formed report of exactly this run: the process died or
+    exited before Catch finished, or wrote something else)."""
+    if data is None:
+        return "missing", f"the test report is larger than {REPORT_CAP // (1024 * 1024)} MiB", ""
+    if not data.strip():
+        return "missing", "no test report was written", ""
+    head = data[:4096]
+    if b"<!DOCTYPE" in data or b"<!ENTITY" in data or not head.lstrip().startswith(b"<?xml") \
+            or not re.match(rb'<\?xml version="1\.0" encoding="UTF-8"\?>', head.lstrip()):
+        return "missing", "the test report is not the one the test framework writes", ""
+    try:
+        root = ET.fromstring(data)
+    except Exception:  # any parser failure (truncated, bad encoding...) is no report
+        return "missing", "the test report is incomplete", ""
+    if root.tag != "Catch" or root.get("name") != nonce:
+        return "missing", "the test report does not belong to this run", ""
+    cases = [tc for tc in root.iter("TestCase") if tc.get("name") == name]
+    others = [tc for tc in root.iter("TestCase") if tc.get("name") != name]
+    if len(cases) != 1 or others:
+        return "missing", f"the report has {len(cases)} runs of this test case and {len(others)} of others", ""
+    tc = cases[0]
+    overall = tc.find("OverallResult")
+    totals = root.find("OverallResults")
+    case_totals = root.find("OverallResultsCases")
+    lines, infos, first = [], [], ""
+    for el in tc.iter():
+        loc = f"{el.get('filename', '').replace(strip, '')}:{el.get('line', '')}"
+        if el.tag in ("Info", "Message", "Warning"):
+            infos.append(_text(el))
+            lines.append(_text(el))
+        elif el.tag == "Expression" and el.get("success") == "false":
+            orig = _text(el.find("Original")) if el.find("Original") is not None else ""
+            expd = _text(el.find("Expanded")) if el.find("Expanded") is not None else ""
+            lines.append(f"{loc}: {el.get('type', 'CHECK')}( {orig} ) failed, with expansion: {expd}")
+            first = first or ("; ".join(i.replace("\n", "; ") for i in infos)
+                              or f"{el.get('type', 'CHECK')}( {orig} ) failed")
+        elif el.tag == "Exception":
+            lines.append(f"{loc}: unexpected exception: {_text(el)}")
+            first = first or f"unexpected exception: {_text(el)}"
+        elif el.tag == "FatalErrorCondition":
+            lines.append(f"{loc}: fatal error: {_text(el)}")
+            first = first or f"crashed: {_text(el)}"
+        elif el.tag == "Failure":
+            lines.append(f"{loc}: failed: {_text(el)}")
+            first = first or _text(el)
+        elif el.tag in ("StdOut", "StdErr"):
+            t = _text(el)
+            if len(t) > OUTPUT_CAP:
+                t = t[:OUTPUT_CAP] + f"\n[... {len(t) - OUTPUT_CAP} more characters not shown]"
+            lines.append(f"{'std::cout' if el.tag == 'StdOut' else 'std::cerr'} during the test:\n{t}")
+    details = "\n".join(lines)
+    if overall is None or totals is None or case_totals is None:
+        return "missing", "the test report is incomplete", details
+    ok = (overall.get("success") == "true" and totals.get("failures") == "0"
+          and totals.get("expectedFailures") == "0" and case_totals.get("failures") == "0"
+          and case_totals.get("successes") == "1"
+          and not any(e.get("success") == "false" for e in tc.iter("Expression")))
+    if ok:
+        return "passed", "", details
+    return "failed", " ".join((first or "failed").split()), details
+
+
+def judge(test, status, data, captured, nonce, timeout, strip, worker_status=None,
+          worker_output=""):
+    """The TestResult of one run: `status` from the launcher ("exit"/"signal"/"timeout"/
+    "idle"/"error", value), `data` the report read from the test's standard output (None: too
+    big), `captured` its (capped) other output, `nonce` this run's random name. The worker's
+    status and output only explain a failure; they never make a test pass."""
+    verdict, reason, details = read_report(data, test.name, nonce, strip)
+    kind, value = status
+    # The report stops inside this test case, and the framework did not see a
+    # crash there: the test body left without returning, i.e. exit(), _Exit()
+    # or quick_exit() in student code (exit() then often crashes on the way
+    # out, the framework's streams being torn down).
+    left = (verdict == "missing" and data is not None and b"<TestCase " in data
+            and b"</TestCase>" not in data and b"FatalErrorCondition" not in data)
+    if kind == "timeout":
+        reason = f"timed out after {timeout:g} s (an infinite loop?)"
+    elif kind == "idle":
+        reason = (f"stopped after {value:g} s without using the CPU (sleeping or waiting in "
+                  "student code?)")
+    elif kind == "error":
+        raise Defect(f"the sandbox could not start a test process: {value}")
+    elif left:
+        how = (f"status {value}" if kind == "exit" else
+               f"then crashed on the way out, {signal.Signals(value).name if value in signal.valid_signals() else value}")
+        reason = ("the process ended in the middle of the test, outside the test framework: "
+                  f"exit(), _Exit() or quick_exit() called in student code? ({how})")
+    elif kind == "signal":  # Catch may have reported the signal itself ("crashed: SIGSEGV ...")
+        reason = reason if reason.startswith("crashed") else f"crashed ({signal_name(value)})"
+    elif verdict == "missing":
+        reason = (f"exited with status {value} before the test finished ({reason})" if value != 0
+                  else "exited with status 0 before the test finished (exit() called in student "
+                       f"code?): {reason}")
+    elif verdict == "passed" and value != 0:
+        reason = f"the test passed but the process exited with status {value}"
+    passed = kind == "exit" and value == 0 and verdict == "passed"
+    gone = "the lab's code stopped answering" in details
+    if not passed and gone and worker_status:
+        wkind, wvalue = worker_status
+        if wkind == "signal":
+            reason = f"the lab's code crashed ({signal_name(wvalue)})"
+        elif wkind == "exit":
+            reason = (f"the lab's code ended its process with status {wvalue} in the middle of "
+                      "the test (exit(), _Exit() or quick_exit() called in student code?)")
+        elif wkind == "error":
+            raise Defect(f"the sandbox could not start a worker process: {wvalue}")
+    # A failed assertion's details start with the same message: no need to repeat it.
+    repeats = verdict == "failed" and kind == "exit" and details and not gone
+    parts = [] if passed or repeats else [reason]
+    if details:
+        parts.append(details)
+    if captured.strip():
+        parts.append("output of the test process:\n" + printable(captured.rstrip()))
+    if worker_output.strip():
+        parts.append("output of the lab's code:\n" + printable(worker_output.rstrip()))
+    return TestResult(test, test.points if passed else 0, "passed" if passed else "failed",
+                      "" if passed else short(reason),
+                      capped("\n\n".join(parts), TEST_OUTPUT_CAP))
+
+

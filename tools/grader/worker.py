@@ -1,0 +1,96 @@
+"""Runs one test case as two sandboxed processes: the trusted test process (the pristine tests,
+linked with generated stubs: no student code in it) and the worker (the lab's code, which the
+stubs call through a pair of pipes). The verdict comes from the test process only (verdict.py);
+the worker can only send values back (docs/grading.md "The worker").
+
+Trust: starts the process that runs student code (the worker), always inside the sandbox,
+and stops both when the test ends, idles, or runs out of time."""
+import os
+import secrets
+import time
+
+from .common import IDLE_LIMIT, WORKER_OUTPUT_CAP
+from .procs import _descendants, _kill_tree
+from .stubs import generate
+from .verdict import judge
+
+WORKER_DIR = "grader-worker"  # in the scratch copy: tools/grader/cpp/ and the generated stubs
+CPP_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cpp")
+
+
+def worker_files(repo, labs):
+    """{relative path in the scratch copy: bytes}: the worker's C++ and every lab's stubs."""
+    files = {}
+    for name in sorted(os.listdir(CPP_DIR)):
+        with open(os.path.join(CPP_DIR, name), "rb") as f:
+            files[os.path.join(WORKER_DIR, name)] = f.read()
+    for lab in labs:
+        for name, text in generate(repo, lab).items():
+            files[os.path.join(WORKER_DIR, name)] = text.encode("utf-8")
+    return files
+
+
+def _cpu_ticks(pids):
+    """CPU time (clock ticks) used so far by these processes and everything below them."""
+    total = 0
+    for pid in set(pids) | {p for q in pids for p in _descendants(q)}:
+        try:
+            with open(f"/proc/{pid}/stat", "rb") as f:
+                fields = f.read().rsplit(b")", 1)[1].split()
+            total += int(fields[11]) + int(fields[12])
+        except (OSError, ValueError, IndexError):
+            pass
+    return total
+
+
+def run_test(sandbox, binary, worker, test, timeout, strip, cwd):
+    """Runs one test case; returns its TestResult. `timeout` is this test's wall-clock limit.
+
+    The test process's report (its standard output, read only by the grader, this run's
+    random name) and how it ended (from the launcher) decide; the worker's own end (a crash,
+    exit()) only explains a failure. A test whose processes use no CPU for IDLE_LIMIT s
+    (sleeping, or waiting on each other) is stopped then, like one that runs out of time."""
+    nonce = "wb-" + secrets.token_hex(16)
+    to_worker_r, to_worker_w = os.pipe()
+    to_test_r, to_test_w = os.pipe()
+    try:
+        wk = sandbox.start([worker, str(to_worker_r), str(to_test_w)], cwd,
+                           pass_fds=(to_worker_r, to_test_w), stdout_cap=WORKER_OUTPUT_CAP,
+                           stderr_cap=WORKER_OUTPUT_CAP)
+    finally:
+        os.close(to_worker_r)
+        os.close(to_test_w)
+    try:
+        tp = sandbox.start([binary, test.name, "-w", "NoTests", "-r", "xml", "-n", nonce], cwd,
+                           pass_fds=(to_test_r, to_worker_w),
+                           env=f"WB_WORKER_FDS={to_test_r},{to_worker_w}")
+    finally:
+        os.close(to_test_r)
+        os.close(to_worker_w)
+    start = time.monotonic()
+    deadline, stopped = start + timeout, None
+    last_ticks, last_change = -1, start
+    pids = [tp.proc.pid, wk.proc.pid]
+    while tp.proc.poll() is None:
+        now = time.monotonic()
+        if now >= deadline:
+            stopped = ("timeout", None)
+            break
+        ticks = _cpu_ticks(pids)
+        if ticks != last_ticks:
+            last_ticks, last_change = ticks, now
+        elif now - last_change >= IDLE_LIMIT:
+            stopped = ("idle", IDLE_LIMIT)
+            break
+        time.sleep(min(0.05 if now - start < 0.5 else 0.25, max(0.0, deadline - now)))
+    if stopped:
+        _kill_tree(tp.proc.pid)
+        _kill_tree(wk.proc.pid)
+    status, data, captured = tp.finish(0 if stopped else 5)
+    # The test process is gone: the worker reads the end of its pipe and exits; it gets a
+    # moment, then is stopped.
+    w_status, w_stdout, w_stderr = wk.finish(0 if stopped else 2)
+    w_output = ((w_stdout or b"").decode("utf-8", "replace") + w_stderr)[:2 * WORKER_OUTPUT_CAP]
+    if stopped:
+        status = stopped
+    return judge(test, status, data, captured, nonce, timeout, strip, w_status, w_output)
