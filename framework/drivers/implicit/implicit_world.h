@@ -4,8 +4,8 @@
 // get zero acceleration under every integrator. Scene generators "rope" and
 // "cloth" add particles, springs and pins (docs/scenes.md, ## implicit).
 #pragma once
-#include <optional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "backward_euler.h"
