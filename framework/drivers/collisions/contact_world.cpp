@@ -35,6 +35,9 @@ constexpr double kSkin = 1e-9;
 constexpr double kSlopFraction = 0.01;
 constexpr double kPushBeta = 0.2;
 constexpr int kAccumulatedIterations = 10;  // default "iterations" of the accumulated solver
+// The stub warning compares grid_pairs (C3) with the brute force only up to this many
+// particles: 4000^2 / 2 = 8e6 pair tests, a few milliseconds once per run.
+constexpr Eigen::Index kWarnBruteForceMax = 4000;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -466,8 +469,14 @@ std::vector<std::string> ContactWorld::warnings(const Mat2X& x, const Mat2X& v) 
   unanswered(friction_hits_,
              "a particle slid along a plane with friction, and "
              "friction_impulse (C4)");
-  // The broad phase (C3) against the provided brute force, on the last state.
-  if (any_radius_ && x.cols() >= 2 && x.allFinite()) {
+  // The broad phase (C3) against the provided brute force, on the last state: only
+  // where the brute force is cheap (n^2 / 2 pair tests) and grid_pairs is handed
+  // what the step hands it (a span that does not overflow, see after_step).
+  const double reach = x.cols() > 0 ? 4 * r_.maxCoeff() : 0.0;
+  const bool spans_finite =
+      x.allFinite() &&
+      ((x.rowwise().maxCoeff() - x.rowwise().minCoeff()).array() + reach).allFinite();
+  if (any_radius_ && x.cols() >= 2 && x.cols() <= kWarnBruteForceMax && spans_finite) {
     Pairs grid, brute;
     grid_pairs(x, r_, grid);
     brute_force_pairs(x, r_, brute);

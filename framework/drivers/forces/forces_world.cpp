@@ -327,7 +327,8 @@ Energy ForceWorld::energy(const Mat2X& x, const Mat2X& v) const {
 }
 
 std::vector<std::string> ForceWorld::warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
-  if (forces_.empty() || dyn_.any_force()) return {};
+  // No evaluation at all (--steps 0, or evaluations not counted since): nothing to say.
+  if (forces_.empty() || dyn_.any_force() || dyn_.evals() == 0) return {};
   return {
       "every force evaluation gave zero force on every particle, although the scene "
       "declares " +
