@@ -14,7 +14,7 @@ Session& session() {
       throw std::runtime_error(
           "this test binary calls the lab's functions through the grader's worker "
           "(tools/grade): run the tests of an ordinary build instead");
-    return new Session{Channel(in, out), {}, {}, nullptr, 0};
+    return new Session{Channel(in, out), {}, {}, {}, nullptr, 0};
   }();
   return *s;
 }
@@ -23,6 +23,18 @@ Session& session() {
   throw std::runtime_error(std::string("the lab's code stopped answering during ") + name + " (" +
                            e.what() + "): its process crashed, called exit() or hit a limit");
 }
+
+// A function of a point: its index in the session's table, -1 for an empty one.
+void put(Out& o, const PointFunction& f) {
+  Session& s = session();
+  if (!f) {
+    put(o, std::int32_t(-1));
+    return;
+  }
+  put(o, std::int32_t(s.points.size()));
+  s.points.push_back(&f);
+}
+void get(In&, PointFunction&) { throw ProtocolError("a function sent by the worker"); }
 
 template <class T>
 static T& checked(const std::vector<T>& table, std::int64_t id) {
@@ -41,6 +53,10 @@ void run_callback(Session& s, In& in) {
       get(in, x), get(in, v), get(in, a);
       checked(s.dyn, id)->acceleration(x, v, a);
       put(o, a);
+    } else if (what == 4) {  // a function of a point
+      Eigen::Matrix<double, 2, 1> x;
+      get(in, x);
+      put(o, (*checked(s.points, id))(x));
     } else {  // one term of a force list
       std::int64_t k = 0;
       get(in, k);

@@ -20,6 +20,7 @@ struct Session {
   Channel ch;
   std::vector<const wb::Dynamics*> dyn;                                // callbacks of the calls
   std::vector<const std::vector<std::unique_ptr<wb::Force>>*> forces;  // under way
+  std::vector<const PointFunction*> points;                            // (wb::Potential)
   std::exception_ptr callback_error;  // the first exception a callback threw in this call
   int depth = 0;
 };
@@ -48,16 +49,16 @@ template <class R, class... A>
 struct Caller<R(A...)> {
   static R call(std::int32_t id, const char* name, A... a) {
     Session& s = session();
-    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size();
+    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size(), points0 = s.points.size();
     if (s.depth++ == 0) s.callback_error = nullptr;
     struct Restore {
       Session& s;
-      std::size_t d, f;
+      std::size_t d, f, p;
       ~Restore() {
-        s.dyn.resize(d), s.forces.resize(f);
+        s.dyn.resize(d), s.forces.resize(f), s.points.resize(p);
         --s.depth;
       }
-    } restore{s, dyn0, forces0};
+    } restore{s, dyn0, forces0, points0};
     Out o;
     put(o, kCall), put(o, id);
     (put(o, a), ...);

@@ -14,6 +14,7 @@
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -197,6 +198,13 @@ inline std::string printable(const std::string& s) {
   if (s.size() > kMaxText) out += "[... " + std::to_string(s.size() - kMaxText) + " more bytes]";
   return out;
 }
+
+// A function of a point (wb::Potential, a field of a lab's struct) crosses as a callback: the
+// trusted side registers it and sends its index, the worker gets a proxy that asks the trusted
+// side for each value (client.cpp and worker_main.cpp define these, one side each).
+using PointFunction = std::function<double(const Eigen::Matrix<double, 2, 1>&)>;
+void put(Out& o, const PointFunction& f);
+void get(In& in, PointFunction& f);
 
 // One end of the pipe pair: whole messages in, whole messages out.
 class Channel {
