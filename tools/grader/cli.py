@@ -53,8 +53,9 @@ def parse_args(argv):
                    help="wall-clock time a whole submission may take, its builds included (not the "
                         "one-time pristine build of the test list), seconds "
                         f"(default {common.SUBMISSION_BUDGET}); tests not started by then score 0")
-    p.add_argument("--build-dir", metavar="DIR",
-                   help="keep the scratch copy and build here to reuse across runs (default: a temporary folder)")
+    p.add_argument("--build-dir", metavar="DIR", default=os.environ.get("WB_GRADE_BUILD_DIR") or None,
+                   help="keep the scratch copy and build here to reuse across runs (default: "
+                        "$WB_GRADE_BUILD_DIR if set, else a temporary folder)")
     p.add_argument("--require-score", type=int, metavar="N",
                    help="exit 1 unless every graded lab scores exactly N")
     p.add_argument("--jobs", type=int, default=2, metavar="J",
