@@ -17,6 +17,7 @@
 #include <string>
 
 #include "contact_world.h"
+#include "declared_particles.h"
 #include "fuzz_checks.h"
 #include "wb/input.h"
 #include "wb/run.h"
@@ -39,31 +40,13 @@ constexpr const char* kFuzzTarget = "fuzz_collisions_scene";
   fuzzcheck::finding(kFuzzTarget, what, detail);
 }
 
-double declared_particles(const wb::json& doc) {
-  if (!doc.is_object()) return 0;
-  double n = 0;
-  auto p = doc.find("particles");
-  if (p != doc.end() && p->is_array()) n += double(p->size());
-  auto e = doc.find("emitters");
-  if (e == doc.end() || !e->is_array()) return n;
-  for (const auto& em : *e) {
-    if (!em.is_object()) continue;
-    auto c = em.find("count");
-    if (c != em.end() && c->is_number()) {
-      const double k = c->get<double>();
-      if (k > 0 && k <= double(wb::kMaxParticles)) n += k;
-    }
-  }
-  return n;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     wb::json doc = wb::parse_json(text, "fuzz.json");
-    if (declared_particles(doc) > kFuzzMaxParticles) return 0;
+    if (fuzzcheck::declared_particles(doc) > kFuzzMaxParticles) return 0;
     wb::Scene scene =
         wb::scene_from_json("fuzz.json", std::move(doc), std::nullopt, {"planes", "contact"});
     wb::check_particles(scene, "the fuzzer");

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <string>
 
+#include "declared_particles.h"
 #include "fuzz_checks.h"
 #include "implicit_world.h"
 #include "wb/input.h"
@@ -38,38 +39,13 @@ constexpr const char* kFuzzTarget = "fuzz_implicit_scene";
   fuzzcheck::finding(kFuzzTarget, what, detail);
 }
 
-// A number at `key` of object `o` in [0, 1e7], else 0 (for the cheap count).
-double small_count(const wb::json& o, const char* key) {
-  if (!o.is_object()) return 0;
-  auto it = o.find(key);
-  if (it == o.end() || !it->is_number()) return 0;
-  const double v = it->get<double>();
-  return v > 0 && v <= 1e7 ? v : 0;
-}
-
-// The particles the scene declares and its generators would add.
-double declared_particles(const wb::json& doc) {
-  if (!doc.is_object()) return 0;
-  double n = 0;
-  auto p = doc.find("particles");
-  if (p != doc.end() && p->is_array()) n += double(p->size());
-  auto e = doc.find("emitters");
-  if (e != doc.end() && e->is_array())
-    for (const auto& em : *e) n += small_count(em, "count");
-  auto r = doc.find("rope");
-  if (r != doc.end()) n += small_count(*r, "beads");
-  auto c = doc.find("cloth");
-  if (c != doc.end()) n += small_count(*c, "rows") * small_count(*c, "cols");
-  return n;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     wb::json doc = wb::parse_json(text, "fuzz.json");
-    if (declared_particles(doc) > kFuzzMaxParticles) return 0;
+    if (fuzzcheck::declared_particles(doc) > kFuzzMaxParticles) return 0;
     std::vector<std::string> keys = wb::implicit_scene_keys();
     keys.insert(keys.end(), wb::sweep_scene_keys().begin(), wb::sweep_scene_keys().end());
     wb::Scene scene = wb::scene_from_json("fuzz.json", std::move(doc), std::nullopt, keys);

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "declared_particles.h"
 #include "forces_world.h"
 #include "fuzz_checks.h"
 #include "wb/input.h"
@@ -35,25 +36,6 @@ constexpr const char* kFuzzTarget = "fuzz_scene";
 
 void check_message(const std::string& m, std::size_t max_bytes) {
   fuzzcheck::check_message(kFuzzTarget, m, max_bytes);
-}
-
-// The particles the scene's emitters would make, if it is cheap to tell.
-double declared_particles(const wb::json& doc) {
-  double n = 0;
-  if (!doc.is_object()) return 0;
-  auto p = doc.find("particles");
-  if (p != doc.end() && p->is_array()) n += double(p->size());
-  auto e = doc.find("emitters");
-  if (e == doc.end() || !e->is_array()) return n;
-  for (const auto& em : *e) {
-    if (!em.is_object()) continue;
-    auto c = em.find("count");
-    if (c != em.end() && c->is_number()) {
-      const double k = c->get<double>();
-      if (k > 0 && k <= double(wb::kMaxParticles)) n += k;
-    }
-  }
-  return n;
 }
 
 void check_scene(const wb::Scene& s) {
@@ -88,7 +70,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     wb::json doc = wb::parse_json(text, "fuzz.json");
     check_message(wb::describe(doc), 80);
-    const double total = declared_particles(doc);
+    const double total = fuzzcheck::declared_particles(doc);
     if (total > kFuzzMaxParticles && total <= double(wb::kMaxParticles)) return 0;
     wb::Scene scene =
         wb::scene_from_json("fuzz.json", std::move(doc), std::nullopt, wb::sweep_scene_keys());

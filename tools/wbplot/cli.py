@@ -3,7 +3,7 @@ import argparse
 import math
 import sys
 
-from .common import InputError, parse_list, write_text_atomic
+from .common import InputError, parse_label_map, parse_list, write_text_atomic
 
 
 class _Parser(argparse.ArgumentParser):
@@ -191,20 +191,8 @@ def run(args):
                         diverged=args.diverged)
     elif args.command == "energy":
         labels = parse_list(args.labels, "--labels") if args.labels else None
-        growth = {}
-        for item in parse_list(args.growth, "--growth") if args.growth else []:
-            name, _, f = item.partition("=")
-            try:
-                growth[name] = _positive_float(f)
-            except ValueError:
-                raise InputError(f"--growth: item '{item}': expected LABEL=F with F > 0") from None
-        diverged = {}
-        for item in parse_list(args.diverged, "--diverged") if args.diverged else []:
-            name, _, st = item.partition("=")
-            try:
-                diverged[name] = int(st)
-            except ValueError:
-                raise InputError(f"--diverged: item '{item}': expected LABEL=STEP") from None
+        growth = parse_label_map(args.growth, "--growth", _positive_float, "LABEL=F with F > 0")
+        diverged = parse_label_map(args.diverged, "--diverged", int, "LABEL=STEP")
         runs.plot_energy(args.stats, labels, args.out, relative=args.relative, title=args.title,
                          growth=growth, diverged=diverged)
     elif args.command == "phase":

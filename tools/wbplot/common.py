@@ -116,6 +116,19 @@ def parse_list(text, flag, conv=str):
     return out
 
 
+def parse_label_map(text, flag, conv, expected):
+    """A flag's LABEL=VALUE,... items as {label: conv(value)}; `expected` names the
+    form in the error (for example "LABEL=STEP"). None or "" gives {}."""
+    out = {}
+    for item in parse_list(text, flag) if text else []:
+        name, _, value = item.partition("=")
+        try:
+            out[name] = conv(value)
+        except ValueError:
+            raise InputError(f"{flag}: item '{item}': expected {expected}") from None
+    return out
+
+
 def new_figure(*args, **kwargs):
     apply_style()
     return plt.subplots(*args, **kwargs)

@@ -14,8 +14,8 @@ import math
 import os
 
 from .. import creep
-from ..common import (InputError, column, finite, integrator_style, new_figure, parse_list,
-                      read_csv, save_figure)
+from ..common import (InputError, column, finite, integrator_style, new_figure, parse_label_map,
+                      parse_list, read_csv, save_figure)
 
 # The generic particle figures read 2D traces: they do not apply to the rigid lab's.
 REPLACES_GENERIC = True
@@ -636,13 +636,7 @@ def run(args):
                          after=args.after, title=args.title)
     elif cmd == "rigid-momenta":
         labels = parse_list(args.labels, "--labels") if args.labels else None
-        diverged = {}
-        for item in parse_list(args.diverged, "--diverged") if args.diverged else []:
-            name, _, st = item.partition("=")
-            try:
-                diverged[name] = int(st)
-            except ValueError:
-                raise InputError(f"--diverged: item '{item}': expected LABEL=STEP") from None
+        diverged = parse_label_map(args.diverged, "--diverged", int, "LABEL=STEP")
         plot_momenta(args.stats, labels, args.out, title=args.title, diverged=diverged)
     elif cmd == "rigid-polhode":
         plot_polhode(args.trace, args.out, body=args.id, title=args.title)
