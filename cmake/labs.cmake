@@ -330,6 +330,17 @@ function(wb_add_lab lab side)
     # process (<lab>[-solution]-worker), so that no student code runs in the test process.
     wb_lab_worker(${lab} ${side} "${suffix}")
     target_link_libraries(${tests} PRIVATE ${lab}_client Catch2::Catch2WithMain)
+    if(WB_DIRECT_TESTS)
+      # tools/mutants only: the same tests linked straight with the lab's code, for our own
+      # mutants (trusted code), built only when asked for. Never used to grade a submission.
+      add_executable(${tests}-direct EXCLUDE_FROM_ALL $<TARGET_OBJECTS:${lab}_tests_obj>
+                                                      ${kernel_sources})
+      target_include_directories(${tests}-direct PRIVATE ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels)
+      if(use_glue)
+        target_link_libraries(${tests}-direct PRIVATE ${link_items} wb_run)
+      endif()
+      target_link_libraries(${tests}-direct PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+    endif()
   else()
     target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
   endif()

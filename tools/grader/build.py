@@ -116,6 +116,9 @@ class Grader:
         self.screen = screen
         self._screened = {}  # sha256 of (lab, name, bytes) -> None (accepted) or the refusal
         self._key = self._secret()
+        # tools/mutants only (our own mutants, trusted code): also configure <lab>-tests-direct,
+        # the tests linked straight with the lab. Grading never builds or runs it.
+        self.direct_tests = False
 
     def _secret(self):
         """The key that signs the cached test list (readable by the grader only)."""
@@ -181,7 +184,8 @@ class Grader:
         args = [f"-DWB_LABS={';'.join(labs)}", "-DWB_SOLUTIONS=OFF", "-DWB_BENCH=OFF",
                 "-DWB_TESTS=ON", "-DCMAKE_BUILD_TYPE=Release",
                 f"-DWB_WORKER_DIR={os.path.join(self.src, WORKER_DIR)}",
-                f"-DCMAKE_CROSSCOMPILING_EMULATOR={shutil.which('true') or '/bin/true'}"]
+                f"-DCMAKE_CROSSCOMPILING_EMULATOR={shutil.which('true') or '/bin/true'}",
+                f"-DWB_DIRECT_TESTS={'ON' if self.direct_tests else 'OFF'}"]
         stamp = os.path.join(self.root, "configured.json")
         fresh = not os.path.isfile(os.path.join(self.build, "CMakeCache.txt"))
         if not fresh:
