@@ -127,7 +127,7 @@ struct FastBackwardEuler::Impl {
   FastSolverOptions fo;
   std::string solver, reason;
   long cg_iterations = 0, factorisations = 0;
-  bool direct = true;  // ldlt or cholmod: A in compressed form; cg: A by blocks
+  bool direct = true;  // ldlt or cholmod: A in compressed form; cg: A by springs (cg_springs)
 
   // Direct solvers: A, 2n x 2n, both triangles, its pattern fixed at the start.
   // Its unknowns are numbered in the fill-reducing order found once (particle i's
@@ -143,16 +143,26 @@ struct FastBackwardEuler::Impl {
   Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> cholmod;
 #endif
 
-  // CG: A by its 2 x 2 blocks (symmetric: 3 numbers each), row by row. Every
-  // particle has a diagonal block; row i lists the off-diagonal blocks of the
-  // springs from i to another free particle (each such spring appears in both
-  // of its rows), so that the product A p gathers each row's sum in registers.
-  Eigen::Matrix<double, 3, Eigen::Dynamic> dblk, dinv;  // per particle: (a00, a10, a11)
-  Eigen::Matrix<double, 4, Eigen::Dynamic> eblk;        // per row entry: -B (column-major)
-  std::vector<int> row_start, ent_j;  // row i: entries row_start[i] .. row_start[i + 1] - 1;
-                                      // ent_j: 2 j, j the entry's column particle
-  std::vector<int> ent_of;            // per spring: its entries in rows i and j (or -1)
-  Eigen::VectorXd r, z, p, q;         // CG's residual, preconditioned residual, direction, A p
+  // CG: A = M' + sum over springs, stored spring by spring. A spring between
+  // free particles i < j puts its symmetric block B (3 numbers) at (i, i) and
+  // (j, j) and -B at (i, j) and (j, i): A p gets B (p_i - p_j) at i and its
+  // negative at j, so the spring is stored once (32 bytes), not as two 2 x 2
+  // blocks in the rows of i and j. The CG solve of a large cloth is bound by
+  // memory traffic: these are the bytes it streams at each iteration.
+  struct CgSpring {
+    double b00, b10, b11;  // B (symmetric)
+    int i, j;              // its free particles, i < j
+  };
+  static_assert(sizeof(CgSpring) == 32, "a spring: half a cache line");
+  std::vector<CgSpring> cg_springs;  // sorted by i, then j: the product sweeps forward
+  Eigen::Index cg_lead = 0;          // the largest j - i: how far ahead a spring reaches
+  std::vector<int> cg_slot;  // per spring of the network: its place in cg_springs (-1: none)
+  // Per particle (a00, a10, a11): dblk, mass and drag plus the blocks of the
+  // springs to a pinned particle or an anchor (those couple to nothing that
+  // moves: pinned rows are the identity times m, dv = 0 there); dinv, the
+  // inverse of the whole diagonal block (dblk and the coupled springs' B).
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dblk, dinv;
+  Eigen::VectorXd r, z, p, q;  // CG's residual, preconditioned residual, direction, A p
 
   Eigen::VectorXd b, dv, dv0, zero;  // right-hand side, solution, last step's first dv, 0
   Mat2X rhs, w, y, xl;               // 2 x n work arrays (b is rhs's storage)
@@ -267,29 +277,32 @@ struct FastBackwardEuler::Impl {
 
   void build_blocks() {
     const Eigen::Index n = net.n();
-    row_start.assign(std::size_t(n) + 1, 0);
-    for (const NetworkSpring& s : net.springs) {
-      if (!coupled(s)) continue;
-      ++row_start[std::size_t(s.i) + 1];
-      ++row_start[std::size_t(s.j) + 1];
-    }
-    for (std::size_t i = 0; i < std::size_t(n); ++i) row_start[i + 1] += row_start[i];
-    std::vector<int> fill(row_start.begin(), row_start.end() - 1);
-    ent_j.resize(std::size_t(row_start.back()));
-    ent_of.assign(2 * net.springs.size(), -1);
+    struct Key {
+      int i, j;
+      std::size_t k;
+    };
+    std::vector<Key> keys;
+    keys.reserve(net.springs.size());
     for (std::size_t k = 0; k < net.springs.size(); ++k) {
       const NetworkSpring& s = net.springs[k];
-      if (!coupled(s)) continue;
-      const int ei = fill[std::size_t(s.i)]++, ej = fill[std::size_t(s.j)]++;
-      ent_j[std::size_t(ei)] = 2 * int(s.j);  // where x_j starts in a 2n vector
-      ent_j[std::size_t(ej)] = 2 * int(s.i);
-      ent_of[2 * k] = ei;
-      ent_of[2 * k + 1] = ej;
+      if (coupled(s)) keys.push_back({int(std::min(s.i, s.j)), int(std::max(s.i, s.j)), k});
+    }
+    // By first particle, then second: the product's sweep then reads and writes
+    // the vectors near its position (a cloth's springs reach two rows ahead).
+    std::stable_sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+      return a.i != b.i ? a.i < b.i : a.j < b.j;
+    });
+    cg_springs.resize(keys.size());
+    cg_slot.assign(net.springs.size(), -1);
+    cg_lead = 0;
+    for (std::size_t c = 0; c < keys.size(); ++c) {
+      cg_springs[c] = CgSpring{0.0, 0.0, 0.0, keys[c].i, keys[c].j};
+      cg_slot[keys[c].k] = int(c);
+      cg_lead = std::max(cg_lead, Eigen::Index(keys[c].j - keys[c].i));
     }
     dblk.resize(3, n);
     dinv.resize(3, n);
-    eblk.resize(4, Eigen::Index(ent_j.size()));
-    for (Eigen::VectorXd* v : {&r, &z, &p, &q}) v->resize(2 * n);
+    for (Eigen::VectorXd* v : {&r, &z, &p, &q}) v->setZero(2 * n);
   }
 
   void choose_solver() {
@@ -356,7 +369,7 @@ struct FastBackwardEuler::Impl {
   }
 
   // A and b linearised at (xl, vl), the formulas of assemble_system.h, written
-  // straight into A's values (or blocks).
+  // straight into A's values (or CG's springs and diagonal blocks).
   void assemble(const Mat2X& x0, const Mat2X& v0, const Mat2X& xl_, const Mat2X& vl,
                 const Mat2X& f_ext, double h, bool definite) {
     double* val = direct ? A.valuePtr() : nullptr;
@@ -394,13 +407,14 @@ struct FastBackwardEuler::Impl {
         add_block(val, at[4 * k + 1], B, 1.0);
         add_block(val, at[4 * k + 2], B, -1.0);
         add_block(val, at[4 * k + 3], B, -1.0);
+      } else if (cg_slot[k] >= 0) {
+        CgSpring& c = cg_springs[std::size_t(cg_slot[k])];
+        c.b00 = B(0, 0);
+        c.b10 = B(1, 0);
+        c.b11 = B(1, 1);
       } else {
         if (free_particle(s.i)) add_diag(s.i, B);
         if (free_particle(s.j)) add_diag(s.j, B);
-        if (ent_of[2 * k] >= 0) {
-          eblk.col(ent_of[2 * k]) = -Eigen::Map<const Eigen::Vector4d>(B.data());
-          eblk.col(ent_of[2 * k + 1]) = eblk.col(ent_of[2 * k]);
-        }
       }
     }
     // Pinned particles: dv = 0.
@@ -409,20 +423,38 @@ struct FastBackwardEuler::Impl {
     for (Eigen::Index i = 0; i < n; ++i) b.segment<2>(2 * place[std::size_t(i)]) = rhs.col(i);
   }
 
-  // out = A in, row by row from the blocks (each a 2 x 2 product on two-double
-  // packets). Returns in . out (= in^T A in).
-  double product(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {
+  // y = A x in one forward sweep over the particles and the springs: y_k
+  // starts as dblk_k x_k, and each spring (i < j) adds t = B (x_i - x_j) to
+  // y_i and subtracts it from y_j. Particle k's entries of x are first made by
+  // make(k), called once per particle in increasing k before x_k is read (CG
+  // folds p = z + beta p in here: no pass of its own). Returns x . y (x^T A x).
+  template <class Make>
+  double product(double* x, double* y, Make make) const {
     const Eigen::Index n = net.n();
-    const double* E = eblk.data();
-    const double* x = in.data();
-    const int* J = ent_j.data();
+    const CgSpring* s = cg_springs.data();
+    const CgSpring* const end = s + cg_springs.size();
+    Eigen::Index ready = 0;  // particles below: made, and y = dblk x there
     double quad = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
-      const Eigen::Map<const Vec2> xi(x + 2 * i);
-      Vec2 yi(dblk(0, i) * xi[0] + dblk(1, i) * xi[1], dblk(1, i) * xi[0] + dblk(2, i) * xi[1]);
-      for (int e = row_start[std::size_t(i)]; e < row_start[std::size_t(i) + 1]; ++e)
-        yi.noalias() += Eigen::Map<const Mat2>(E + 4 * e) * Eigen::Map<const Vec2>(x + J[e]);
-      out.segment<2>(2 * i) = yi;
+      // Made up to i + cg_lead, the farthest the springs from i reach.
+      for (const Eigen::Index to = std::min(n - 1, i + cg_lead); ready <= to; ++ready) {
+        make(ready);
+        const double x0 = x[2 * ready], x1 = x[2 * ready + 1];
+        y[2 * ready] = dblk(0, ready) * x0 + dblk(1, ready) * x1;
+        y[2 * ready + 1] = dblk(1, ready) * x0 + dblk(2, ready) * x1;
+      }
+      const Vec2 xi = Eigen::Map<const Vec2>(x + 2 * i);
+      Vec2 yi = Eigen::Map<const Vec2>(y + 2 * i);
+      for (; s != end && s->i == i; ++s) {
+        // B's columns (b00, b10) and (b10, b11) overlap in memory: two packet loads.
+        const Vec2 d = xi - Eigen::Map<const Vec2>(x + 2 * s->j);
+        const Vec2 t =
+            Eigen::Map<const Vec2>(&s->b00) * d[0] + Eigen::Map<const Vec2>(&s->b10) * d[1];
+        yi += t;
+        Eigen::Map<Vec2>(y + 2 * s->j) -= t;
+      }
+      // Every spring with i as its second particle came earlier: y_i is final.
+      Eigen::Map<Vec2>(y + 2 * i) = yi;
       quad += xi.dot(yi);
     }
     return quad;
@@ -433,11 +465,16 @@ struct FastBackwardEuler::Impl {
   // the inverse of each particle's 2 x 2 diagonal block (block Jacobi): a
   // spring acts along its direction, and the block sees that direction where a
   // scalar (Jacobi) preconditioner would see only x and y. One iteration is
-  // two passes over the vectors besides the product.
+  // two sweeps: the product (which also makes p = z + beta p) and the update.
   bool solve_cg(const Eigen::VectorXd& start, double abs_tol) {
     const Eigen::Index n = net.n();
+    dinv = dblk;  // the whole diagonal blocks first, inverted in place below
+    for (const CgSpring& s : cg_springs) {
+      dinv.col(s.i) += Eigen::Vector3d(s.b00, s.b10, s.b11);
+      dinv.col(s.j) += Eigen::Vector3d(s.b00, s.b10, s.b11);
+    }
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double a = dblk(0, i), c = dblk(1, i), d = dblk(2, i), det = a * d - c * c;
+      const double a = dinv(0, i), c = dinv(1, i), d = dinv(2, i), det = a * d - c * c;
       if (det > 0.0) {
         dinv.col(i) << d / det, -c / det, a / det;
       } else {
@@ -446,21 +483,28 @@ struct FastBackwardEuler::Impl {
     }
     // r = b - A dv, z = P r (P the preconditioner), p = z.
     dv = start;
-    product(dv, q);
+    product(dv.data(), q.data(), [](Eigen::Index) {});
     double rz = 0, rr = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double r0 = b[2 * i] - q[2 * i], r1 = b[2 * i + 1] - q[2 * i + 1];
       const double z0 = dinv(0, i) * r0 + dinv(1, i) * r1, z1 = dinv(1, i) * r0 + dinv(2, i) * r1;
       r[2 * i] = r0;
       r[2 * i + 1] = r1;
-      p[2 * i] = z0;
-      p[2 * i + 1] = z1;
+      z[2 * i] = p[2 * i] = z0;
+      z[2 * i + 1] = p[2 * i + 1] = z1;
       rz += r0 * z0 + r1 * z1;
       rr += r0 * r0 + r1 * r1;
     }
     const double tol2 = abs_tol * abs_tol;
+    double beta = 0;  // p = z + beta p, made in the product (0: p = z, as set above)
+    double* pp = p.data();
+    const double* zp = z.data();
+    auto make_p = [&](Eigen::Index k) {
+      pp[2 * k] = zp[2 * k] + beta * pp[2 * k];
+      pp[2 * k + 1] = zp[2 * k + 1] + beta * pp[2 * k + 1];
+    };
     for (int it = 0; it < kCgMaxIterations && rr > tol2; ++it) {
-      const double pq = product(p, q);
+      const double pq = product(pp, q.data(), make_p);
       if (!(pq > 0.0)) return false;  // A not positive definite along p
       const double alpha = rz / pq;
       // dv += alpha p, r -= alpha q, z = P r, and the new r.z and r.r, in one pass.
@@ -479,7 +523,7 @@ struct FastBackwardEuler::Impl {
         rz_new += r0 * z0 + r1 * z1;
         rr += r0 * r0 + r1 * r1;
       }
-      p = z + (rz_new / rz) * p;
+      beta = rz_new / rz;
       rz = rz_new;
       ++cg_iterations;
     }

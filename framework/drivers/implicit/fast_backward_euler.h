@@ -32,7 +32,7 @@ struct FastSolverOptions {
   // SuiteSparse's supernodal Cholesky (falls back to ldlt when the build has no
   // CHOLMOD, or when A is not positive definite); cg: conjugate gradients with a
   // block-Jacobi preconditioner (each particle's 2 x 2 diagonal block of A),
-  // warm-started from the previous step's dv, on A stored by blocks.
+  // warm-started from the previous step's dv, on A stored spring by spring.
   enum Solver { kAuto, kLDLT, kCholmod, kCG };
   Solver solver = kAuto;
   // CG stops when |A dv - b| <= cg_tol * (|M v| + |b_0| + h |f_ext|): the
