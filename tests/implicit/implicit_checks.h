@@ -78,6 +78,14 @@ inline void dense_jacobians(const SpringNetwork& net, const Mat2X& x, const Mat2
   }
 }
 
+// A 2 x 2 system A s = r by Cramer's rule (the references' per-coordinate solves; A is
+// near the identity there, so this is as accurate as a pivoted LU, and far lighter to
+// compile than instantiating one).
+inline Eigen::Vector2d solve2(const Eigen::Matrix2d& A, const Eigen::Vector2d& r) {
+  const double det = A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0);
+  return Eigen::Vector2d(r[0] * A(1, 1) - A(0, 1) * r[1], A(0, 0) * r[1] - A(1, 0) * r[0]) / det;
+}
+
 inline Eigen::VectorXd flat(const Mat2X& m) {
   return Eigen::Map<const Eigen::VectorXd>(m.data(), m.size());
 }

@@ -63,7 +63,7 @@ Contact contact_at(const Vec3& p, double Pn = 0, const Vec3& Pt = Vec3::Zero()) 
 // A box of edges `size` (mass m) resting flat on a plane of normal n through the
 // origin, its body z along n; its four lower corners are the contacts.
 Body box_on_plane(double m, const Vec3& size, const Vec3& n, const Eigen::Quaterniond& spin) {
-  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(kUp, n) * spin;
+  const Eigen::Quaterniond q = rotation_from_to(kUp, n) * spin;
   const Vec3 I(m / 12 * (size.y() * size.y() + size.z() * size.z()),
                m / 12 * (size.x() * size.x() + size.z() * size.z()),
                m / 12 * (size.x() * size.x() + size.y() * size.y()));

@@ -129,7 +129,7 @@ struct Plate {
   Plate(const Vec3& a, double angle, const Vec3& omega) : axis(a.normalized()) {
     const Vec3 I(1.0 / 12 * (0.0025 + 1.0), 1.0 / 12 * (0.09 + 1.0), 1.0 / 12 * (0.09 + 0.0025));
     // Body x along the axis' horizontal part; turned about the axis by `angle`.
-    const Eigen::Quaterniond q0 = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitY(), axis);
+    const Eigen::Quaterniond q0 = rotation_from_to(Vec3::UnitY(), axis);
     const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)) * q0;
     b = make_body(1.0, I, q, omega);
     b.x = anchor - q.toRotationMatrix() * r_body;
