@@ -146,15 +146,20 @@ struct FastBackwardEuler::Impl {
   // CG: A = M' + sum over springs, stored spring by spring. A spring between
   // free particles i < j puts its symmetric block B (3 numbers) at (i, i) and
   // (j, j) and -B at (i, j) and (j, i): A p gets B (p_i - p_j) at i and its
-  // negative at j, so the spring is stored once (32 bytes), not as two 2 x 2
-  // blocks in the rows of i and j. The CG solve of a large cloth is bound by
-  // memory traffic: these are the bytes it streams at each iteration.
+  // negative at j, so the spring is stored once, not as two 2 x 2 blocks in the
+  // rows of i and j. The CG solve of a large cloth is bound by memory traffic:
+  // these are the bytes it streams at each iteration, so a spring is 16 bytes:
+  // B in single precision (mixed-precision CG: the vectors, the sums and the
+  // diagonal blocks stay double; B's rounding, 6e-8 relative, perturbs A far
+  // less than the solve's tolerance of 1e-2, and A stays symmetric), and only j
+  // (the springs are sorted by i: particle i's are cg_first[i] to cg_first[i+1]).
   struct CgSpring {
-    double b00, b10, b11;  // B (symmetric)
-    int i, j;              // its free particles, i < j
+    float b00, b10, b11;  // B (symmetric)
+    int j;                // its second free particle (j > i)
   };
-  static_assert(sizeof(CgSpring) == 32, "a spring: half a cache line");
+  static_assert(sizeof(CgSpring) == 16, "a spring: a quarter of a cache line");
   std::vector<CgSpring> cg_springs;  // sorted by i, then j: the product sweeps forward
+  std::vector<int> cg_first;         // per particle i, then n: where i's springs start
   Eigen::Index cg_lead = 0;          // the largest j - i: how far ahead a spring reaches
   std::vector<int> cg_slot;  // per spring of the network: its place in cg_springs (-1: none)
   // Per particle (a00, a10, a11): dblk, mass and drag plus the blocks of the
@@ -293,13 +298,16 @@ struct FastBackwardEuler::Impl {
       return a.i != b.i ? a.i < b.i : a.j < b.j;
     });
     cg_springs.resize(keys.size());
+    cg_first.assign(std::size_t(n) + 1, 0);
     cg_slot.assign(net.springs.size(), -1);
     cg_lead = 0;
     for (std::size_t c = 0; c < keys.size(); ++c) {
-      cg_springs[c] = CgSpring{0.0, 0.0, 0.0, keys[c].i, keys[c].j};
+      cg_springs[c] = CgSpring{0.0f, 0.0f, 0.0f, keys[c].j};
+      ++cg_first[std::size_t(keys[c].i) + 1];
       cg_slot[keys[c].k] = int(c);
       cg_lead = std::max(cg_lead, Eigen::Index(keys[c].j - keys[c].i));
     }
+    for (Eigen::Index i = 0; i < n; ++i) cg_first[std::size_t(i) + 1] += cg_first[std::size_t(i)];
     dblk.resize(3, n);
     dinv.resize(3, n);
     for (Eigen::VectorXd* v : {&r, &z, &p, &q}) v->setZero(2 * n);
@@ -409,9 +417,9 @@ struct FastBackwardEuler::Impl {
         add_block(val, at[4 * k + 3], B, -1.0);
       } else if (cg_slot[k] >= 0) {
         CgSpring& c = cg_springs[std::size_t(cg_slot[k])];
-        c.b00 = B(0, 0);
-        c.b10 = B(1, 0);
-        c.b11 = B(1, 1);
+        c.b00 = float(B(0, 0));
+        c.b10 = float(B(1, 0));
+        c.b11 = float(B(1, 1));
       } else {
         if (free_particle(s.i)) add_diag(s.i, B);
         if (free_particle(s.j)) add_diag(s.j, B);
@@ -431,8 +439,7 @@ struct FastBackwardEuler::Impl {
   template <class Make>
   double product(double* x, double* y, Make make) const {
     const Eigen::Index n = net.n();
-    const CgSpring* s = cg_springs.data();
-    const CgSpring* const end = s + cg_springs.size();
+    const CgSpring* const springs = cg_springs.data();
     Eigen::Index ready = 0;  // particles below: made, and y = dblk x there
     double quad = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -445,11 +452,13 @@ struct FastBackwardEuler::Impl {
       }
       const Vec2 xi = Eigen::Map<const Vec2>(x + 2 * i);
       Vec2 yi = Eigen::Map<const Vec2>(y + 2 * i);
-      for (; s != end && s->i == i; ++s) {
-        // B's columns (b00, b10) and (b10, b11) overlap in memory: two packet loads.
+      const CgSpring* const end = springs + cg_first[std::size_t(i) + 1];
+      for (const CgSpring* s = springs + cg_first[std::size_t(i)]; s != end; ++s) {
         const Vec2 d = xi - Eigen::Map<const Vec2>(x + 2 * s->j);
-        const Vec2 t =
-            Eigen::Map<const Vec2>(&s->b00) * d[0] + Eigen::Map<const Vec2>(&s->b10) * d[1];
+        // B's columns (b00, b10) and (b10, b11) overlap in memory: two packet
+        // loads, each widened to double in one instruction.
+        const Vec2 t = Eigen::Map<const Eigen::Vector2f>(&s->b00).cast<double>() * d[0] +
+                       Eigen::Map<const Eigen::Vector2f>(&s->b10).cast<double>() * d[1];
         yi += t;
         Eigen::Map<Vec2>(y + 2 * s->j) -= t;
       }
@@ -469,9 +478,13 @@ struct FastBackwardEuler::Impl {
   bool solve_cg(const Eigen::VectorXd& start, double abs_tol) {
     const Eigen::Index n = net.n();
     dinv = dblk;  // the whole diagonal blocks first, inverted in place below
-    for (const CgSpring& s : cg_springs) {
-      dinv.col(s.i) += Eigen::Vector3d(s.b00, s.b10, s.b11);
-      dinv.col(s.j) += Eigen::Vector3d(s.b00, s.b10, s.b11);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (int c = cg_first[std::size_t(i)]; c < cg_first[std::size_t(i) + 1]; ++c) {
+        const CgSpring& s = cg_springs[std::size_t(c)];
+        const Eigen::Vector3d B(s.b00, s.b10, s.b11);
+        dinv.col(i) += B;
+        dinv.col(s.j) += B;
+      }
     }
     for (Eigen::Index i = 0; i < n; ++i) {
       const double a = dinv(0, i), c = dinv(1, i), d = dinv(2, i), det = a * d - c * c;
