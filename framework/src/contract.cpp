@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iostream>
 
 #include "wb/output.h"
@@ -64,6 +65,7 @@ LoopResult run_steps(long steps, long every, double dt, double scale, const Step
   LoopResult r;
   hooks.record(0, 0.0);
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   long k = 0;
   while (k < steps) {
     hooks.step();
@@ -75,6 +77,10 @@ LoopResult run_steps(long steps, long every, double dt, double scale, const Step
     if (!r.reason.empty()) break;
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::clock_t cpu_end = std::clock();
+  r.cpu_s = cpu_start == std::clock_t(-1) || cpu_end == std::clock_t(-1)
+                ? NAN
+                : double(cpu_end - cpu_start) / CLOCKS_PER_SEC;
   r.steps = k;
   return r;
 }
@@ -92,6 +98,7 @@ ordered_json summary_json(const Summary& s) {
   j["t"] = s.t;
   j["force_evals"] = s.force_evals;
   j["wall_s"] = s.wall_s;
+  j["cpu_s"] = number_or_null(s.cpu_s);
   j["energy0"] = number_or_null(s.energy0);
   j["energy"] = number_or_null(s.energy);
   for (const auto& [key, v] : {std::pair{"momentum0", &s.momentum0}, {"momentum", &s.momentum}}) {

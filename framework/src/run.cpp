@@ -190,6 +190,7 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
   const LoopResult loop = run_steps(opt.steps, opt.every, opt.dt, scale, hooks);
   const long k = loop.steps;
   r.wall_s = loop.wall_s;
+  r.cpu_s = loop.cpu_s;
   r.steps = k;
   r.t = double(k) * opt.dt;
   r.force_evals = dyn.evals();
@@ -226,6 +227,7 @@ ordered_json summary_json(const RunResult& r) {
   s.t = r.t;
   s.force_evals = r.force_evals;
   s.wall_s = r.wall_s;
+  s.cpu_s = r.cpu_s;
   s.energy0 = r.energy0.total();
   s.energy = r.energy.total();
   s.momentum0 = {r.momentum0.x(), r.momentum0.y()};

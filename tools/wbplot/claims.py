@@ -202,8 +202,19 @@ def needs(claim):
     return [(lab, stem, integ)]
 
 
+# Columns and summary keys no claim may name: wall time counts whatever else the machine
+# ran meanwhile, so a ratio of two runs' wall times can flip on a loaded machine (it did: CI
+# once measured 0.53 for a ratio of 4 on a quiet one). Timings in claims are CPU times.
+WALL_CLOCK = ("wall_s",)
+
+
 def measure(claim, data):
     name, args = claim.measure[0], claim.measure[1:]
+    for a in args:
+        if a in WALL_CLOCK:
+            raise InputError(f"{claim.where}: claim '{claim.body}': '{a}' is wall time, which "
+                             "the machine's load moves; claim on CPU time (the summary's "
+                             "cpu_s; docs/report.md, Claims)")
 
     def want(n):
         if len(args) != n:

@@ -147,6 +147,7 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
   s.t = double(k) * opt.dt;
   s.force_evals = k;  // one force accumulation per step
   s.wall_s = loop.wall_s;
+  s.cpu_s = loop.cpu_s;
   s.energy0 = t0.energy();
   s.energy = t1.energy();
   s.momentum0 = {t0.p.x(), t0.p.y(), t0.p.z()};

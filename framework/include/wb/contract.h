@@ -59,6 +59,8 @@ struct LoopResult {
   long steps = 0;      // steps taken
   std::string reason;  // why the run diverged ("" when it did not)
   double wall_s = 0;   // the loop's wall time, writing included
+  double cpu_s = 0;    // the process's CPU time in the loop: what other work on the machine
+                       // does not inflate (the report's cost figure uses it)
 };
 
 // Takes up to `steps` steps of size dt, records step 0, every `every`-th step
@@ -72,7 +74,7 @@ struct Summary {
   long steps = 0;
   double t = 0;
   long force_evals = 0;
-  double wall_s = 0;
+  double wall_s = 0, cpu_s = 0;
   double energy0 = 0, energy = 0;
   std::vector<double> momentum0, momentum;  // 2 or 3 components
   long unconverged = -1;                    // < 0: the lab has no solver to report
