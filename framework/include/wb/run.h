@@ -41,7 +41,8 @@ struct RunResult {
   double t = 0;
   long force_evals = 0;
   long unconverged = 0;  // steps whose implicit solve did not converge
-  double wall_s = 0, cpu_s = 0;  // the step loop's wall and CPU time
+  // the step loop's wall time and the process's CPU time in it (s)
+  double wall_s = 0, cpu_s = 0;
   Energy energy0, energy;
   Vec2 momentum0 = Vec2::Zero(), momentum = Vec2::Zero();
   Mat2X x, v;  // final state
