@@ -357,14 +357,14 @@ def cost_sweep(exe, out_dir, beads=1000, kms=COST_KM, t_end=1.0, repeats=3, clot
                 continue
             s = _run(exe, scene, meth, dt, t_end, repeats, log, COST_CLOCK)
             e0, e1 = s.get("energy0"), s.get("energy")
-            clock = s.get(COST_CLOCK)
+            spent = s.get(COST_CLOCK)  # a diverged run's too: it is drawn with an x
             lost = (e0 - e1) / mgl if isinstance(e0, (int, float)) and isinstance(
                 e1, (int, float)) else math.nan
             per[meth] = {"km": label, "km_value": km, "method": meth, "dt": dt,
                          "steps": s.get("steps"), "wall_s": s.get("wall_s"),
-                         "cpu_s": s.get("cpu_s"), "cost": clock / t_end if isinstance(clock, (int, float)) else math.nan,
-                         "status": s.get("status"),
-                         "energy_lost": lost, "n": n}
+                         "cpu_s": s.get("cpu_s"),
+                         "cost": spent / t_end if isinstance(spent, (int, float)) else math.nan,
+                         "status": s.get("status"), "energy_lost": lost, "n": n}
         se_cost = per.get("symplectic-euler", {}).get("cost", math.nan)
         for r in per.values():
             r["vs_se"] = r["cost"] / se_cost if se_cost and se_cost > 0 else math.nan
@@ -382,8 +382,7 @@ def cost_sweep(exe, out_dir, beads=1000, kms=COST_KM, t_end=1.0, repeats=3, clot
                 break
         rows.append({"km": "crossover", "km_value": cross, "method": meth, "dt": COST_FRAME,
                      "steps": "", "wall_s": "", "cpu_s": "", "cost": "", "vs_se": "",
-                     "status": "",
-                     "energy_lost": "", "n": ""})
+                     "status": "", "energy_lost": "", "n": ""})
     path = os.path.join(out_dir, COST_CSV)
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:
