@@ -28,8 +28,17 @@
 # CLI11 is in none: its static objects would be compiled into every file; only
 # framework/src/cli.cpp includes it. GCC ignores a PCH it cannot use, so this
 # only ever saves time. WB_PCH=OFF turns it off.
+# A hardened build (WB_HARDENED) puts wb/hardened.h first in every precompiled header, or
+# force-includes it where there is none: it must precede Eigen everywhere.
 function(wb_use_pch target)
+  set(first)
+  if(WB_HARDENED)
+    set(first ${CMAKE_SOURCE_DIR}/framework/include/wb/hardened.h)
+  endif()
   if(NOT WB_PCH)
+    if(first)
+      target_compile_options(${target} PRIVATE -include ${first})
+    endif()
     return()
   endif()
   if(ARGN STREQUAL "LAB")
@@ -37,7 +46,7 @@ function(wb_use_pch target)
     if(NOT TARGET ${pch})
       add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
       target_link_libraries(${pch} PRIVATE Eigen3::Eigen)
-      target_precompile_headers(${pch} PRIVATE <Eigen/Core> <Eigen/Geometry> <Eigen/Sparse>
+      target_precompile_headers(${pch} PRIVATE ${first} <Eigen/Core> <Eigen/Geometry> <Eigen/Sparse>
                                                <cmath> <vector> <algorithm>)
     endif()
   elseif(ARGN STREQUAL "TESTS")
@@ -45,7 +54,7 @@ function(wb_use_pch target)
     if(NOT TARGET ${pch})
       add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
       target_link_libraries(${pch} PRIVATE Eigen3::Eigen Catch2::Catch2)
-      target_precompile_headers(${pch} PRIVATE <catch2/catch.hpp> <Eigen/Core> <cmath> <vector>
+      target_precompile_headers(${pch} PRIVATE ${first} <catch2/catch.hpp> <Eigen/Core> <cmath> <vector>
                                                <string> <sstream>)
     endif()
   else()
@@ -53,7 +62,7 @@ function(wb_use_pch target)
     if(NOT TARGET ${pch})
       add_library(${pch} OBJECT ${CMAKE_SOURCE_DIR}/framework/src/pch.cpp)
       target_link_libraries(${pch} PRIVATE Eigen3::Eigen nlohmann_json::nlohmann_json)
-      target_precompile_headers(${pch} PRIVATE <Eigen/Core> <nlohmann/json.hpp> <cmath> <vector>
+      target_precompile_headers(${pch} PRIVATE ${first} <Eigen/Core> <nlohmann/json.hpp> <cmath> <vector>
                                                <string> <memory> <functional>)
     endif()
   endif()
@@ -318,6 +327,9 @@ function(wb_add_lab lab side)
   else()
     add_executable(${tests} $<TARGET_OBJECTS:${lab}_tests_obj> ${kernel_sources})
     target_include_directories(${tests} PRIVATE ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels)
+    if(kernel_sources)
+      wb_use_pch(${tests} LAB)
+    endif()
     target_link_libraries(${tests} PRIVATE ${lab}_${side})
   endif()
   get_property(use_glue GLOBAL PROPERTY WB_LAB_TESTS_USE_GLUE_${lab})
@@ -336,6 +348,9 @@ function(wb_add_lab lab side)
       add_executable(${tests}-direct EXCLUDE_FROM_ALL $<TARGET_OBJECTS:${lab}_tests_obj>
                                                       ${kernel_sources})
       target_include_directories(${tests}-direct PRIVATE ${CMAKE_SOURCE_DIR}/tests/${lab}/kernels)
+      if(kernel_sources)
+        wb_use_pch(${tests}-direct LAB)
+      endif()
       if(use_glue)
         target_link_libraries(${tests}-direct PRIVATE ${link_items} wb_run)
       endif()

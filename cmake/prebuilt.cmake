@@ -28,7 +28,7 @@ set(WB_PREBUILT_DIR ${CMAKE_SOURCE_DIR}/prebuilt)
 function(wb_toolchain_key out)
   string(TOUPPER "${CMAKE_BUILD_TYPE}" config)
   set(${out}
-      "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} | ${CMAKE_SYSTEM_NAME} ${CMAKE_SYSTEM_PROCESSOR} | build type '${CMAKE_BUILD_TYPE}' | flags '${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${config}}' | C++${CMAKE_CXX_STANDARD} | Eigen ${Eigen3_VERSION} | nlohmann_json ${nlohmann_json_VERSION} | CLI11 ${CLI11_VERSION} | CHOLMOD ${WB_CHOLMOD_FOUND}"
+      "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} | ${CMAKE_SYSTEM_NAME} ${CMAKE_SYSTEM_PROCESSOR} | build type '${CMAKE_BUILD_TYPE}' | flags '${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${config}}' | C++${CMAKE_CXX_STANDARD} | Eigen ${Eigen3_VERSION} | nlohmann_json ${nlohmann_json_VERSION} | CLI11 ${CLI11_VERSION} | CHOLMOD ${WB_CHOLMOD_FOUND} | hardened ${WB_HARDENED}"
       PARENT_SCOPE)
 endfunction()
 

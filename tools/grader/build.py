@@ -182,7 +182,7 @@ class Grader:
         # from running (and hanging, or crashing the build) outside the
         # time-limited test processes. CTest is not used here.
         args = [f"-DWB_LABS={';'.join(labs)}", "-DWB_SOLUTIONS=OFF", "-DWB_BENCH=OFF",
-                "-DWB_TESTS=ON", "-DCMAKE_BUILD_TYPE=Release",
+                "-DWB_TESTS=ON", "-DCMAKE_BUILD_TYPE=Release", "-DWB_HARDENED=ON",
                 f"-DWB_WORKER_DIR={os.path.join(self.src, WORKER_DIR)}",
                 f"-DCMAKE_CROSSCOMPILING_EMULATOR={shutil.which('true') or '/bin/true'}",
                 f"-DWB_DIRECT_TESTS={'ON' if self.direct_tests else 'OFF'}"]

