@@ -46,7 +46,7 @@ VecX inverse_masses() { return (VecX(3) << 0.5, 2.0, 1.0).finished(); }
 }  // namespace
 
 TEST_CASE("C5 prepare: effective mass and the restitution target on both sides of the threshold",
-          "[collisions][C5][4pts]") {
+          "[collisions][C5][3pts]") {
   const VecX w = inverse_masses();
   Mat2X v(2, 3);
   v << 1.0, -0.5, 7.0, -2.0, 1.0, 7.0;             // columns: v0 = (1, -2), v1 = (-0.5, 1), v2
@@ -100,7 +100,7 @@ TEST_CASE("C5 warm start: the stored totals are applied again with their own sig
 }
 
 TEST_CASE("C5 one iteration: the normal impulse is a clamped total that can be taken back",
-          "[collisions][C5][5pts]") {
+          "[collisions][C5][4pts]") {
   const VecX w = inverse_masses();
   const Vec2 n(0.6, 0.8);
   // Closing with nothing stored: the iteration makes un = bias and returns what it added;
@@ -149,7 +149,7 @@ TEST_CASE("C5 one iteration: the normal impulse is a clamped total that can be t
 }
 
 TEST_CASE("C5 friction: the bound is mu times the accumulated normal total",
-          "[collisions][C5][4pts]") {
+          "[collisions][C5][3pts]") {
   const VecX w = (VecX(1) << 0.5).finished();  // 2 kg
   const Vec2 up(0, 1);
   // perp((0, 1)) = (-1, 0): sliding along +x is ut = -u.x.
@@ -206,8 +206,114 @@ TEST_CASE("C5 friction: the bound is mu times the accumulated normal total",
   }
 }
 
+TEST_CASE("C5 friction between two particles: the pair's effective mass along t",
+          "[collisions][C5][2pts]") {
+  // Particles 0 (2 kg) and 1 (0.5 kg) touching along n, sliding past each other along
+  // t = perp(n), both ways, with and without restitution. A friction total within the
+  // cone stops the relative slide in one iteration: the impulse along t moves BOTH
+  // particles, so it is Pt = -mass_n ut with mass_n = 1 / (w_a + w_b), as along n. With
+  // one particle's mass (1 / w_a) the slide would be over-corrected 5 times: ut' = -4 ut.
+  const VecX w = inverse_masses();
+  const Vec2 n(0.6, 0.8), t(-0.8, 0.6);  // t = perp(n)
+  const double mass_n = 1.0 / (0.5 + 2.0);
+  for (double slide : {1.5, -1.5}) {
+    for (double e : {0.0, 0.6}) {
+      INFO("relative slide ut = " << slide << " m/s along perp(n), closing at 0.5 m/s, e = "
+                                  << e << ", mu = 5 (the cone does not bind)");
+      Mat2X v = Mat2X::Zero(2, 3);
+      v.col(0) = 0.25 * n + slide * t;  // u = v_a - v_b: un = -0.5, ut = slide
+      v.col(1) = 0.75 * n;
+      const Vec2 p0 = v.col(0) / w[0] + v.col(1) / w[1];
+      Contact c = make_contact(0, 1, n, 5.0);
+      prepare_contact(w, v, e, 0.1, c);
+      solve_contact(w, c, v);
+      const Vec2 u = v.col(0) - v.col(1);
+      wbtest::require_near(u.dot(n), 0.5 * e, kTol,
+                           "the normal step first: un = -e un0 (Newton's restitution law)");
+      wbtest::require_near(c.Pn, (1 + e) * 0.5 * mass_n, kTol, "Pn = (1 + e) |un| mass_n");
+      wbtest::require_near(u.dot(t), 0.0, kTol,
+                           "the relative slide stops: Pt = -mass_n ut with the PAIR's "
+                           "mass_n = 1 / (w_a + w_b), not one particle's mass");
+      wbtest::require_near(c.Pt, -slide * mass_n, kTol, "Pt = -mass_n ut, against the slide");
+      require_vec(Vec2(v.col(0) / w[0] + v.col(1) / w[1]), p0, kTol,
+                  "the pair's total momentum is unchanged by both impulses");
+    }
+  }
+  // Sliding on the cone's boundary (mu Pn < mass_n |ut|): |Pt| = mu Pn, its sign against
+  // the slide whichever way the slide goes.
+  for (double slide : {1.5, -1.5}) {
+    INFO("relative slide ut = " << slide << " m/s, stored Pn = 0.2 N s, mu = 0.5");
+    Mat2X v = Mat2X::Zero(2, 3);
+    v.col(0) = slide * t;
+    Contact c = make_contact(0, 1, n, 0.5, 0.2);
+    prepare_contact(w, v, 0.0, 0.1, c);
+    solve_contact(w, c, v);
+    wbtest::require_near(c.Pt, slide > 0 ? -0.1 : 0.1, kTol,
+                         "|Pt| = mu Pn = 0.1 N s, against the slide");
+    wbtest::require_near((v.col(0) - v.col(1)).dot(t), slide - std::copysign(0.1, slide) / mass_n,
+                         kTol, "the slide slows by mu Pn (w_a + w_b)");
+  }
+}
+
+TEST_CASE("C5 friction both ways: the total is clamped to -mu Pn and +mu Pn",
+          "[collisions][C5][1pts]") {
+  // A 2 kg particle on a floor sliding along -x, i.e. along +perp(n) = (-1, 0): the
+  // friction total must come out NEGATIVE (against the slide), bounded by -mu Pn.
+  const VecX w = (VecX(1) << 0.5).finished();
+  const Vec2 up(0, 1);
+  struct Case {
+    double vx, mu, Pn, Pt, vx_after;
+    const char* why;
+  };
+  const Case cases[] = {
+      {-1.0, 0.5, 10.0, -2.0, 0.0, "mu Pn = 5 N s > m |ut| = 2 N s: the slide stops, Pt = -2"},
+      {-1.0, 0.1, 10.0, -1.0, -0.5, "mu Pn = 1 N s < m |ut|: Pt = -mu Pn, v.x = -1 + 1 / 2"},
+      {1.0, 0.1, 10.0, 1.0, 0.5, "the other way: Pt = +mu Pn, v.x = 1 - 1 / 2"},
+  };
+  for (const Case& k : cases) {
+    INFO("v.x = " << k.vx << ", mu = " << k.mu << ", stored Pn = " << k.Pn << ": " << k.why);
+    Mat2X v(2, 1);
+    v << k.vx, 0.0;
+    Contact c = make_contact(0, -1, up, k.mu, k.Pn);
+    prepare_contact(w, v, 0.0, 1.0, c);
+    solve_contact(w, c, v);
+    wbtest::require_near(c.Pt, k.Pt, kTol,
+                         "the friction total lies in [-mu Pn, mu Pn], against the slide");
+    wbtest::require_near(v(0, 0), k.vx_after, kTol, "v.x changed by Pt perp(n) / m");
+  }
+}
+
+TEST_CASE("C5 friction: the bound is the normal total of this iteration",
+          "[collisions][C5][1pts]") {
+  // Step 1 (normal) comes before step 2 (friction), and step 2's bound is mu times the
+  // total step 1 just made. A 2 kg particle sliding at 1 m/s along +x (ut = -1), mu = 0.25.
+  const VecX w = (VecX(1) << 0.5).finished();
+  const Vec2 up(0, 1);
+  struct Case {
+    double vy, stored, Pn;
+    const char* why;
+  };
+  const Case cases[] = {
+      {-1.0, 0.0, 2.0, "nothing stored, closing at 1 m/s: this iteration makes Pn = m |un| = 2"},
+      {0.5, 4.0, 3.0, "4 N s stored, leaving at 0.5 m/s: this iteration takes Pn down to 3"},
+  };
+  for (const Case& k : cases) {
+    INFO(k.why);
+    Mat2X v(2, 1);
+    v << 1.0, k.vy;
+    Contact c = make_contact(0, -1, up, 0.25, k.stored);
+    prepare_contact(w, v, 0.0, 2.0, c);
+    solve_contact(w, c, v);
+    wbtest::require_near(c.Pn, k.Pn, kTol, "the normal total after step 1");
+    wbtest::require_near(c.Pt, 0.25 * k.Pn, kTol,
+                         "m |ut| = 2 N s > mu Pn: Pt = mu Pn with the NEW normal total (step 1 "
+                         "before step 2), not the total the iteration started with");
+    wbtest::require_near(v(0, 0), 1.0 - 0.25 * k.Pn * w[0], kTol, "v.x = 1 - mu Pn / m");
+  }
+}
+
 TEST_CASE("C5 a column of five discs on a floor rests to rounding with the totals kept",
-          "[collisions][C5][4pts]") {
+          "[collisions][C5][3pts]") {
   // Five touching 1 kg discs; each step gravity, then prepare and warm start every
   // contact and 10 iterations, the totals kept to the next step. The floor carries the
   // weight of five, each disc-disc contact the weight of those above; nothing moves.

@@ -2,6 +2,8 @@
 // differences, and the drag f_i += b (u(x_i) - v_i) (labs/forces/curl_noise.h).
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "curl_noise.h"
 #include "test_helpers.h"
@@ -63,7 +65,7 @@ constexpr double kRampHalf = 15.0 / 16 - 10.0 / 64 + 3.0 / 256;       // 0.79296
 }  // namespace
 
 TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the differences",
-          "[forces][F9][3pts]") {
+          "[forces][F9][2pts]") {
   CurlNoiseParams p = noise_field();
   const Mat2X pts = wbtest::random_points(40, 91, -5.0, 5.0);
   for (int with_obstacles = 0; with_obstacles < 2; ++with_obstacles) {
@@ -103,7 +105,7 @@ TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the dif
 }
 
 TEST_CASE("F9 curl noise: the curl of the Rankine stream function is the F8 vortex flow",
-          "[forces][F9][2pts]") {
+          "[forces][F9][1pts]") {
   CurlNoiseParams p;
   p.psi = rankine_psi;
   p.h = 1e-5;
@@ -124,7 +126,7 @@ TEST_CASE("F9 curl noise: the curl of the Rankine stream function is the F8 vort
 }
 
 TEST_CASE("F9 curl noise: psi is ramped to zero at the nearest obstacle's edge",
-          "[forces][F9][2pts]") {
+          "[forces][F9][1pts]") {
   CurlNoiseParams p;
   p.psi = [](const Vec2&) { return 2.0; };  // a constant psi shows the ramp alone
   p.h = 1e-5;
@@ -154,6 +156,75 @@ TEST_CASE("F9 curl noise: psi is ramped to zero at the nearest obstacle's edge",
                          std::string("psi_c = ramp(d / d0) psi with ramp(s) = 15/8 s - 10/8 s^3 "
                                      "+ 3/8 s^5 for |s| < 1: ") +
                              c.why + " (at " + wbtest::str(c.x) + ")");
+  }
+}
+
+TEST_CASE("F9 curl noise: psi inside an obstacle larger than the ramp distance",
+          "[forces][F9][1pts]") {
+  // A disc of radius 3 with d0 = 1: deeper than d0 inside it, s = d / d0 <= -1 and the
+  // ramp is held at -1 (the polynomial turns back beyond |s| = 1: at s = -2.5 it is -21.8).
+  CurlNoiseParams p;
+  p.psi = [](const Vec2& x) { return 0.5 * x.y() - 2.0 * x.x(); };  // uniform u = (0.5, 2)
+  p.h = 0.25;  // a power of two: differences of this linear psi are exact
+  p.obstacles = {{Vec2(0, 0), 3.0}};
+  p.ramp = 1.0;
+  struct Case {
+    Vec2 x;
+    double ramp;
+    const char* why;
+  };
+  const Case cases[] = {
+      {Vec2(0, 0.5), -1.0, "d = -2.5, s = -2.5 <= -1: ramp = -1"},
+      {Vec2(-1.5, 0), -1.0, "d = -1.5, s = -1.5 <= -1: ramp = -1"},
+      {Vec2(0, -2.5), -kRampHalf, "d = -0.5, s = -1/2: ramp(-1/2) = -ramp(1/2)"},
+  };
+  for (const Case& c : cases) {
+    wbtest::require_near(curl_noise_potential(c.x, p), c.ramp * p.psi(c.x), kTol,
+                         std::string("psi_c = ramp(d / d0) psi, ramp(s) = -1 for s <= -1: ") +
+                             c.why + " (at " + wbtest::str(c.x) + ")");
+  }
+  wbtest::require_near(curl_noise_flow(Vec2(0, 0.5), p), Vec2(-0.5, -2.0), kTol,
+                       "deep inside (ramp = -1 all around) the flow is the curl of -psi: "
+                       "-(0.5, 2)");
+}
+
+TEST_CASE("F9 curl noise: the nearest edge counts and not the nearest centre",
+          "[forces][F9][1pts]") {
+  // At x = (1, 0): the small disc's centre is nearer (1 against 2.5), the large disc's
+  // EDGE is nearer (0.5 against 0.8). d is the smallest distance to an edge: 0.5, and
+  // with d0 = 2, s = 1/4. In either order of the list.
+  CurlNoiseParams p;
+  p.psi = [](const Vec2&) { return 2.0; };
+  p.h = 1e-5;
+  p.ramp = 2.0;
+  const Disc small{Vec2(0, 0), 0.2}, large{Vec2(3.5, 0), 2.0};
+  for (int order = 0; order < 2; ++order) {
+    p.obstacles = order == 0 ? std::vector<Disc>{small, large} : std::vector<Disc>{large, small};
+    wbtest::require_near(curl_noise_potential(Vec2(1, 0), p), 2 * kRampQuarter, kTol,
+                         std::string("d = min over the discs of (|x - center| - radius) = 0.5 "
+                                     "(the large disc's edge; the small disc's centre is "
+                                     "nearer but its edge is 0.8 away): psi_c = ramp(1/4) psi, "
+                                     "obstacles listed ") +
+                             (order == 0 ? "small first" : "large first"));
+  }
+}
+
+TEST_CASE("F9 curl noise: the central differences use the step h",
+          "[forces][F9][1pts]") {
+  // psi = y^3 - 2 x^3: the central difference with step h is exact up to h^2,
+  //   (psi(y + h) - psi(y - h)) / (2h) = 3 y^2 + h^2,  along x: -6 x^2 - 2 h^2,
+  // so u = (3 y^2 + h^2, 6 x^2 + 2 h^2) with the field's own h. All values below are
+  // exact binary fractions: the computation is exact.
+  CurlNoiseParams p;
+  p.psi = [](const Vec2& x) { return x.y() * x.y() * x.y() - 2.0 * x.x() * x.x() * x.x(); };
+  const Vec2 x(0.5, -1.5);
+  for (double h : {0.5, 0.125}) {
+    p.h = h;
+    wbtest::require_near(curl_noise_flow(x, p), Vec2(3 * 2.25 + h * h, 6 * 0.25 + 2 * h * h),
+                         kTol,
+                         "central differences with the field's step p.h = " + std::to_string(h) +
+                             " (not a step of your own): u = (3 y^2 + h^2, 6 x^2 + 2 h^2) for "
+                             "psi = y^3 - 2 x^3 at (0.5, -1.5)");
   }
 }
 

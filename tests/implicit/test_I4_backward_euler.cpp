@@ -447,6 +447,32 @@ TEST_CASE("I4 backward Euler: a failed solve is reported and never returned as N
   wbtest::require_near(x, Mat2X(x0 + h * vs), 0.0,
                        "x after a failed first solve: x + h y with y = v (the pinned one stays)",
                        1e-15);
+
+  // A solve that REPORTS success and still returns a non-finite dv is a failed solve too.
+  // The same compressed spring, with k a hair below m / h^2: the pivot across the spring
+  // is m - h^2 k = 2^-52 m, not 0, so LDLT succeeds, and with the velocity across the
+  // spring at 1e300 m/s (finite) dv = h^2 k v / 2^-52 overflows to inf. Expected: the
+  // same report and state as a failed factorisation, never the inf.
+  SpringNetwork tiny;
+  tiny.m = Eigen::VectorXd::Constant(1, 1.0);
+  tiny.springs = {imtest::spring(0, -1, 1.0 - 0x1.0p-52, 2.0, 0.0, Vec2(0.0, 0.0))};
+  Mat2X x1(2, 1), v1(2, 1), f1 = Mat2X::Zero(2, 1);
+  x1 << 1.0, 0.0;
+  v1 << 0.0, 1e300;
+  Mat2X xt = x1, vt = v1;
+  const NewtonReport rt = backward_euler_step(tiny, f1, 1.0, o, xt, vt);
+  INFO("pivot 2^-52 across the spring, v = (0, 1e300): report {iterations "
+       << rt.iterations << ", residual " << rt.residual << ", converged " << rt.converged
+       << ", solver_failed " << rt.solver_failed
+       << "}: LDLT reports Success but dv is not finite (check dv.allFinite() after the "
+          "solve), so expected solver_failed, not converged, 0 solves, residual NaN");
+  REQUIRE(rt.solver_failed);
+  REQUIRE_FALSE(rt.converged);
+  REQUIRE(rt.iterations == 0);
+  REQUIRE(std::isnan(rt.residual));
+  wbtest::require_near(vt, v1, 0.0, "v after a non-finite first solve: y = v", 0.0);
+  wbtest::require_near(xt, Mat2X(x1 + v1), 0.0, "x after a non-finite first solve: x + h v",
+                       0.0);
 }
 
 }  // namespace test_I4_backward_euler

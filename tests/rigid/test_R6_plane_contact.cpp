@@ -129,10 +129,38 @@ TEST_CASE("R6 prepare: effective mass along n and the restitution target above t
       require_near(b.omega, b0.omega, 0.0, "prepare applies nothing: omega unchanged");
     }
   }
+  // A tilted plane: the effective mass along ITS normal, 1 / (n^T K n) (not one entry of K,
+  // which is the same only for n = z), and the approach speed along it.
+  {
+    const Vec3 n(0.36, -0.48, 0.8);  // unit
+    const double vt = point_velocity(b0, p).dot(n);
+    INFO("plane normal " << str(n) << ", u.n = " << vt << ", threshold 0.1, e = 0.5");
+    Body b = b0;
+    Contact c = contact_at(p);
+    prepare_contact(b, n, 0.5, 0.1, c);
+    require_near(c.mass_n, 1.0 / n.dot(K * n), 0.0,
+                 "mass_n = 1 / (n^T K n) along the plane's own normal", kImpulseTol);
+    require_near(c.bias, -vt > 0.1 ? -0.5 * vt : 0.0, kImpulseTol,
+                 "the bias from the approach speed along this n");
+  }
+  // The same corner LEAVING the floor faster than the threshold: no bias (only an
+  // approaching point bounces).
+  for (double factor : {0.99, 1.01}) {
+    Body b = b0;
+    b.v = -b0.v;
+    b.omega = -b0.omega;  // u.n = -vn = +2.4: separating
+    const double threshold = -vn * factor;
+    INFO("separating at " << -vn << " m/s, threshold " << threshold << ", e = 0.5");
+    Contact c = contact_at(p);
+    prepare_contact(b, kUp, 0.5, threshold, c);
+    require_near(c.bias, 0.0, kImpulseTol,
+                 "a point moving away from the plane does not bounce, however fast: bias 0 "
+                 "(the threshold is on the CLOSING speed -u.n)");
+  }
 }
 
 TEST_CASE("R6 warm start: the stored totals are applied at the point with their own sign",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   Vec3 p;
   const Body b0 = tilted_box(p);
   Contact c = contact_at(p, 2.0, Vec3(0.3, -0.4, 0.0));
@@ -148,7 +176,7 @@ TEST_CASE("R6 warm start: the stored totals are applied at the point with their 
 }
 
 TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be taken back",
-          "[rigid][R6][4pts]") {
+          "[rigid][R6][3pts]") {
   // A point moving INTO the plane with nothing stored: the iteration adds the impulse
   // that makes u.n = bias, and returns it.
   Vec3 p;
@@ -261,8 +289,120 @@ TEST_CASE("R6 friction: the bound is mu times the accumulated normal total and o
   }
 }
 
+TEST_CASE("R6 friction with restitution: the slip is the point's velocity in the plane",
+          "[rigid][R6][1pts]") {
+  // A sphere (r along -n: the normal impulse does not turn it) hitting the floor at 2 m/s
+  // while sliding at 3 m/s, e = 0.5. After step 1 the point moves AWAY at e * 2 = 1 m/s:
+  // the slip is only the part in the plane, ut = u - (u.n) n, and the friction impulse
+  // lies in the plane, leaving u.n = 1 m/s. mu = 0.5, Pn = 6 N s: the cone does not bind,
+  // so the point stops sliding (Pt = -2/7 m ut: the 5/7 rolling speed).
+  const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
+  const Vec3 p(0, 0, 0);
+  for (const Vec3& slide : {Vec3(3, 0, 0), Vec3(1.8, -2.4, 0)}) {
+    INFO("sliding at " << str(slide) << ", approaching at 2 m/s, e = 0.5, mu = 0.5");
+    Body s = make_body(m, Vec3::Constant(I), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, R),
+                       slide + Vec3(0, 0, -2));
+    Contact c = contact_at(p);
+    prepare_contact(s, kUp, 0.5, 0.1, c);
+    solve_contact(s, c, kUp, 0.5);
+    require_near(c.Pn, (1 + 0.5) * 2.0 * m, kImpulseTol, "Pn = (1 + e) m |vn| (r along n)");
+    require_near(c.Pt, Vec3(-2.0 / 7.0 * m * slide), kImpulseTol,
+                 "Pt = -2/7 m ut with ut the slip IN THE PLANE, u - (u.n) n");
+    require_near(point_velocity(s, p), Vec3(0, 0, 0.5 * 2.0), kImpulseTol,
+                 "the point stops sliding and still leaves at -e vn = 1 m/s: friction acts "
+                 "only in the plane");
+  }
+}
+
+TEST_CASE("R6 friction: the bound is the normal total of this iteration",
+          "[rigid][R6][2pts]") {
+  // Step 1 (normal) comes before step 2 (friction), and step 2's bound is mu times the
+  // total step 1 just made. A sphere sliding at 3 m/s along x, mu = 0.1: the cone binds
+  // (mu Pn < 2/7 m u = 1.71 N s), so |Pt| = mu Pn tells which Pn was used.
+  const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
+  const Vec3 p(0, 0, 0);
+  struct Case {
+    double vz, stored, Pn;
+    const char* why;
+  };
+  const Case cases[] = {
+      {-1.0, 0.0, 2.0, "nothing stored, approaching at 1 m/s: this iteration makes Pn = 2"},
+      {1.0, 10.0, 8.0, "10 N s stored, leaving at 1 m/s: this iteration takes Pn down to 8"},
+  };
+  for (const Case& k : cases) {
+    INFO(k.why);
+    Body s = make_body(m, Vec3::Constant(I), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, R),
+                       Vec3(3, 0, k.vz));
+    Contact c = contact_at(p, k.stored);
+    prepare_contact(s, kUp, 0.0, 1.5, c);
+    solve_contact(s, c, kUp, 0.1);
+    require_near(c.Pn, k.Pn, kImpulseTol, "the normal total after step 1");
+    require_near(c.Pt, Vec3(-0.1 * k.Pn, 0, 0), kImpulseTol,
+                 "|Pt| = mu Pn with the NEW normal total of step 1 (step 1 before step 2), "
+                 "not the total the iteration started with");
+    require_near(s.v.x(), 3.0 - 0.1 * k.Pn / m, kImpulseTol, "v.x = 3 - mu Pn / m");
+  }
+}
+
+TEST_CASE("R6 together: one pass over the contacts in order per iteration",
+          "[rigid][R6][1pts]") {
+  // solve_plane_contacts = prepare and warm start each contact, then `iterations` passes
+  // of solve_contact over the contacts in order. The test's own pass (mu = 0): for each
+  // contact, lambda = (bias - u.n) / (n^T K n), the total clamped at 0, its change applied
+  // at the point. One contact and one pass: u.n = -e vn exactly (Newton's law).
+  Vec3 p;
+  const Body b0 = tilted_box(p);
+  const double vn = point_velocity(b0, p).dot(kUp);
+  {
+    Body b = b0;
+    std::vector<Contact> cs = {contact_at(p)};
+    const double total = solve_plane_contacts(b, cs, kUp, 0.6, 0.1, 0.0, 1);
+    require_near(point_velocity(b, p).dot(kUp), -0.6 * vn, kImpulseTol,
+                 "one contact, iterations = 1: after its one pass u.n = -e vn");
+    require_near(total, cs[0].Pn, kImpulseTol, "returns the sum of the contacts' Pn");
+  }
+  // Two corners, their totals stored from a last step: every pass changes what the other
+  // corner needs, so 1, 2 and 3 passes end in three different states.
+  const Vec3 q = b0.x + rot(b0) * Vec3(0.5, -0.5, -0.5);
+  const double e = 0.3, threshold = 0.1;
+  for (int iterations : {1, 2, 3}) {
+    INFO("two contacts, stored Pn 0.2 and 0.4 N s, e = 0.3, iterations = " << iterations);
+    Body b = b0;
+    std::vector<Contact> cs = {contact_at(p, 0.2), contact_at(q, 0.4)};
+    solve_plane_contacts(b, cs, kUp, e, threshold, 0.0, iterations);
+    // The test's own passes.
+    Body r = b0;
+    const Vec3 pts[2] = {p, q};
+    double Pn[2] = {0.2, 0.4}, bias[2], mass[2];
+    for (int k = 0; k < 2; ++k) {
+      Mat3 K;
+      for (int a = 0; a < 3; ++a) {
+        Body probe = b0;
+        impulse_at(probe, pts[k], Vec3::Unit(a));
+        K.col(a) = point_velocity(probe, pts[k]) - point_velocity(b0, pts[k]);
+      }
+      mass[k] = 1.0 / kUp.dot(K * kUp);
+      const double u = point_velocity(b0, pts[k]).dot(kUp);
+      bias[k] = -u > threshold ? -e * u : 0.0;
+    }
+    for (int k = 0; k < 2; ++k) impulse_at(r, pts[k], Pn[k] * kUp);  // warm start
+    for (int it = 0; it < iterations; ++it) {
+      for (int k = 0; k < 2; ++k) {
+        const double lambda = mass[k] * (bias[k] - point_velocity(r, pts[k]).dot(kUp));
+        const double next = std::max(Pn[k] + lambda, 0.0);
+        impulse_at(r, pts[k], (next - Pn[k]) * kUp);
+        Pn[k] = next;
+      }
+    }
+    require_near(b.v, r.v, kImpulseTol, "v after `iterations` passes over both contacts");
+    require_near(b.omega, r.omega, kImpulseTol, "omega after `iterations` passes");
+    require_near(cs[0].Pn, Pn[0], kImpulseTol, "contact 0's total after the passes");
+    require_near(cs[1].Pn, Pn[1], kImpulseTol, "contact 1's total after the passes");
+  }
+}
+
 TEST_CASE("R6 together and warm-started: a box on the floor rests to rounding",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   // Four corners on the floor, 10 iterations per step, totals kept between steps.
   // After a few steps each corner carries a quarter of the weight, m g h / 4 per step,
   // and nothing moves. Without accumulated totals or without the warm start the
@@ -281,7 +421,7 @@ TEST_CASE("R6 together and warm-started: a box on the floor rests to rounding",
 }
 
 TEST_CASE("R6 slope: static friction holds when mu > tan theta and else a = g (sin - mu cos)",
-          "[rigid][R6][2pts]") {
+          "[rigid][R6][1pts]") {
   // A 30 degree slope whose fall line is along neither world axis, and a box turned
   // about the normal: the friction must oppose the slip in whatever direction it is.
   const double theta = M_PI / 6, h = 1e-3;

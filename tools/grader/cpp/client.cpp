@@ -24,15 +24,17 @@ Session& session() {
                            e.what() + "): its process crashed, called exit() or hit a limit");
 }
 
-// A function of a point: its index in the session's table, -1 for an empty one.
+// A function of a point: the index of a copy of it in the session's table (a value the
+// worker may keep: Session::points), -1 for an empty one.
 void put(Out& o, const PointFunction& f) {
   Session& s = session();
   if (!f) {
     put(o, std::int32_t(-1));
     return;
   }
+  if (s.points.size() >= std::size_t(INT32_MAX)) throw std::runtime_error("too many functions sent");
   put(o, std::int32_t(s.points.size()));
-  s.points.push_back(&f);
+  s.points.push_back(f);
 }
 void get(In&, PointFunction&) { throw ProtocolError("a function sent by the worker"); }
 
@@ -56,7 +58,7 @@ void run_callback(Session& s, In& in) {
     } else if (what == 4) {  // a function of a point
       Eigen::Matrix<double, 2, 1> x;
       get(in, x);
-      put(o, (*checked(s.points, id))(x));
+      put(o, checked(s.points, id)(x));
     } else {  // one term of a force list
       std::int64_t k = 0;
       get(in, k);

@@ -20,7 +20,11 @@ struct Session {
   Channel ch;
   std::vector<const wb::Dynamics*> dyn;                                // callbacks of the calls
   std::vector<const std::vector<std::unique_ptr<wb::Force>>*> forces;  // under way
-  std::vector<const PointFunction*> points;                            // (wb::Potential)
+  // Functions of a point (wb::Potential) the calls sent: COPIES, kept for the whole test
+  // process and never reused, so that the index a call sent names that call's function
+  // for good, as a copy the student's code keeps would linked directly (a static copy
+  // from an earlier call must still compute the earlier field, not the current one).
+  std::vector<PointFunction> points;
   std::exception_ptr callback_error;  // the first exception a callback threw in this call
   int depth = 0;
 };
@@ -49,16 +53,16 @@ template <class R, class... A>
 struct Caller<R(A...)> {
   static R call(std::int32_t id, const char* name, A... a) {
     Session& s = session();
-    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size(), points0 = s.points.size();
+    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size();
     if (s.depth++ == 0) s.callback_error = nullptr;
-    struct Restore {
+    struct Restore {  // (the points are kept: see Session::points)
       Session& s;
-      std::size_t d, f, p;
+      std::size_t d, f;
       ~Restore() {
-        s.dyn.resize(d), s.forces.resize(f), s.points.resize(p);
+        s.dyn.resize(d), s.forces.resize(f);
         --s.depth;
       }
-    } restore{s, dyn0, forces0, points0};
+    } restore{s, dyn0, forces0};
     Out o;
     put(o, kCall), put(o, id);
     (put(o, a), ...);

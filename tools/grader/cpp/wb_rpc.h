@@ -200,8 +200,9 @@ inline std::string printable(const std::string& s) {
 }
 
 // A function of a point (wb::Potential, a field of a lab's struct) crosses as a callback: the
-// trusted side registers it and sends its index, the worker gets a proxy that asks the trusted
-// side for each value (client.cpp and worker_main.cpp define these, one side each).
+// trusted side keeps a copy of it and sends its index, the worker gets a proxy that asks the
+// trusted side for each value (client.cpp and worker_main.cpp define these, one side each). The
+// index is a value: it names that copy for the rest of the test, never a later function.
 using PointFunction = std::function<double(const Eigen::Matrix<double, 2, 1>&)>;
 void put(Out& o, const PointFunction& f);
 void get(In& in, PointFunction& f);
