@@ -12,6 +12,12 @@
 #     assertion) must equal the stored tests/mutants/<lab>/signatures.json, the
 #     data the grader's hints come from (tools/wbgrade_hints.py); --signatures
 #     rewrites it, --leave-one-out measures the hints from it (no build).
+#   - every mutant is caught by a wide margin: its widest failing check misses by at
+#     least margins.WEAK times its tolerance (tools/wbtools/margins.py), or its header
+#     says why not ('# weak: ...');
+#   - a mutant whose header has '# both-paths: ...' is judged twice, from its tests
+#     linked directly and through the grader's worker: both must fail the same tests
+#     (what the worker's proxies hide from the verdict is a gap).
 # Each variant is graded by tools/grade's machinery in one scratch build per
 # lab, so a variant recompiles only the files that differ from the last one
 # (grade_files below is the only call into it).
@@ -50,6 +56,7 @@ def load_grade():
 grade = load_grade()
 sys.path.insert(0, TOOLS)
 import wbgrade_hints as hints  # noqa: E402
+from wbtools import margins  # noqa: E402
 
 
 def grade_files(grader, lab, files):
@@ -253,6 +260,7 @@ class Row:
         self.signature = None  # {failed test: assertion class} of a graded mutant
         self.comments = []
         self.how = ""  # "direct" or "grader ..." (see direct_files)
+        self.margin = None  # a caught mutant's widest miss over its tolerance (margins.py)
 
 
 def read(path):
@@ -345,7 +353,14 @@ def judge(row, graded, expected, comments):
     if missed:
         row.verdict = "caught, but not by " + ", ".join(missed)
         return
-    row.ok, row.verdict = True, "caught"
+    row.margin = margins.best([r[3] for r in failed])
+    shown = margins.describe(row.margin)
+    if row.margin is not None and row.margin < margins.WEAK and not header_value(comments, "weak"):
+        row.verdict = (f"WEAK: its widest failing check misses by {shown} times its tolerance "
+                       f"(at least {margins.WEAK:g}): add a test that catches it widely, or say "
+                       "why not in '# weak: ...' (docs/grading.md, Margins)")
+        return
+    row.ok, row.verdict = True, f"caught (margin {shown})"
 
 
 def print_rows(rows, verbose):
@@ -559,6 +574,8 @@ def run_lab(repo, grader, lab, args, stop):
             if name == "solution":
                 all_tests = sorted(r[0] for r in graded[3])
             judge(row, graded, expected, comments)
+            if row.ok and header_value(comments, "both-paths"):
+                both_paths(row, graded, grader, lab, files)
         if not row.ok and not args.keep_going:
             stop.set()
             return rows
@@ -580,6 +597,23 @@ def run_lab(repo, grader, lab, args, stop):
     if not row.ok and not args.keep_going:
         stop.set()
     return rows
+
+
+def both_paths(row, graded, grader, lab, files):
+    """'# both-paths:': the tests linked directly and the grader's worker must fail the same
+    tests (the worker's proxies must not hide what the student's code does)."""
+    direct = graded if row.how == "direct" else direct_files(grader, lab, files)
+    through = graded if row.how.startswith("grader") else grade_files(grader, lab, files)
+    if direct is None:
+        row.ok, row.verdict = False, "BOTH PATHS: the direct run was not plain"
+        return
+    fails = [sorted(r[0] for r in g[3] if not r[2]) for g in (direct, through)]
+    row.how += "; both paths compared"
+    if fails[0] != fails[1]:
+        row.ok = False
+        row.verdict = ("BOTH PATHS DIFFER: linked directly it fails " + (", ".join(fails[0]) or
+                       "nothing") + "; through the grader's worker " +
+                       (", ".join(fails[1]) or "nothing"))
 
 
 def main(argv):
@@ -672,6 +706,10 @@ def main(argv):
           f"{sum(1 for r in rows if r.expected == '100')} correct variants kept 100"
           + (" (stopped at the first wrong one: --keep-going runs them all)" if stop.is_set()
              else ""))
+    weak = [r for r in mut if r.margin is not None and r.margin < margins.WEAK]
+    print(f"mutants: {len(weak)} caught within a factor {margins.WEAK:g} of a tolerance"
+          + (": " + ", ".join(f"{r.lab}/{r.variant} ({margins.describe(r.margin)})" for r in weak)
+             if weak else ""))
     direct = sum(1 for r in mut if r.how == "direct")
     alts = [r for r in rows if r.expected == "100" and r.variant != "solution"]
     print(f"mutants: {direct} of {len(mut)} mutants and {sum(1 for r in alts if r.how == 'direct')} "
