@@ -71,11 +71,26 @@ TEST_CASE("C5 prepare: effective mass and the restitution target on both sides o
       REQUIRE(v == v0);
     }
   }
+  // The same pair separating at 1.5 m/s: on both sides of the threshold and for any e, the
+  // target is -un (another contact may turn it back, never faster than it leaves: with a
+  // target of 0 the solver would add (1/2) Pn un of energy when it does).
+  for (double e : {0.0, 0.7}) {
+    for (double f : {0.99, 1.01}) {
+      Mat2X u = -v;
+      INFO("pair separating at " << -un << " m/s, e = " << e << ", threshold " << -un * f);
+      Contact c = make_contact(0, 1, n);
+      prepare_contact(w, u, e, -un * f, c);
+      wbtest::require_near(c.bias, un, kTol,
+                           "a separating contact aims at -un: it may be turned back at most as "
+                           "fast as it separates, whatever e and the threshold");
+    }
+  }
   // A plane (b = -1): only particle a's mass, only its velocity.
   Contact c = make_contact(1, -1, Vec2(0, 1));
   prepare_contact(w, v, 0.5, 0.1, c);
   wbtest::require_near(c.mass_n, 1.0 / 2.0, 0.0, "at a plane mass_n = m_a", kTol);
-  wbtest::require_near(c.bias, 0.0, kTol, "particle 1 moves away from the floor: bias 0");
+  wbtest::require_near(c.bias, -1.0, kTol,
+                       "particle 1 leaves the floor at 1 m/s: a separating contact aims at -un");
 }
 
 TEST_CASE("C5 warm start: the stored totals are applied again with their own sign",
@@ -123,7 +138,7 @@ TEST_CASE("C5 one iteration: the normal impulse is a clamped total that can be t
                 "the pair's total momentum is unchanged");
   }
   // Over-pushed by a warm start: the total comes DOWN (a negative increment) to exactly
-  // un = 0 while it stays >= 0, or to 0 when even that is too much. Clamping the
+  // un = bias while it stays >= 0, or to 0 when even that is too much. Clamping the
   // increment instead, or forgetting the total, gets this wrong.
   for (const auto& [stored, vy] : {std::pair{3.0, -0.1}, std::pair{0.05, 0.1}}) {
     INFO("stored Pn = " << stored << ", particle 0 moving at " << vy << " m/s along n");
@@ -135,10 +150,11 @@ TEST_CASE("C5 one iteration: the normal impulse is a clamped total that can be t
     const double up = v(1, 0);
     REQUIRE(up > 0);
     const double added = solve_contact(w, c, v);
-    const double needed = stored - up / w[0];
+    const double bias = vy > 0 ? -vy : 0.0;  // leaving: -un; falling slower than 0.5: 0
+    const double needed = stored + (bias - up) / w[0];
     if (needed > 0) {
       wbtest::require_near(c.Pn, needed, kTol, "total Pn + mass_n (bias - un): above 0, kept");
-      wbtest::require_near(v(1, 0), 0.0, kTol, "part of the total taken back: un = 0");
+      wbtest::require_near(v(1, 0), bias, kTol, "part of the total taken back: un = bias");
     } else {
       wbtest::require_near(c.Pn, 0.0, 0.0, "the total would go below 0: clamped to 0");
       wbtest::require_near(v(1, 0), up - stored * w[0], kTol,
@@ -218,8 +234,8 @@ TEST_CASE("C5 friction between two particles: the pair's effective mass along t"
   const double mass_n = 1.0 / (0.5 + 2.0);
   for (double slide : {1.5, -1.5}) {
     for (double e : {0.0, 0.6}) {
-      INFO("relative slide ut = " << slide << " m/s along perp(n), closing at 0.5 m/s, e = "
-                                  << e << ", mu = 5 (the cone does not bind)");
+      INFO("relative slide ut = " << slide << " m/s along perp(n), closing at 0.5 m/s, e = " << e
+                                  << ", mu = 5 (the cone does not bind)");
       Mat2X v = Mat2X::Zero(2, 3);
       v.col(0) = 0.25 * n + slide * t;  // u = v_a - v_b: un = -0.5, ut = slide
       v.col(1) = 0.75 * n;
@@ -295,7 +311,9 @@ TEST_CASE("C5 friction: the bound is the normal total of this iteration",
   };
   const Case cases[] = {
       {-1.0, 0.0, 2.0, "nothing stored, closing at 1 m/s: this iteration makes Pn = m |un| = 2"},
-      {0.5, 4.0, 3.0, "4 N s stored, leaving at 0.5 m/s: this iteration takes Pn down to 3"},
+      {0.5, 4.0, 2.0,
+       "4 N s stored, leaving at 0.5 m/s (target -un = -0.5): this iteration takes Pn down to "
+       "2"},
   };
   for (const Case& k : cases) {
     INFO(k.why);

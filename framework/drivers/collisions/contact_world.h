@@ -75,6 +75,18 @@ constexpr double kSlowContactWork = 1e7;
 // O(n log n) time and O(n) memory, defined for any finite positions.
 double candidate_pairs_estimate(const Mat2X& x, const VecX& radius);
 
+// Overlaps at t = 0 (docs/scenes.md, "collisions"): pairs of discs, and discs with planes,
+// that overlap by more than the contact skin; the deepest (m) and what it joins (particles
+// a < b, or particle a and plane -1 - b when b < 0). A scene that starts with overlaps warns
+// once with the count and the deepest.
+struct InitialOverlaps {
+  long count = 0;
+  double deepest = 0;
+  int a = -1, b = -1;
+};
+InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
+                                 const std::vector<PlaneDef>& planes);
+
 // Reads "planes" and "contact" (throws InputError naming the key).
 std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings);
 
@@ -127,7 +139,8 @@ class ContactWorld : public World {
   mutable std::vector<Contact> solved_;
   mutable std::vector<std::uint64_t> keys_;
   mutable std::vector<double> restitution_;
-  mutable std::vector<int> plane_;  // the plane of each contact, -1 for a pair
+  mutable std::vector<int> plane_;      // the plane of each contact, -1 for a pair
+  mutable std::vector<char> impacted_;  // the contact got an impact's impulse this step
   mutable std::unordered_map<std::uint64_t, std::pair<double, double>> kept_, next_;
   // Approaching contacts seen, and those the student's function answered
   // with an impulse: planes (C1), pairs (C2), sliding with friction (C4), the
