@@ -290,11 +290,11 @@ def measure(claim, data):
             args = args[:3]
         want(3)
         lab, stem, integ = _target(args[0])
-        name = data.run_name(stem, integ)
+        run = data.run_name(stem, integ)
         try:
-            p = data.file(lab, name + ".csv")
+            p = data.file(lab, run + ".csv")
         except InputError:  # the rigid report's name for its trace
-            p = data.file(lab, name + "-trace.csv")
+            p = data.file(lab, run + "-trace.csv")
         tr = _read_any_trace(p)
         if only is not None:
             if only not in tr:

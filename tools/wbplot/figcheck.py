@@ -299,6 +299,24 @@ def diverged_count(runs):
     return n
 
 
+def _diverged_rows(args):
+    """Rows with status "diverged" in the CSV files a figure draws that carry a status
+    column (a sweep, a plug-in's table): their runs' own verdicts."""
+    import csv
+    n = 0
+    for a in args:
+        if not (isinstance(a, str) and a.endswith(".csv") and os.path.isfile(a)):
+            continue
+        try:
+            with open(a, encoding="utf-8", newline="") as f:
+                rows = csv.DictReader(f)
+                if "status" in (rows.fieldnames or []):
+                    n += sum(1 for r in rows if (r.get("status") or "").strip() == "diverged")
+        except (OSError, UnicodeDecodeError, csv.Error):
+            continue
+    return n
+
+
 def check_section(sec, facts_by_path):
     """Findings over every figure of a lab's report section (tools/report, after the lab):
     each figure's facts with its scene's runs and scene, its caption counted as its words."""
@@ -306,12 +324,12 @@ def check_section(sec, facts_by_path):
     for sc in sec.scenes:
         diverged = diverged_count(sc.runs)
         scene = sc.doc if isinstance(sc.doc, dict) else None
-        for path, caption, _ in sc.figures:
+        for path, caption, args in sc.figures:
             facts = facts_by_path.get(os.path.abspath(path))
             if facts is None:
                 continue
             facts = dict(facts, texts=facts["texts"] + [caption])
             out += [f"{sec.lab}/{f}" for f in check_figure(
-                facts, diverged_runs=diverged,
+                facts, diverged_runs=diverged + _diverged_rows(args),
                 scene=scene if ("planes" in (scene or {}) or "hinges" in (scene or {})) else None)]
     return list(dict.fromkeys(out))

@@ -497,8 +497,11 @@ def plot_stats(path, out, title=None, growth=None, diverged=None, changes=None):
             else ([], [])
         if dp:
             unit = "" if kind == "relative" else " J"
-            ax2.semilogy(tp, dp, color="#444444", lw=1.1,
-                         label=f"max {max(d):.2e}{unit}, final {d[-1]:.2e}{unit}")
+            ax2.plot(tp, dp, color="#444444", lw=1.1,
+                     label=f"max {max(d):.2e}{unit}, final {d[-1]:.2e}{unit}")
+            if not (min(dp) > 1e-3 and max(dp) < 10 * min(dp)):
+                ax2.set_yscale("log")  # decades of drift; a large one within a decade reads
+                # better on a linear axis (a log axis labels its minor ticks there)
             ax2.legend(loc="lower right", framealpha=0.85)
         else:
             ax2.text(0.5, 0.5, "E = E0 to the last digit", transform=ax2.transAxes,

@@ -168,57 +168,7 @@ def world_segments(d, k, segs, axis_len):
     return lines, axes
 
 
-def equal_axes(ax, points):
-    pts = [p for p in points if all(finite(c) for c in p)]
-    if not pts:
-        return
-    lo = [min(p[i] for p in pts) for i in range(3)]
-    hi = [max(p[i] for p in pts) for i in range(3)]
-    half = max(max(h - l for l, h in zip(lo, hi)) / 2, 1e-3)
-    mid = [(l + h) / 2 for l, h in zip(lo, hi)]
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_zlabel("z (m)")
-
-
 AXIS_COLORS = ["#d62728", "#2ca02c", "#1f77b4"]  # body x, y, z
-
-
-def draw_planes(ax, scene, pts):
-    """The scene's planes as translucent squares around the drawn points."""
-    good = [p for p in pts if all(finite(c) for c in p)]
-    if not scene or not good:
-        return
-    mid = [sum(p[i] for p in good) / len(good) for i in range(3)]
-    half = max(max(p[i] for p in good) - min(p[i] for p in good) for i in range(3)) / 2 + 0.5
-    for plane in scene.get("planes", []) or []:
-        try:
-            n = [float(c) for c in plane["normal"]]
-            o = [float(c) for c in plane.get("point", [0, 0, 0])]
-        except (KeyError, TypeError, ValueError):
-            continue
-        nn = math.sqrt(sum(c * c for c in n))
-        if not nn > 0:
-            continue
-        n = [c / nn for c in n]
-        a = [0.0, 0.0, 1.0] if abs(n[2]) < 0.9 else [1.0, 0.0, 0.0]
-        u = [n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0]]
-        un = math.sqrt(sum(c * c for c in u))
-        u = [c / un for c in u]
-        w = [n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]]
-        d = sum((m - oo) * nc for m, oo, nc in zip(mid, o, n))
-        c = [m - d * nc for m, nc in zip(mid, n)]  # the centre, projected on the plane
-        X, Y, Z = ([[c[i] + half * (s * u[i] + t * w[i]) for s in (-1, 1)] for t in (-1, 1)]
-                   for i in range(3))
-        ax.plot_surface(_arr(X), _arr(Y), _arr(Z), color="#8c6d31", alpha=0.15, linewidth=0)
-
-
-def _arr(rows):
-    import numpy
-    return numpy.array(rows)
 
 
 # ----------------------------------------------------------------------------
