@@ -27,25 +27,27 @@ def is_constant(values, scale=0.0):
     return max(v) - min(v) <= ROUNDING_REL * big + ROUNDING_ABS
 
 
-def value_of(values):
-    """The value a constant series is drawn at: 0 when it is 0 to rounding."""
+def value_of(values, scale=0.0):
+    """The value a constant series is drawn at: 0 when it is 0 to rounding of `scale`
+    (a momentum of 8e-10 beside 4 kg m/s is 0, not a value to print)."""
     v = _finite(values)
     mid = (max(v) + min(v)) / 2 if v else 0.0
-    return 0.0 if abs(mid) <= ROUNDING_ABS else mid
+    big = abs(scale) if math.isfinite(scale) else 0.0
+    return 0.0 if abs(mid) <= ROUNDING_REL * big + ROUNDING_ABS else mid
 
 
-def label(values, unit=""):
+def label(values, unit="", scale=0.0):
     """' = 0 (to rounding)' or ' = 4.905 J (constant to rounding)'."""
-    x = value_of(values)
+    x = value_of(values, scale)
     u = f" {unit}" if unit else ""
     return f" = 0{u} (to rounding)" if x == 0.0 else f" = {x:.6g}{u} (constant to rounding)"
 
 
-def flat_view(ax, series, axis="y"):
+def flat_view(ax, series, axis="y", scale=0.0):
     """When every series drawn on `ax` is constant to rounding: a view around their values
     wide enough to show them as flat lines (10 % of the largest value, or ±1 around 0), and
     no offset on the ticks. Returns True when it set the view."""
-    values = [value_of(s) for s in series if _finite(s)]
+    values = [value_of(s, scale) for s in series if _finite(s)]
     if not values:
         return False
     lo, hi = min(values), max(values)

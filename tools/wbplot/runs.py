@@ -451,12 +451,12 @@ def plot_stats(path, out, title=None, growth=None, diverged=None, changes=None):
             kw = dict(marker="o", mfc="white", ms=4, markevery=(k * every // 3 % every, every))
             label += _overlap_label(same[0][2], same[0][1], y, log10=blew)
         if not blew and flat.is_constant(y, e_scale):
-            label += flat.label(y, "J")
+            label += flat.label(y, "J", e_scale)
         ax.plot(t, y, style, label=label, **kw)
     if not blew:
         flat.plain_ticks(ax)
         if all(flat.is_constant(y, e_scale) for _, y, _, _ in curves if y):
-            flat.flat_view(ax, [y for _, y, _, _ in curves])
+            flat.flat_view(ax, [y for _, y, _, _ in curves], scale=e_scale)
     if blew:
         _pow10_axis(ax)
         ax.set_ylabel("|energy| (J), log scale")
@@ -523,11 +523,11 @@ def plot_stats(path, out, title=None, growth=None, diverged=None, changes=None):
         p_scale = max([abs(v) for _, y in ps for v in y] + [0.0])
         for (t, y), label, style in zip(ps, ("px", "py"), ("-", "--")):
             if flat.is_constant(y, p_scale):
-                label += flat.label(y, "kg m/s")
+                label += flat.label(y, "kg m/s", p_scale)
             axm.plot(t, y, style, label=label)
         flat.plain_ticks(axm)
         if all(flat.is_constant(y, p_scale) for _, y in ps if y):
-            flat.flat_view(axm, [y for _, y in ps])
+            flat.flat_view(axm, [y for _, y in ps], scale=p_scale)
         axm.set_ylabel("momentum (kg m/s)")
     axm.set_xlabel("time t (s)")
     axm.legend(loc="best", framealpha=0.85)

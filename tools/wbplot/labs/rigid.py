@@ -270,7 +270,7 @@ def plot_momenta(paths, labels, out, title=None, diverged=None):
                 y = s[c][:end + 1]
                 name = label if gi == 0 else (f"{label}: {c}" if len(runs) > 1 else c)
                 if not logged and n in shown and flat.is_constant(y, scale):
-                    name += flat.label(y, units[gi])
+                    name += flat.label(y, units[gi], scale)
                 ax.plot(t, y, color=colors[n], ls=styles[i] if gi else "-", label=name)
                 if n in shown:
                     drawn.append(y)
@@ -282,7 +282,7 @@ def plot_momenta(paths, labels, out, title=None, diverged=None):
         if not logged:
             flat.plain_ticks(ax)
             if drawn and all(flat.is_constant(y, scale) for y in drawn):
-                flat.flat_view(ax, drawn)
+                flat.flat_view(ax, drawn, scale=scale)
     for n in blowups:
         for ax in axes:
             ax.axvline(blowups[n], color=colors[n], lw=0.8, ls="-.")
@@ -306,7 +306,12 @@ def plot_momenta(paths, labels, out, title=None, diverged=None):
     axes[2].set_ylabel("angular momentum L\nabout the origin (kg m²/s)")
     axes[2].set_xlabel("time t (s)")
     for ax in axes:
-        ax.legend(loc="best", ncol=2 if len(runs) > 1 else 1, fontsize=8, framealpha=0.85)
+        n_entries = len(ax.get_legend_handles_labels()[1])
+        if n_entries > 4:  # beside the panel: inside, six entries would cover its curves
+            ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7.5,
+                      borderaxespad=0.0, frameon=False)
+        else:
+            ax.legend(loc="best", fontsize=8, framealpha=0.85)
     if zoom:
         right = [row[1] for row in grid]
         t_zoom = 1.25 * max(blowups.values())
@@ -370,12 +375,12 @@ def plot_polhode(path, out, body=0, title=None):
     flat_j = [flat.is_constant(c, scale) for c in comps]
     for j in range(3):
         ax.plot(t, comps[j], color=AXIS_COLORS[j], label=f"ω along body {'xyz'[j]}"
-                + (flat.label(comps[j], "rad/s") if flat_j[j] else ""))
+                + (flat.label(comps[j], "rad/s", scale) if flat_j[j] else ""))
     if stopped and t:
         ax.axvline(t[-1], color="k", ls="-.", lw=0.8, label=f"last finite state, t = {t[-1]:g} s")
     flat.plain_ticks(ax)
     if w and all(flat_j):
-        flat.flat_view(ax, comps)
+        flat.flat_view(ax, comps, scale=scale)
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("body-frame angular velocity (rad/s)")
     ax.legend(loc="best", framealpha=0.85)
@@ -389,12 +394,19 @@ def plot_polhode(path, out, body=0, title=None):
         # One scale on the three axes: the widest real motion of a component (or a tenth
         # of |ω| when none moves), each axis centred on its component.
         spans = [max(c) - min(c) for c, f in zip(comps, flat_j) if not f]
-        half = 0.55 * max(spans + [0.2 * scale, 1e-9])
+        mids = [flat.value_of(c, scale) if f else (max(c) + min(c)) / 2
+                for c, f in zip(comps, flat_j)]
+        # Every component constant: a point, in a view of 10 % of |ω| around it (1 rad/s
+        # about a body at rest), as flat.flat_view draws a constant.
+        half = 0.55 * max(spans + [0.2 * scale]) if spans else max(
+            0.1 * max(abs(m) for m in mids), 1.0)
         for j, setter in enumerate((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim)):
-            mid = flat.value_of(comps[j]) if flat_j[j] else (max(comps[j]) + min(comps[j])) / 2
+            mid = mids[j]
             setter(mid - half, mid + half)
+        from matplotlib.ticker import MaxNLocator
         for a in (ax3.xaxis, ax3.yaxis, ax3.zaxis):
             a.get_major_formatter().set_useOffset(False)
+            a.set_major_locator(MaxNLocator(4))  # fewer labels: they ran into each other
     ax3.set_xlabel("ω_x (rad/s)")
     ax3.set_ylabel("ω_y (rad/s)")
     ax3.set_zlabel("ω_z (rad/s)", labelpad=4)
