@@ -98,6 +98,12 @@ def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=
         second = (t2, s2, m2)
     meta = model.build(trace, st, sm, doc, scene, second,
                        labels=(labels + ["run 2"])[:2] if len(labels) < 2 else labels[:2])
+    # Where the page's files are from the page itself (its test reads the CSV back).
+    here = os.path.dirname(os.path.abspath(out))
+    for r, path in zip(meta["runs"], [run, run2]):
+        r["from_page"] = os.path.relpath(os.path.abspath(path), here)
+    if scene:
+        meta["scene_from_page"] = os.path.relpath(os.path.abspath(scene), here)
     what = (f"{trace.n} {'bodies' if trace.kind == 'rigid' else 'particles'}, "
             f"{trace.frames} written steps")
     if meta["runs"][0]["kept_every"] > 1:

@@ -65,81 +65,118 @@ class Trace:
         return self.values[(k * self.n + i) * len(self.cols) + self.cols.index(col)]
 
 
+CHUNK_ROWS = 200_000  # rows parsed at once: about 50 MB of temporary objects
+
+
 def read_trace(path):
     """The trace CSV of any lab (docs/run-contract.md): the header tells the kind.
 
-    Fast path: the whole file split into fields at once (a 10^4-particle run of 300
-    written steps is 3·10^6 rows); when the field count or a number is wrong, the rows
-    are read one by one to name the first bad one."""
-    raw = _read_bytes(path, "a trace CSV (the --out file of a run)")
-    if b"\r" in raw:
-        raw = raw.replace(b"\r", b"")
-    head, _, body = raw.partition(b"\n")
-    header = [h.strip() for h in head.decode("utf-8", "replace").split(",")]
-    if header == TRACE_3D:
-        kind, keep = "rigid", KEEP_3D
-    elif header == TRACE_2D:
-        kind, keep = "particles", KEEP_2D
-    else:
-        raise InputError(f"{path}: header is '{','.join(header)[:200]}', expected a run's trace: "
-                         f"{','.join(TRACE_2D)} (particle labs) or {','.join(TRACE_3D)} "
-                         "(the rigid lab), docs/run-contract.md")
-    width = len(header)
-    body = body.rstrip(b"\n")
-    if not body.strip():
-        raise InputError(f"{path}: no data rows after the header, expected at least one")
-    lines = body.count(b"\n") + 1
-    fields = body.replace(b"\n", b",").split(b",")
-    if len(fields) != lines * width:
-        _find_bad_row(path, body, header)
-        raise InputError(f"{path}: {len(fields)} fields in {lines} rows, expected {width} a row")
-    ids = fields[1::width]
-    n = ids.index(b"0", 1) if b"0" in ids[1:] else len(ids)
-    if lines % n:
-        raise InputError(f"{path}: {lines} rows is not a whole number of written steps of "
-                         f"{n} ids (0 to {n - 1}, from the first step), docs/run-contract.md")
-    frames = lines // n
-    expected = [str(i).encode() for i in range(n)]
-    tcol = fields[0::width]
-    times = []
-    for k in range(frames):
-        if ids[k * n:(k + 1) * n] != expected:
-            got = ids[k * n:(k + 1) * n]
-            j = next(j for j in range(n) if got[j] != expected[j])
-            raise InputError(f"{path}: row {k * n + j + 2}: id {got[j].decode('utf-8', 'replace')}, "
-                             f"expected {j} (each written step lists ids 0 to {n - 1} in order, "
-                             "docs/run-contract.md)")
-        ts = tcol[k * n]
-        if len(set(tcol[k * n:(k + 1) * n])) != 1:
-            raise InputError(f"{path}: rows {k * n + 2} to {(k + 1) * n + 1} (one written step) "
-                             "do not share one t")
-        times.append(_number(path, k * n + 2, "t", ts))
-    cols = [header.index(c) for c in keep]
+    Each block of whole written steps (about CHUNK_ROWS rows) is split into fields at
+    once (a 10^4-particle run of 300 written steps is 3·10^6 rows); when a field count or
+    a number is wrong, that block's rows are read one by one to name the first bad one."""
+    if not os.path.exists(path):
+        raise InputError(f"{path}: no such file (expected a trace CSV (the --out file of a run))")
+    if os.path.isdir(path):
+        raise InputError(f"{path}: is a folder, expected a trace CSV (the --out file of a run)")
     try:
-        per_col = [list(map(float, fields[c::width])) for c in cols]
-    except ValueError:
-        _find_bad_row(path, body, header)
-        raise
-    values = array("d", bytes(8 * len(cols) * lines))
-    for j, col in enumerate(per_col):
-        values[j::len(cols)] = array("d", col)
-    for k in range(1, frames):
+        f = open(path, "rb")
+    except OSError as e:
+        raise InputError(f"{path}: cannot read ({e.strerror})") from None
+    with f:
+        head = f.readline()
+        header = [h.strip() for h in head.decode("utf-8", "replace").strip().split(",")]
+        if header == TRACE_3D:
+            kind, keep = "rigid", KEEP_3D
+        elif header == TRACE_2D:
+            kind, keep = "particles", KEEP_2D
+        else:
+            raise InputError(f"{path}: header is '{','.join(header)[:200]}', expected a run's "
+                             f"trace: {','.join(TRACE_2D)} (particle labs) or "
+                             f"{','.join(TRACE_3D)} (the rigid lab), docs/run-contract.md")
+        width = len(header)
+        cols = [header.index(c) for c in keep]
+        # The particle count: rows up to the second id 0 (ids 0 ... n-1 each written step).
+        first = []
+        for line in f:
+            if not line.strip():
+                continue
+            if first and line.split(b",", 2)[1:2] == [b"0"]:
+                rest = [line]
+                break
+            first.append(line)
+        else:
+            rest = []
+        if not first:
+            raise InputError(f"{path}: no data rows after the header, expected at least one")
+        n = len(first)
+        per_chunk = max(1, CHUNK_ROWS // n) * n
+        values, times = array("d"), []
+        pending = first + rest
+        lineno = 2  # of the first row in `pending`
+        expected = [str(i).encode() for i in range(n)]
+        while True:
+            while len(pending) < per_chunk:
+                more = f.readlines(1 << 24)
+                if not more:
+                    break
+                pending += [x for x in more if x.strip()]
+            if not pending:
+                break
+            block, pending = pending[:per_chunk], pending[per_chunk:]
+            if len(block) % n:
+                raise InputError(f"{path}: {lineno - 2 + len(block)} rows is not a whole number "
+                                 f"of written steps of {n} ids (0 to {n - 1}, from the first "
+                                 "step), docs/run-contract.md")
+            _parse_block(path, block, lineno, header, width, n, expected, cols, values, times)
+            lineno += len(block)
+    for k in range(1, len(times)):
         if not times[k] > times[k - 1]:
             raise InputError(f"{path}: row {k * n + 2}: t = {times[k]!r} after t = "
                              f"{times[k - 1]!r}, expected written steps in increasing time")
     return Trace(path, kind, n, times, keep, values)
 
 
-def _find_bad_row(path, body, header):
-    """Raises InputError naming the first row with the wrong field count or a field that
-    is not a number."""
-    for lineno, line in enumerate(body.split(b"\n"), start=2):
-        rec = line.split(b",")
+def _parse_block(path, block, lineno, header, width, n, expected, cols, values, times):
+    """Whole written steps of rows (bytes lines) into `values` (kept columns) and `times`."""
+    body = b"".join(block).replace(b"\r", b"").replace(b"\n", b",")
+    fields = body.split(b",")
+    if fields and fields[-1] == b"":
+        fields.pop()
+    if len(fields) != len(block) * width:
+        _find_bad_row(path, block, lineno, header)
+    ids, tcol = fields[1::width], fields[0::width]
+    for k in range(len(block) // n):
+        got = ids[k * n:(k + 1) * n]
+        if got != expected:
+            j = next(j for j in range(n) if got[j] != expected[j])
+            raise InputError(f"{path}: row {lineno + k * n + j}: id "
+                             f"{got[j].decode('utf-8', 'replace')}, expected {j} (each written "
+                             f"step lists ids 0 to {n - 1} in order, docs/run-contract.md)")
+        if len(set(tcol[k * n:(k + 1) * n])) != 1:
+            raise InputError(f"{path}: rows {lineno + k * n} to {lineno + (k + 1) * n - 1} (one "
+                             "written step) do not share one t")
+        times.append(_number(path, lineno + k * n, "t", tcol[k * n]))
+    try:
+        per_col = [array("d", map(float, fields[c::width])) for c in cols]
+    except ValueError:
+        _find_bad_row(path, block, lineno, header)
+        raise
+    out = array("d", bytes(8 * len(cols) * len(block)))
+    for j, col in enumerate(per_col):
+        out[j::len(cols)] = col
+    values.extend(out)
+
+
+def _find_bad_row(path, block, lineno, header):
+    """Raises InputError naming the first row of `block` with the wrong field count or a
+    field that is not a number."""
+    for k, line in enumerate(block):
+        rec = line.rstrip(b"\r\n").split(b",")
         if len(rec) != len(header):
-            raise InputError(f"{path}:{lineno}: {len(rec)} fields, expected {len(header)} "
+            raise InputError(f"{path}:{lineno + k}: {len(rec)} fields, expected {len(header)} "
                              f"(header '{','.join(header)}')")
         for name, text in zip(header, rec):
-            _number(path, lineno, name, text)
+            _number(path, lineno + k, name, text)
 
 
 def read_stats(path, kind):

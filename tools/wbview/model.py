@@ -2,7 +2,9 @@
 motion, the difference between two runs and the frame budget (docs/view.md)."""
 import base64
 import bisect
+import itertools
 import math
+import operator
 import sys
 from array import array
 
@@ -62,8 +64,10 @@ def fit_box(trace, diverged=False):
     if not diverged:
         lo, hi = [], []
         for d in range(dims):
-            col = [x for x in v[d::c] if math.isfinite(x)]
-            if not col:
+            col = v[d::c]
+            if not math.isfinite(sum(col)):  # a NaN or an infinity (or a sum that overflows)
+                col = [x for x in col if math.isfinite(x)]
+            if not len(col):
                 return None
             lo.append(min(col))
             hi.append(max(col))
@@ -116,7 +120,7 @@ def pack_trace(trace, keep, origin):
         for d in range(dims):
             if origin[d]:
                 col = chunk[d::c]
-                chunk[d::c] = array("d", (x - origin[d] for x in col))
+                chunk[d::c] = array("d", map(operator.sub, col, itertools.repeat(origin[d], len(col))))
         out.extend(chunk)
     return pack_floats(out)
 

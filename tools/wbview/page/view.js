@@ -136,6 +136,7 @@
         seekT(r.diverged.t === null ? r.t[r.frames - 1] : r.diverged.t);
       });
     });
+    el("c-trails").checked = N <= 50;  // a few particles: their paths show by default
     if (!EXACT) el("l-exact").style.display = "none";
     if (!R2) el("l-run2").style.display = "none";
     if (!SCENE || RIGID || !(SCENE.springs.length || SCENE.anchored.length))
@@ -634,7 +635,7 @@
       }
       for (let k = 0; k < CYL_N; k++) {
         const k1 = (k + 1) % CYL_N, a = 2 * Math.PI * (k + 0.5) / CYL_N;
-        faces.push({ pts: [bot[k], bot[k1], top[k1], top[k]], n: apply(P.R, [Math.cos(a), Math.sin(a), 0]) });
+        faces.push({ pts: [bot[k], bot[k1], top[k1], top[k]], n: apply(P.R, [Math.cos(a), Math.sin(a), 0]), seam: true });
       }
       faces.push({ pts: top.slice().reverse(), n: apply(P.R, [0, 0, 1]) });
       faces.push({ pts: bot, n: apply(P.R, [0, 0, -1]) });
@@ -736,13 +737,13 @@
         const pp = f.pts.map(function (p) { return project(cam, p); });
         if (pp.some(function (p) { return !p; })) return;
         const z = pp.reduce(function (a, p) { return a + p[2]; }, 0) / pp.length;
-        items.push({ z: z, pp: pp, col: shade(col, 0.5 + 0.6 * Math.max(0, dot3(f.n, cam.light))) });
+        items.push({ z: z, pp: pp, seam: f.seam, col: shade(col, 0.5 + 0.6 * Math.max(0, dot3(f.n, cam.light))) });
       });
     }
     items.sort(function (a, b) { return b.z - a.z; });
     items.forEach(function (it) {
       if (it.sphere) { drawSphere(cam, it); return; }
-      ctx.fillStyle = it.col; ctx.strokeStyle = "rgba(0,0,0,0.45)"; ctx.lineWidth = 1;
+      ctx.fillStyle = it.col; ctx.strokeStyle = it.seam ? it.col : "rgba(0,0,0,0.45)"; ctx.lineWidth = 1;
       ctx.beginPath();
       it.pp.forEach(function (p, j) { if (j === 0) ctx.moveTo(p[0], p[1]); else ctx.lineTo(p[0], p[1]); });
       ctx.closePath(); ctx.fill(); ctx.stroke();
@@ -944,7 +945,8 @@
     }
     c.strokeStyle = "#bbb"; c.strokeRect(m.l + 0.5, m.t + 0.5, w - m.l - m.r - 1, h - m.t - m.b - 1);
     c.save(); c.beginPath(); c.rect(m.l, m.t, w - m.l - m.r, h - m.t - m.b); c.clip();
-    this.series.forEach(function (s) {
+    // Totals (E) last, on top: a total equal to one of its parts stays visible.
+    this.series.filter(function (s) { return !s.top; }).concat(this.series.filter(function (s) { return s.top; })).forEach(function (s) {
       c.strokeStyle = s.color; c.lineWidth = s.width || 1.4; c.setLineDash(s.dash || []);
       c.beginPath();
       let started = false;
@@ -1018,6 +1020,9 @@
       TRANGE[0] = Math.min(TRANGE[0], r.t[0]); TRANGE[1] = Math.max(TRANGE[1], r.t[r.frames - 1]);
     });
     if (TRANGE[1] <= TRANGE[0]) TRANGE[1] = TRANGE[0] + 1;
+    // A little room after the last step: a run that diverged ends there, and its mark must
+    // not fall on the frame's edge.
+    TRANGE[1] += 0.02 * (TRANGE[1] - TRANGE[0]);
     const anyDiv = RUNS.some(function (r) { return r.diverged; });
     const dash = [6, 3];
     const E = [], P = [], L = [];
@@ -1026,7 +1031,7 @@
       if (!s) return;
       const suffix = ri ? " (" + r.label + ")" : "";
       const d = ri ? dash : null;
-      E.push({ name: "E" + suffix, color: ri ? COLORS.run2 : "#111", t: s.t, v: s.energy, dash: d, width: 1.8 });
+      E.push({ name: "E" + suffix, color: ri ? COLORS.run2 : "#111", t: s.t, v: s.energy, dash: d, width: 1.8, top: true });
       if (!ri) {
         E.push({ name: "K", color: "#d62728", t: s.t, v: s.kinetic });
         E.push({ name: "U", color: "#1f77b4", t: s.t, v: s.potential });
@@ -1343,6 +1348,23 @@
         return { id: i, world: p, q: q, screen: s ? [s[0] + r.left, s[1] + r.top] : null,
           radius_px: RIGID ? 3.5 : radiusPx(i) };
       });
+    },
+    // Switches (exact, run2, trails, springs, contacts, pick, legend) for the pixel checks:
+    // with the overlays off, a particle's centre pixel is its run's colour.
+    set: function (o) {
+      ["exact", "run2", "trails", "springs", "contacts"].forEach(function (k) {
+        if (k in o) { S[k] = !!o[k]; const b = el("c-" + k); if (b) b.checked = S[k]; }
+      });
+      if ("pick" in o) S.pick = o.pick;
+      if ("legend" in o) el("legend").style.display = o.legend ? "" : "none";
+      S.dirty = true; render();
+    },
+    // The mapping from world to page pixels of the last drawing.
+    view: function () {
+      const r = canvas.getBoundingClientRect();
+      if (!RIGID) return { kind: "2d", cx: S.view2.cx, cy: S.view2.cy, s: S.view2.s, left: r.left, top: r.top, W: W, H: H };
+      const c = camera();
+      return { kind: "3d", eye: c.eye, r: c.r, u: c.u, f: c.f, F: c.F, left: r.left, top: r.top, W: W, H: H };
     },
     colors: function () { return { run: COLORS.run, com: COLORS.com, cursor: COLORS.cursor, diverged: COLORS.diverged }; },
     charts: function () {
