@@ -55,11 +55,16 @@ def beside(path, suffix):
 
 
 def load_run(path, stats_path, summary_path):
+    """The trace, stats and summary of a run; summary_path may be the summary itself (a
+    dict: tools/report has it in hand)."""
     trace = read_trace(path)
     stats_path = stats_path or beside(path, "-stats.csv")
-    summary_path = summary_path or beside(path, "-summary.json")
+    if isinstance(summary_path, dict):
+        summary, summary_path = summary_path, "the run's"
+    else:
+        summary_path = summary_path or beside(path, "-summary.json")
+        summary = read_summary(summary_path) if summary_path else None
     stats = read_stats(stats_path, trace.kind) if stats_path else None
-    summary = read_summary(summary_path) if summary_path else None
     return trace, stats, summary, stats_path, summary_path
 
 
@@ -82,9 +87,10 @@ def write_atomic(path, text):
 
 
 def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=None,
-              summary2=None, labels=None):
+              summary2=None, labels=None, shown_from=None):
     """Writes the page; returns (the page's metadata, a one-line account of what it holds).
-    Raises InputError on bad input (nothing written)."""
+    Paths are shown as given, or from the folder `shown_from`. Raises InputError on bad
+    input (nothing written)."""
     if labels is None:
         labels = [os.path.basename(run)[:-4] if run.endswith(".csv") else os.path.basename(run)]
         if run2:
@@ -102,8 +108,12 @@ def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=
     here = os.path.dirname(os.path.abspath(out))
     for r, path in zip(meta["runs"], [run, run2]):
         r["from_page"] = os.path.relpath(os.path.abspath(path), here)
+        if shown_from:
+            r["path"] = os.path.relpath(os.path.abspath(path), shown_from)
     if scene:
         meta["scene_from_page"] = os.path.relpath(os.path.abspath(scene), here)
+        if shown_from:
+            meta["scene_path"] = os.path.relpath(os.path.abspath(scene), shown_from)
     what = (f"{trace.n} {'bodies' if trace.kind == 'rigid' else 'particles'}, "
             f"{trace.frames} written steps")
     if meta["runs"][0]["kept_every"] > 1:

@@ -24,8 +24,9 @@ import sys
 import tempfile
 import time
 
+from wbview.data import InputError, read_trace
+
 from . import browser
-from .data import InputError, read_stats, read_summary, read_trace
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 COLOR_TOL = 12        # per channel: the centre of a filled disc or line is its exact colour
@@ -258,7 +259,7 @@ def rel(p):
 def own_runs(bin_dir, work):
     """The stage's own runs: a diverged run with a second run beside it (euler lab), and
     the large run (forces lab: 10^4 particles, 300 written steps). Returns the pages."""
-    view = [sys.executable, os.path.join(ROOT, "tools", "view")]
+    view = [os.path.join(ROOT, "tools", "view"), "--no-setup"]
     pages = {}
     exe = os.path.join(bin_dir, "euler-solution")
     if os.path.exists(exe):
@@ -320,6 +321,11 @@ def measure_large(b, page, seconds=3.0):
             "fps": r["fps"], "frames": r["frames"], "fps_cpu": r["frames"] / max(c2 - c1, 1e-9),
             "draw_ms_mean": r["draw_ms_mean"], "draw_ms_p95": r["draw_ms_p95"],
             "size_mb": os.path.getsize(page) / 1e6}
+
+
+def run():
+    """The entry tools/view-check calls: main() with the command line, its exit status."""
+    sys.exit(main())
 
 
 def main(argv=None):

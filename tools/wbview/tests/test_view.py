@@ -10,13 +10,13 @@ import sys
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+TOOLS = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, TOOLS)
 
 from wbview import cli, model, page  # noqa: E402
-from wbview.browser import decode_png  # noqa: E402
 from wbview.data import InputError, particle_scene, read_summary, read_trace  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(TOOLS)
 
 
 def write(tmp_path, name, text):
@@ -212,21 +212,6 @@ def test_cli_finds_stats_and_summary_beside(tmp_path):
     r = meta["runs"][0]
     assert r["steps"] == [0, 1, 2] and r["diverged"]["step"] == 2
     assert "run-stats.csv" in what and "run-summary.json" in what
-
-
-def test_png_decoder_reads_filtered_rows():
-    """The screenshot reader undoes PNG filters (a wrong Paeth would shift colours)."""
-    import zlib
-    rows = [bytes([4, 10, 20, 30, 0, 0, 0]), bytes([2, 1, 1, 1, 5, 5, 5])]  # Paeth, Up
-    raw = zlib.compress(b"".join(rows))
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 8, 2, 0, 0, 0))
-           + chunk(b"IDAT", raw) + chunk(b"IEND", b""))
-    img = decode_png(png)
-    assert img.pixel(0, 0) == (10, 20, 30) and img.pixel(1, 0) == (10, 20, 30)
-    assert img.pixel(0, 1) == (11, 21, 31) and img.pixel(1, 1) == (15, 25, 35)
 
 
 def test_view_help_runs():
