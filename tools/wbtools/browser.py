@@ -18,7 +18,7 @@ import zlib
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
          "--disable-extensions", "--disable-default-apps", "--mute-audio",
-         "--hide-scrollbars", "--remote-debugging-pipe"]
+         "--hide-scrollbars", "--disable-dev-shm-usage", "--remote-debugging-pipe"]
 
 
 class BrowserError(Exception):

@@ -216,6 +216,7 @@
         lo[1] = Math.min(lo[1], d.center[1] - d.radius); hi[1] = Math.max(hi[1], d.center[1] + d.radius);
       });
       SCENE.marks.concat(SCENE.anchored.map(function (a) { return { at: [a[1], a[2]] }; }))
+        .concat(SCENE.planes.map(function (p) { return { at: p.point }; }))
         .forEach(function (m) {
           lo[0] = Math.min(lo[0], m.at[0]); hi[0] = Math.max(hi[0], m.at[0]);
           lo[1] = Math.min(lo[1], m.at[1]); hi[1] = Math.max(hi[1], m.at[1]);
