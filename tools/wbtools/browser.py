@@ -110,7 +110,8 @@ class Browser:
             text = d.get("exception", {}).get("description") or d.get("text")
             self.errors.append(f"exception: {text} ({d.get('url', '')}:{d.get('lineNumber')})")
         elif method == "Runtime.consoleAPICalled" and p.get("type") in ("error", "assert"):
-            args = " ".join(str(a.get("value", a.get("description", ""))) for a in p.get("args", []))
+            args = " ".join(str(a.get("value", a.get("description", "")))
+                            for a in p.get("args", []))
             self.errors.append(f"console.{p.get('type')}: {args}")
         elif method == "Log.entryAdded" and p.get("entry", {}).get("level") == "error":
             e = p["entry"]
@@ -142,7 +143,8 @@ class Browser:
         targets = self.call("Target.getTargets")["targetInfos"]
         page = next((t for t in targets if t["type"] == "page"), None)
         if page is None:
-            page = {"targetId": self.call("Target.createTarget", {"url": "about:blank"})["targetId"]}
+            made = self.call("Target.createTarget", {"url": "about:blank"})
+            page = {"targetId": made["targetId"]}
         self.session = self.call("Target.attachToTarget", {"targetId": page["targetId"],
                                                            "flatten": True})["sessionId"]
         for domain in ("Page", "Runtime", "Log"):
@@ -175,7 +177,8 @@ class Browser:
                       session=self.session, timeout=timeout)
         if "exceptionDetails" in r:
             d = r["exceptionDetails"]
-            raise BrowserError(f"{expr[:80]}: {d.get('exception', {}).get('description') or d.get('text')}")
+            why = d.get("exception", {}).get("description") or d.get("text")
+            raise BrowserError(f"{expr[:80]}: {why}")
         return r.get("result", {}).get("value")
 
     def screenshot(self, path):

@@ -278,8 +278,9 @@ def own_runs(bin_dir, work):
             with open(base + "-summary.json", "w") as out:
                 subprocess.run([exe, "--scene", scene, "--out", base + ".csv", "--stats",
                                 base + "-stats.csv"] + extra, stdout=out, check=True)
-        subprocess.run(view + [os.path.join(work, "stiff-ee.csv"), os.path.join(work, "stiff-se.csv"),
-                               "--scene", scene, "-o", os.path.join(work, "diverged.html")],
+        subprocess.run(view + [os.path.join(work, "stiff-ee.csv"),
+                               os.path.join(work, "stiff-se.csv"), "--scene", scene,
+                               "-o", os.path.join(work, "diverged.html")],
                        check=True, stdout=subprocess.DEVNULL)
         pages["diverged"] = os.path.join(work, "diverged.html")
     exe = os.path.join(bin_dir, "forces-solution")

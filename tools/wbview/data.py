@@ -219,7 +219,8 @@ def read_summary(path):
         s = json.loads(lines[-1])
     except json.JSONDecodeError as e:
         raise InputError(f"{path}: the last line is not JSON ({e.msg}), expected the run's "
-                         "summary line (the last line a run prints, docs/run-contract.md)") from None
+                         "summary line (the last line a run prints, docs/run-contract.md)"
+                         ) from None
     if not isinstance(s, dict) or "status" not in s:
         raise InputError(f"{path}: the last line is not a run's summary (a JSON object with "
                          "\"status\", docs/run-contract.md)")

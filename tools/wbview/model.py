@@ -120,7 +120,8 @@ def pack_trace(trace, keep, origin):
         for d in range(dims):
             if origin[d]:
                 col = chunk[d::c]
-                chunk[d::c] = array("d", map(operator.sub, col, itertools.repeat(origin[d], len(col))))
+                chunk[d::c] = array("d", map(operator.sub, col,
+                                             itertools.repeat(origin[d], len(col))))
         out.extend(chunk)
     return pack_floats(out)
 

@@ -1,12 +1,16 @@
 """One self-contained HTML file from the viewer's data: the template, its script and style
 (tools/wbview/page/), the metadata as JSON and each binary block as base64 text in a
-script element of its own type (the browser does not parse it as code)."""
+script element of its own type (the browser does not parse it as code).
+
+The script is plain JavaScript on Canvas 2D, no library (docs/view.md, "Why plain
+Canvas"), in five files joined here into one function in this order."""
 import html
 import json
 import os
 import re
 
 HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "page")
+SCRIPTS = ["core.js", "view2d.js", "view3d.js", "charts.js", "ui.js"]
 
 
 def _read(name):
@@ -36,10 +40,11 @@ def render(meta):
     blob_html = "\n".join(f'<script type="application/octet-stream" id="wb-blob-{k}">{b}</script>'
                           for k, b in enumerate(blobs))
     title = (meta.get("name") or os.path.basename(meta["runs"][0]["path"])) + " — tools/view"
-    js = _read("view.js")
+    js = ('"use strict";\n(function () {\n' + "\n".join(_read(name) for name in SCRIPTS)
+          + "})();\n")
     if re.search(r"</script|<script|<!--", js, re.I):
-        raise AssertionError("tools/wbview/page/view.js holds '</script', '<script' or '<!--', "
-                             "which would end its <script> element early")
+        raise AssertionError("tools/wbview/page/*.js hold '</script', '<script' or '<!--', "
+                             "which would end their <script> element early")
     parts = {"TITLE": html.escape(title), "CSS": _read("view.css"), "JS": js,
              "META": meta_json, "BLOBS": blob_html}
     # One pass over the template: a value that holds "{{...}}" (a scene's description) is

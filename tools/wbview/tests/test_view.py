@@ -73,7 +73,8 @@ def test_trace_non_finite_values_are_kept(tmp_path):
     ("t,id,x,y,vx,vy\n0,0,1,two,0,0\n", "row 2, column 'y': got 'two'"),
     ("t,id,x,y,vx,vy\n0,0,1,2,0,0\n0,1,1,2,0,0\n0.1,0,1,2,0,0\n0.1,2,1,2,0,0\n",
      "row 5: id 2, expected 1"),
-    ("t,id,x,y,vx,vy\n0,0,1,2,0,0\n0,1,1,2,0,0\n0.1,0,1,2,0,0\n", "not a whole number of written steps"),
+    ("t,id,x,y,vx,vy\n0,0,1,2,0,0\n0,1,1,2,0,0\n0.1,0,1,2,0,0\n",
+     "not a whole number of written steps"),
     ("t,id,x,y,vx,vy\n0,0,1,2,0,0\n0.1,1,1,2,0,0\n", "do not share one t"),
     ("t,id,x,y,vx,vy\n0.1,0,1,2,0,0\n0,0,1,2,0,0\n", "expected written steps in increasing time"),
 ])
@@ -174,7 +175,8 @@ def test_exact_motion_not_for_scenes_with_planes():
     class T:
         kind, n = "particles", 1
     assert model.exact_motion(doc, T())[0] == "parabola"
-    assert model.exact_motion(dict(doc, planes=[{"point": [0, 0], "normal": [0, 1]}]), T())[0] is None
+    walled = dict(doc, planes=[{"point": [0, 0], "normal": [0, 1]}])
+    assert model.exact_motion(walled, T())[0] is None
 
 
 # -- the page
@@ -183,7 +185,8 @@ def test_exact_motion_not_for_scenes_with_planes():
 def test_page_text_cannot_end_its_script(tmp_path):
     """A scene description holding '</script>' or '{{JS}}' must stay text in the page."""
     t = read_trace(write(tmp_path, "r.csv", trace_2d(2, 1)))
-    doc = {"name": "x", "description": "</script><b>{{JS}}</b>", "particles": [{"x": [0, 0], "m": 1}]}
+    doc = {"name": "x", "description": "</script><b>{{JS}}</b>",
+           "particles": [{"x": [0, 0], "m": 1}]}
     meta = model.build(t, None, None, doc, "s.json")
     html = page.render(meta)
     assert html.count("</script>") == html.count("<script")
