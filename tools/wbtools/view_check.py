@@ -11,7 +11,7 @@ from the page itself:
   - a run whose summary says it diverged is marked at the summary's step and t;
 then makes two runs of its own (a diverged one with a second run beside it, and a
 10^4-particle run of 300 written steps) and measures the large page's load time and
-frame rate."""
+frame rate. The viewer's unit tests (pytest) run first."""
 import argparse
 import glob
 import json
@@ -235,6 +235,25 @@ class PageCheck:
         self.facts["diverged_checked"] = last
 
 
+UNIT_TESTS = ["tools/wbview/tests", "tools/wbtools/tests/test_view_check.py"]
+
+
+def unit_tests():
+    """The viewer's unit tests (pytest), first: the readers and packing the pages rest on."""
+    t0 = time.monotonic()
+    p = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider"]
+                       + [os.path.join(ROOT, t) for t in UNIT_TESTS],
+                       cwd=ROOT, capture_output=True, text=True,
+                       env=dict(os.environ, PYTHONDONTWRITEBYTECODE="1"))
+    last = (p.stdout.strip().splitlines() or ["no output"])[-1]
+    log(f"view-check: unit tests ({', '.join(UNIT_TESTS)}): {last} "
+        f"({time.monotonic() - t0:.1f} s)")
+    if p.returncode != 0:
+        print(p.stdout[-3000:] + p.stderr[-1000:], flush=True)
+        return [f"the viewer's unit tests failed (python3 -m pytest {' '.join(UNIT_TESTS)})"]
+    return []
+
+
 def default_scene_pages(report, pages):
     """Every scenes/<lab>/<stem>.json must have a page of the report (problems)."""
     named = set()
@@ -350,7 +369,7 @@ def main(argv=None):
         print(f"tools/view-check: error: --report: no viewer pages in {rel(args.report)}/<lab>/ "
               "(run tools/report first)", file=sys.stderr)
         return 2
-    problems = default_scene_pages(args.report, pages)
+    problems = unit_tests() + default_scene_pages(args.report, pages)
     shutil.rmtree(args.shots, ignore_errors=True)
     os.makedirs(args.shots)
     work = tempfile.mkdtemp(prefix="wb-view-check-")

@@ -32,6 +32,17 @@ def clean(x):
     return x if finite(x) else None
 
 
+def clean_all(v):
+    """A JSON value with every number that is not finite replaced by None, at any depth."""
+    if isinstance(v, float):
+        return clean(v)
+    if isinstance(v, list):
+        return [clean_all(x) for x in v]
+    if isinstance(v, dict):
+        return {k: clean_all(x) for k, x in v.items()}
+    return v
+
+
 def kept_frames(frames, per_frame, budget):
     """Indices of the written steps a page keeps: all of them when frames × per_frame
     values fit in `budget`, else every k-th, the first and the last always."""
@@ -304,8 +315,7 @@ def run_block(trace, stats, summary, label, keep, every, origin):
             "kept_every": every, "t": [trace.t[k] for k in keep], "steps": steps, "dt": dt,
             "step_from": step_from, "data": pack_trace(trace, keep, origin),
             "stats": stats_curves(stats, trace.kind, [div["t"]] if div and div["t"] else ()),
-            "summary": {k: (clean(v) if isinstance(v, float) else v)
-                        for k, v in (summary or {}).items()},
+            "summary": clean_all(summary or {}),
             "diverged": div}
 
 
@@ -348,12 +358,15 @@ def build(trace, stats, summary, doc, scene_path, run2=None, labels=("run", "run
         out["exact"] = exact_block(ek, at, trace, keep, origin)
     if run2 is not None:
         t2, s2, sum2 = run2
-        if t2.kind != kind or t2.n != trace.n:
+        if t2.kind != kind:
+            raise InputError(f"{t2.path}: a {'rigid-body' if t2.kind == 'rigid' else 'particle'} "
+                             f"run, the first run ({trace.path}) is a "
+                             f"{'rigid-body' if kind == 'rigid' else 'particle'} run: a second "
+                             "run must be of the same scene")
+        if t2.n != trace.n:
             what = "bodies" if kind == "rigid" else "particles"
-            raise InputError(f"{t2.path}: a {t2.kind} run of {t2.n} "
-                             f"{'bodies' if t2.kind == 'rigid' else 'particles'}, the first run "
-                             f"({trace.path}) has {trace.n} {what}: a second run must be of the "
-                             "same scene")
+            raise InputError(f"{t2.path}: {t2.n} {what}, the first run ({trace.path}) has "
+                             f"{trace.n}: a second run must be of the same scene")
         keep2, every2 = kept_frames(t2.frames, per, budget)
         b2 = run_block(t2, s2, sum2, labels[1], keep2, every2, origin)
         if doc and b2["steps"] is None:

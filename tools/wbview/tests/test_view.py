@@ -221,3 +221,13 @@ def test_view_help_runs():
     p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "view"), "--help"],
                        capture_output=True, text=True)
     assert p.returncode == 0 and "RUN.csv" in p.stdout
+
+
+def test_summary_with_nan_still_makes_a_page(tmp_path):
+    """Python reads NaN in a summary file; the page's JSON cannot hold it (a traceback
+    instead of a page, for a hand-edited or foreign summary)."""
+    run = write(tmp_path, "run.csv", trace_2d(2, 1))
+    write(tmp_path, "run-summary.json", '{"status": "ok", "steps": 1, "t": 0.1, '
+          '"energy": NaN, "momentum": [Infinity, 0]}\n')
+    meta, _ = cli.make_view(run, str(tmp_path / "v.html"))
+    assert meta["runs"][0]["summary"]["momentum"] == [None, 0]
