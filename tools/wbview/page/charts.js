@@ -171,11 +171,10 @@ function nearestBefore(ts, t) {
   return lo;
 }
 
-let TRANGE = [R1.t[0], R1.t[R1.frames - 1]];
+// The time axis is the playhead's, the first run's: a second run that lasts longer is cut
+// at its end (a first run that diverged early keeps its blow-up readable).
+const TRANGE = [R1.t[0], R1.t[R1.frames - 1]];
 function makeCharts() {
-  RUNS.forEach(function (r) {
-    TRANGE[0] = Math.min(TRANGE[0], r.t[0]); TRANGE[1] = Math.max(TRANGE[1], r.t[r.frames - 1]);
-  });
   if (TRANGE[1] <= TRANGE[0]) TRANGE[1] = TRANGE[0] + 1;
   // A little room after the last step: a run that diverged ends there, and its mark must
   // not fall on the frame's edge.
