@@ -374,9 +374,11 @@ def instructor(args, work, tarball, debs, hand):
         if a.run(what, f"cd {clone} && {cmd}", check=False) != 0:
             failed.append(f"instructor: {what}: `{cmd}` failed\n"
                           f"{tail(os.path.join(work, 'logs', 'instructor.log'))}")
-        shots = a.host(f"{clone}/build/view-check")
-        if os.path.isdir(shots):
-            shutil.copytree(shots, os.path.join(work, "view-check"), dirs_exist_ok=True)
+        shots, kept = a.host(f"{clone}/build/view-check"), os.path.join(os.path.dirname(work),
+                                                                        "view-check")
+        if os.path.isdir(shots):  # kept after the work folder goes: build/fresh-machine/
+            shutil.rmtree(kept, ignore_errors=True)
+            shutil.copytree(shots, kept)
     if not args.keep:
         remove_root(a)
     if failed:

@@ -371,7 +371,9 @@ def run():
 
 def main(argv=None):
     p = argparse.ArgumentParser(prog="tools/view-check", description=__doc__,
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
+                                formatter_class=argparse.RawDescriptionHelpFormatter,
+                                epilog="Exit status: 0 every check passed, 1 a check failed "
+                                       "(one line each), 2 no Chromium or no viewer pages.")
     p.add_argument("--report", default=os.path.join(ROOT, "build", "report"),
                    help="the report whose viewers are checked (default build/report)")
     p.add_argument("--bin", default=os.path.join(ROOT, "build", "bin"),
