@@ -19,7 +19,6 @@ from wbplot import sweep as wsweep  # noqa: E402
 from wbplot import recipes  # noqa: E402
 from wbplot.claims import strip_markers  # noqa: E402
 from wbplot.recipes import fmt_dt, length_scale, offers, oscillator  # noqa: E402
-from wbview.data import InputError as ViewError  # noqa: E402
 from wbview.report import view_of_run  # noqa: E402
 
 TARGETS = "1e-2,1e-4,1e-6"  # target errors (m) of the cheapest-method tables
@@ -172,7 +171,7 @@ def solution_run(report, lab, exe, argv_tail, what, timeout, save=None):
     if s is not None and "--out" in argv_tail:  # its viewer page, linked from the runs table
         try:
             s["_view"] = os.path.relpath(view_of_run(argv_tail, s, ROOT), report.out_dir)
-        except ViewError as e:
+        except InputError as e:
             report.fail(f"{lab}: {what}: tools/view: {e}")
     return s or {}, ""
 

@@ -4,6 +4,8 @@ import os
 import sys
 import time
 
+from wbplot.common import write_text_atomic
+
 from . import model, page
 from .data import InputError, read_scene, read_stats, read_summary, read_trace
 
@@ -68,24 +70,6 @@ def load_run(path, stats_path, summary_path):
     return trace, stats, summary, stats_path, summary_path
 
 
-def write_atomic(path, text):
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise InputError(f"-o: {path}: folder {folder} does not exist")
-    if os.path.isdir(path):
-        raise InputError(f"-o: {path}: is a folder, expected an .html file to write")
-    tmp = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}")
-    try:
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except OSError as e:
-        raise InputError(f"-o: {path}: cannot write ({e.strerror})") from None
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
 def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=None,
               summary2=None, labels=None, shown_from=None):
     """Writes the page; returns (the page's metadata, a one-line account of what it holds).
@@ -123,7 +107,9 @@ def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=
             f"scene {scene}" if scene else "no scene"]
     if meta["exact"]:
         used.append(f"exact motion: {meta['exact']['kind']}")
-    write_atomic(out, page.render(meta))
+    if os.path.isdir(out):
+        raise InputError(f"-o: {out}: is a folder, expected an .html file to write")
+    write_text_atomic(out, page.render(meta))
     return meta, f"{what}; {', '.join(used)}"
 
 

@@ -1,12 +1,15 @@
 """Reads a run (trace, stats, summary, scene) into what the viewer page draws.
 
 Every reader raises InputError with a complete message (the file, the row or key, what
-was expected); tools/view prints it and exits 2. Nothing here imports matplotlib: the
-viewer starts in a fraction of a second on a machine that has only Python."""
+was expected); tools/view prints it and exits 2."""
 import json
 import math
 import os
 from array import array
+
+# Bad input (a complete message for the user, exit status 2): tools/plot's own class, so
+# that tools/report catches the two tools' errors alike.
+from wbplot.common import InputError  # noqa: F401 (re-exported)
 
 TRACE_2D = ["t", "id", "x", "y", "vx", "vy"]
 TRACE_3D = ["t", "id", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy",
@@ -23,8 +26,6 @@ KEEP_3D = ["x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", 
 CONTACT_SLOP = 1e-3
 
 
-class InputError(Exception):
-    """Bad input: the message is complete and meant for the user (exit status 2)."""
 
 
 def _read_bytes(path, what):
