@@ -19,6 +19,7 @@ from wbplot import sweep as wsweep  # noqa: E402
 from wbplot import recipes  # noqa: E402
 from wbplot.claims import strip_markers  # noqa: E402
 from wbplot.recipes import fmt_dt, length_scale, offers, oscillator  # noqa: E402
+from wbview.report import view_of_run  # noqa: E402
 
 TARGETS = "1e-2,1e-4,1e-6"  # target errors (m) of the cheapest-method tables
 
@@ -171,6 +172,11 @@ def solution_run(report, lab, exe, argv_tail, what, timeout, save=None):
         return None, "no summary line"
     if save and s is not None:
         write_text_atomic(save, json.dumps(s) + "\n")
+    if s is not None and "--out" in argv_tail:  # its viewer page, linked from the runs table
+        try:
+            s["_view"] = os.path.relpath(view_of_run(argv_tail, s, ROOT), report.out_dir)
+        except InputError as e:
+            report.fail(f"{lab}: {what}: tools/view: {e}")
     return s or {}, ""
 
 
@@ -272,7 +278,8 @@ def do_lab(report, lab, bin_dir, args):
     os.makedirs(out_dir, exist_ok=True)
     # Outputs of an earlier report: a figure this run does not redraw must not linger.
     for f in sorted(os.listdir(out_dir)):
-        if f.endswith((".png", ".csv", ".md", ".json")) and os.path.isfile(os.path.join(out_dir, f)):
+        if f.endswith((".png", ".csv", ".md", ".json", ".html")) and \
+                os.path.isfile(os.path.join(out_dir, f)):
             os.remove(os.path.join(out_dir, f))
 
     for scene_file in scenes:
@@ -641,19 +648,20 @@ def phase_axis(doc, anchor):
 
 
 def summary_table(sc):
-    rows = ["| run | status | steps | t (s) | energy0 (J) | energy (J) | force_evals | wall (s) |",
-            "|---|---|---|---|---|---|---|---|"]
+    rows = ["| run | status | steps | t (s) | energy0 (J) | energy (J) | force_evals | wall (s) "
+            "| viewer |", "|---|---|---|---|---|---|---|---|---|"]
     for label, s, why in sc.runs:
         if s is None:
-            rows.append(f"| {label} | FAILED: {why} | | | | | | |")
+            rows.append(f"| {label} | FAILED: {why} | | | | | | | |")
         elif "sweep" in s:  # a sweep's summary: how many runs, how many diverged
             rows.append(f"| {label} | {s.get('status', '?')}: {fmt(s.get('runs'))} runs, "
-                        f"{fmt(s.get('diverged'))} diverged | | | | | | |")
+                        f"{fmt(s.get('diverged'))} diverged | | | | | | | |")
         elif s:
             rows.append("| " + " | ".join([
                 label, str(s.get("status", "?")), fmt(s.get("steps")), fmt(s.get("t")),
                 fmt(s.get("energy0"), 10), fmt(s.get("energy"), 10), fmt(s.get("force_evals")),
-                fmt(s.get("wall_s"), 3)]) + " |")
+                fmt(s.get("wall_s"), 3),
+                f"[play]({s['_view']})" if s.get("_view") else ""]) + " |")
     return "\n".join(rows) + "\n"
 
 
@@ -695,7 +703,8 @@ def md_table_to_html(table):
     lines = [ln for ln in table.strip().splitlines() if ln.strip()]
     if len(lines) < 2:
         return ""
-    cells = [[html.escape(c.strip()) for c in ln.strip().strip("|").split("|")] for ln in lines]
+    cells = [[re.sub(r"\[([^\]]+)\]\(([^)\s]+)\)", r'<a href="\2">\1</a>', html.escape(c.strip()))
+              for c in ln.strip().strip("|").split("|")] for ln in lines]
     head, body = cells[0], cells[2:]
     h = "<table><thead><tr>" + "".join(f"<th>{c}</th>" for c in head) + "</tr></thead><tbody>"
     for row in body:
