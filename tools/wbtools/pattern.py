@@ -521,6 +521,7 @@ def main():
     return 1 if total else 0
 
 
-def run():
-    """The entry tools/pattern calls: main() with the command line, its exit status."""
+def entry():
+    """The entry tools/pattern calls: main() with the command line, its exit status (not named
+    run: that is the subprocess helper above, which the stubs and periods checks call)."""
     sys.exit(main())
