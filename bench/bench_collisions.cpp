@@ -9,7 +9,8 @@
 //                       queried with each box: what a per-step rebuild costs
 //   box2d_query/<n>     the same queries on a tree built once, outside the
 //                       timing: what an engine whose tree persists pays per step
-//   pile_step           one step of scenes/collisions/pile.json after 300 steps
+//   pile_step           one step of scenes/collisions/pile.json (or the scene file
+//                       named by $WB_BENCH_PILE, to time two builds on one pile) after 300 steps
 //                       of settling (integration + collision phase); counters
 //                       broad, narrow, response: the phase's split (seconds/step)
 //   box2d_pile_step     Box2D 2.4.1's b2World::Step on the same pile scaled x100
@@ -192,8 +193,14 @@ void BM_box2d_query(benchmark::State& state) {
   require_count(state, pairs.size(), n);
 }
 
+// The pile timed: scenes/collisions/pile.json, or $WB_BENCH_PILE.
+std::string pile_file() {
+  const char* env = std::getenv("WB_BENCH_PILE");
+  return env && *env ? env : std::string(WB_BENCH_SCENES) + "/collisions/pile.json";
+}
+
 void BM_pile_step(benchmark::State& state) {
-  const std::string file = std::string(WB_BENCH_SCENES) + "/collisions/pile.json";
+  const std::string file = pile_file();
   wb::Scene scene = wb::load_scene(file, std::nullopt, {"planes", "contact"});
   wb::ContactWorld world(scene);
   wb::Mat2X x = scene.x, v = scene.v;
@@ -222,7 +229,7 @@ void BM_pile_step(benchmark::State& state) {
 // where the workbook's pile has none), the floor and walls edges (friction 0.3,
 // restitution 0), gravity x100 so that the motion in scaled units is the pile's.
 void BM_box2d_pile_step(benchmark::State& state) {
-  const std::string file = std::string(WB_BENCH_SCENES) + "/collisions/pile.json";
+  const std::string file = pile_file();
   const wb::Scene scene = wb::load_scene(file, std::nullopt, {"planes", "contact"});
   constexpr float kScale = 100;
   const float g_scale = state.range(0) ? kScale : 1.0f;  // 0: g as the pile's, unscaled
