@@ -1,8 +1,9 @@
 // The rigid lab's glue: a 3D scene of rigid bodies (docs/scenes.md, "rigid"),
-// the step that calls the student's functions, the trace, the summary line and
-// the sweep. It shares the run contract of the particle labs (flags, summary,
-// atomic output, exit status 2 on bad input) by calling the same core
-// functions; only the state is its own (rigid::Body, 3D).
+// the step that calls the student's functions, the trace rows and the sweep's
+// errors. Everything else of the run contract (the main, flags, cost model,
+// outputs, step loop, sweep loop, summary line) is the particle labs' code, in
+// wb/lab.h and wb/contract.h (rigid_run.cpp is this lab's wb::LabScene); only the
+// state is its own (rigid::Body, 3D).
 #pragma once
 #include <optional>
 #include <string>
@@ -67,18 +68,10 @@ struct Scene {
   int iterations = 10;       // accumulated: iterations per step
   double rest_speed = 0.05;  // accumulated: closing speeds (m/s) below this do not bounce
   std::vector<Hinge> hinges;
-  // Valid but slow (docs/scenes.md, "rigid"): printed as "<lab>: warning: ..."
-  // once the scene and the flags are accepted.
-  std::vector<std::string> cost_warnings;
   bool torque_free() const {
     return g.isZero(0) && point_forces.empty() && planes.empty() && hinges.empty();
   }
 };
-
-// Contact work of one step (every body's contact points against every plane):
-// refused above kMaxContactTests, a warning above kSlowContactTests.
-constexpr double kMaxContactTests = 1e8;
-constexpr double kSlowContactTests = 1e6;
 
 // Reads and checks a scene file; throws wb::InputError naming the key.
 Scene load_scene(const std::string& file);

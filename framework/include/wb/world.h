@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "wb/dynamics.h"
+#include "wb/force.h"
 #include "wb/scene.h"
 
 namespace wb {
@@ -28,13 +29,12 @@ class World {
   virtual const Dynamics& dynamics() const = 0;
   // Kinetic and potential energy at (x, v).
   virtual Energy energy(const Mat2X& x, const Mat2X& v) const = 0;
+  // The scene's force terms, each with its key and bound (check_initial_state
+  // checks the initial forces and potentials term by term). Default: none.
+  virtual std::vector<const Force*> terms() const { return {}; }
   // Called after every integrator step of size h, before the state is
   // recorded (collision detection and response). The default does nothing.
   virtual void after_step(double /*h*/, Mat2X& /*x*/, Mat2X& /*v*/) const {}
-  // Valid but slow: one sentence per cost rule the scene crosses (docs/scenes.md,
-  // "Limits"), printed as "<lab>: warning: ..." only once the whole scene and
-  // the flags are accepted.
-  std::vector<std::string> cost_warnings;
   // Plain sentences for the summary's "warnings" at the end of a run, ending
   // in (x, v): what a stub of the lab's functions did that would otherwise
   // pass for a result (a contact no function answered). The default: none.
