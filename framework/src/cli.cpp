@@ -48,7 +48,8 @@ RunFlags read_run_flags(int argc, const char* const* argv, const FlagSpec& spec,
   auto* o_integrator =
       app.add_option("--integrator", f.integrator, "Integrator name (overrides the scene's)");
   auto* o_dt = app.add_option(
-      "--dt", dt_in, "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
+      "--dt", dt_in,
+      "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
   auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
   auto* o_tend = app.add_option("--t-end", t_end_in, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);

@@ -280,8 +280,7 @@ std::vector<SweepRow> sweep_rows(const SweepPlan& plan, const std::vector<std::s
         }
         energy_error = std::max(energy_error, std::abs(E - h.energy0) / h.energy_scale);
       }
-      row.diverged =
-          row.diverged || !unconverged_divergence(row.steps, h.unconverged()).empty();
+      row.diverged = row.diverged || !unconverged_divergence(row.steps, h.unconverged()).empty();
       if (row.steps > 0 && !row.diverged && !h.moved()) {
         say(exe, "warning",
             names.at(i) + " at dt=" + fmt(row.dt) + ": the state never changed in " +

@@ -176,10 +176,11 @@ WorkMeter::WorkMeter(std::string file, std::string what, double per_step, std::s
 void WorkMeter::count(double units) {
   if (over(units)) {
     throw InputError(file_ + ": stopped at step " + std::to_string(step_) + ": it needs " +
-                     count_text(done_ + units) + " " + what_ + ", more than " + fmt(kOverrunFactor) +
-                     " times the " + count_text(per_step_) +
+                     count_text(done_ + units) + " " + what_ + ", more than " +
+                     fmt(kOverrunFactor) + " times the " + count_text(per_step_) +
                      " per step the cost model estimated before the run (docs/scenes.md, "
-                     "\"Cost\"); " + why_);
+                     "\"Cost\"); " +
+                     why_);
   }
   done_ += units;
 }

@@ -21,10 +21,11 @@ FlagSpec flag_spec(const LabSpec& spec) {
   f.stats_columns = spec.stats_columns;
   f.seed = spec.seed;
   f.sweep = spec.sweep;
-  f.sweep_help = "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
-                 "k = 3..-6) to t_end" +
-                 (spec.sweep_scenes.empty() ? "" : " " + spec.sweep_scenes) +
-                 " and write one CSV row per run";
+  f.sweep_help =
+      "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
+      "k = 3..-6) to t_end" +
+      (spec.sweep_scenes.empty() ? "" : " " + spec.sweep_scenes) +
+      " and write one CSV row per run";
   return f;
 }
 
@@ -112,8 +113,9 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
 
     if (!flags->sweep_csv.empty()) {
       const int repeats = flags->repeats.value_or(3);
-      const SweepPlan plan = plan_sweep(names, flags->sweep_integrators, flags->sweep_dts,
-                                        flags->dt, flags->t_end, s->dt, s->t_end, s->file, repeats);
+      const SweepPlan plan =
+          plan_sweep(names, flags->sweep_integrators, flags->sweep_dts, flags->dt, flags->t_end,
+                     s->dt, s->t_end, s->file, repeats);
       const Estimate e = sweep_estimate(*s, plan, repeats, flags->scene_file);
       if (flags->estimate) {
         print_estimate(e, budget, s->file);
@@ -148,7 +150,8 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
     const std::string w = judge(e, budget, s->file);
     if (!w.empty()) warnings.push_back(w);
     for (const std::string& x : s->prepare({r.integrator}, nullptr)) warnings.push_back(x);
-    RunFiles files(flags->out, spec.trace_columns + "\n", flags->stats, spec.stats_columns + "\n");
+    RunFiles files(flags->out, spec.trace_columns + "\n", flags->stats,
+                   spec.stats_columns + "\n");
     // Accepted: what will be slow is said now, once, before the run.
     for (const std::string& x : warnings) say(exe, "warning", x);
     const Summary sum = s->run(r, files);

@@ -165,8 +165,10 @@ AtomicFile::AtomicFile(std::string path, std::string flag)
   const fs::path t(target);
   const std::string suffix = ".tmp-" + std::to_string(::getpid());
   const std::size_t max = name_max(t);
-  const std::string name = cut_utf8(t.filename().string(), max > suffix.size() ? max - suffix.size() : 1);
-  tmp_ = (t.has_parent_path() ? (t.parent_path() / (name + suffix)) : fs::path(name + suffix)).string();
+  const std::string name =
+      cut_utf8(t.filename().string(), max > suffix.size() ? max - suffix.size() : 1);
+  tmp_ = (t.has_parent_path() ? (t.parent_path() / (name + suffix)) : fs::path(name + suffix))
+             .string();
   f_ = std::fopen(tmp_.c_str(), "wb");
   if (!f_) {
     const int err = errno;

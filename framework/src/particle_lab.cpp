@@ -46,8 +46,8 @@ class ParticleScene : public LabScene {
     const Integrator& it = info_.integrators.at(i);
     const Eigen::Index n = scene_.n();
     const double evals = it.evals_per_step;
-    c.once.add("particles: " + count(n) + " (state, run copies, scratch)", "particles",
-               double(n), kSecondsPerParticleLoad, double(n) * kBytesPerParticle);
+    c.once.add("particles: " + count(n) + " (state, run copies, scratch)", "particles", double(n),
+               kSecondsPerParticleLoad, double(n) * kBytesPerParticle);
     c.step.add(it.name + ": " + count(n) + " particles x " + std::to_string(it.evals_per_step) +
                    " evaluations",
                "--integrator", double(n) * evals, kSecondsPerParticleEval);

@@ -101,9 +101,10 @@ void check_initial_state(const Scene& scene, const World& world) {
     if (bound.allFinite() && a.allFinite()) continue;
     Eigen::Index i = 0;  // the first particle whose bound is not finite
     while (std::isfinite(bound[i]) && std::isfinite(a[i])) ++i;
-    throw InputError(scene.file + ": " + t->blame(x, v) + ": initial state: the force on particle " +
-                     std::to_string(i) + " (this term and those before it) is bounded by " +
-                     num(bound[i]) + " N, its acceleration by " + num(a[i]) +
+    throw InputError(scene.file + ": " + t->blame(x, v) +
+                     ": initial state: the force on particle " + std::to_string(i) +
+                     " (this term and those before it) is bounded by " + num(bound[i]) +
+                     " N, its acceleration by " + num(a[i]) +
                      " m/s^2, expected finite forces and accelerations f/m (a force constant, "
                      "position, velocity or mass so large that they overflow)");
   }

@@ -6,8 +6,8 @@
 #include <limits>
 #include <map>
 
-#include "wb/exact.h"
 #include "wb/contract.h"
+#include "wb/exact.h"
 #include "wb/output.h"
 #include "wb/rk4.h"
 

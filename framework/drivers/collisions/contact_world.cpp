@@ -257,8 +257,9 @@ ContactWorld::ContactWorld(const Scene& scene)
   pairs_ = WorkMeter(scene.file, "candidate pairs (estimated)",
                      std::max(pairs_per_step(scene), kPilePairs * double(scene.n())),
                      "the particles crowd together far more than in their initial state "
-                     "(a pile of equal discs has about " + num(kPilePairs) +
-                     " per particle); spread them out, use fewer, or smaller radii");
+                     "(a pile of equal discs has about " +
+                         num(kPilePairs) +
+                         " per particle); spread them out, use fewer, or smaller radii");
   // "Up" for the stacking pass: against the sum of the uniform gravity terms
   // (each already checked by ForceWorld), summed scaled by 2^-30 so that the
   // sum of large ones does not overflow, and normalised after dividing by its
@@ -579,8 +580,8 @@ void contact_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
   const double pairs = pairs_per_step(scene);
   const bool accumulated = settings.solver == Solver::kAccumulated;
   const double passes = settings.iterations + (settings.shock ? 2 : 0) + (settings.ccd ? 1 : 0);
-  const std::string iters = " x " + std::to_string(settings.iterations) +
-                            (accumulated ? " iterations" : " passes");
+  const std::string iters =
+      " x " + std::to_string(settings.iterations) + (accumulated ? " iterations" : " passes");
   c.step.add("collision phase: its fixed work", "", 1, kSecondsPerContactStep);
   c.step.add("broad phase: " + std::to_string(scene.n()) + " particles", "particles", n,
              kSecondsPerBroadParticle);

@@ -128,7 +128,7 @@ class ContactWorld : public World {
   bool timing_ = false;
   mutable PhaseTimes times_;
   mutable WorkMeter pairs_;  // the broad phase's candidate pairs, step by step
-  mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
+  mutable Mat2X x_prev_;     // positions after the previous step (continuous check)
   mutable Pairs candidates_, contacts_, sorted_;
   mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
   // The accumulated solver: this step's contacts, and every contact's totals (Pn, Pt)

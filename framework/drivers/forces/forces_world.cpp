@@ -36,9 +36,9 @@ constexpr double kSecondsPerSpring = 12e-9;
 constexpr double kSecondsPerSpringPotential = 6e-9;
 constexpr double kSecondsPerBoidsPair = 4e-9;
 constexpr double kSecondsPerVortex = 6e-9;
-constexpr double kSecondsPerNoise = 40e-9;  // one psi: 4 lattice gradients and the fade
-constexpr double kSecondsPerObstacle = 3e-9;  // one disc's distance, in one psi
-constexpr double kBytesPerSpring = 56;        // SpringDef
+constexpr double kSecondsPerNoise = 40e-9;        // one psi: 4 lattice gradients and the fade
+constexpr double kSecondsPerObstacle = 3e-9;      // one disc's distance, in one psi
+constexpr double kBytesPerSpring = 56;            // SpringDef
 constexpr double kSecondsPerSpringBuilt = 60e-9;  // made from its entry or generator
 
 // Curl noise (docs/scenes.md, forces): a position is resolvable when its lattice
@@ -186,7 +186,9 @@ class Vortex : public Force {
   std::string type() const override { return "vortex"; }
   // |u| <= |omega| R (the Rankine vortex is fastest at its core's edge).
   void bound(const Mat2X&, const Mat2X& v, const VecX&, VecX& b) const override {
-    b += (p_.drag * (std::abs(p_.omega) * p_.core + v.colwise().norm().array())).matrix().transpose();
+    b += (p_.drag * (std::abs(p_.omega) * p_.core + v.colwise().norm().array()))
+             .matrix()
+             .transpose();
   }
 
  private:
@@ -288,8 +290,8 @@ void Springs::bound(const Mat2X& x, const Mat2X& v, const VecX&, VecX& b) const 
   for (const SpringDef& s : springs) {
     const Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
     const Vec2 vj = s.j < 0 ? Vec2::Zero() : Vec2(v.col(s.j));
-    const double f = s.k * std::abs((x.col(s.i) - xj).norm() - s.rest) +
-                     s.kd * (v.col(s.i) - vj).norm();
+    const double f =
+        s.k * std::abs((x.col(s.i) - xj).norm() - s.rest) + s.kd * (v.col(s.i) - vj).norm();
     b[s.i] += f;
     if (s.j >= 0) b[s.j] += f;
   }
@@ -491,8 +493,8 @@ void forces_step_cost(const Scene& scene, const Integrator& it, StepCost& c,
   const std::string x_evals = " x " + std::to_string(it.evals_per_step) + " evaluations";
   // Every term once per evaluation; the divergence rule's potentials once per step
   // and per written step (--stats); the initial checks: a bound and a potential.
-  auto term = [&](const std::string& what, const std::string& key, double units,
-                  double per_eval, double per_potential) {
+  auto term = [&](const std::string& what, const std::string& key, double units, double per_eval,
+                  double per_potential) {
     c.step.add(what + x_evals, key, units * evals, per_eval);
     if (per_potential > 0) {
       c.step.add(what + ": its potential (divergence rule)", key, units, per_potential);

@@ -383,7 +383,6 @@ ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
   }
 }
 
-
 FastBackwardEuler& ImplicitDynamics::fast() const {
   if (!fast_) fast_ = std::make_unique<FastBackwardEuler>(net_, fast_opt_);
   return *fast_;
@@ -415,7 +414,8 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
   ++steps_;
   iterations_ += r.iterations;
   max_iterations_ = std::max(max_iterations_, r.iterations);
-  if (std::string(integrator).find("-fast") == std::string::npos) {  // the fast path counts its own
+  if (std::string(integrator).find("-fast") ==
+      std::string::npos) {  // the fast path counts its own
     newton_.next_step();
     newton_.count(r.iterations);
   }
@@ -424,8 +424,9 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
   if (++failed_ > 1) return;
   first_failure_ = std::string(integrator) + " step " + std::to_string(steps_) + ": ";
   if (r.iterations == 0 && !r.solver_failed) {
-    first_failure_ += "the step did no linear solve: are backward_euler_step (TODO(I4)) and "
-                      "implicit_trapezoid_step (TODO(I5)) still stubs?";
+    first_failure_ +=
+        "the step did no linear solve: are backward_euler_step (TODO(I4)) and "
+        "implicit_trapezoid_step (TODO(I5)) still stubs?";
   } else if (r.solver_failed) {
     // r.iterations counts the solves that succeeded before the failed one.
     first_failure_ += "the linear solver failed on solve " + std::to_string(r.iterations + 1) +
@@ -433,8 +434,8 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
                       "; the step keeps the last good iterate";
   } else {
     first_failure_ += "Newton did not converge in " + std::to_string(r.iterations) +
-                      " solves (residual " + num(r.residual) + " > tol * scale = " +
-                      num(opt_.tol * r.scale) + ")";
+                      " solves (residual " + num(r.residual) +
+                      " > tol * scale = " + num(opt_.tol * r.scale) + ")";
   }
 }
 
@@ -503,19 +504,20 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
   // A cloth, or many hand-written springs, is a 2D network (its factor fills in).
   const bool grid = (gen && gen->cloth) || written > 1000;
   const std::string shape = grid ? "a 2D network" : "a chain";
-  const std::string size = std::to_string(scene.n()) + " particles, " + num(springs) +
-                           " springs (" + shape + ")";
-  const double entries = grid ? kFactorEntriesGrid * n * std::log2(std::max(n, 2.0))
-                              : kFactorEntriesChain * n;
+  const std::string size =
+      std::to_string(scene.n()) + " particles, " + num(springs) + " springs (" + shape + ")";
+  const double entries =
+      grid ? kFactorEntriesGrid * n * std::log2(std::max(n, 2.0)) : kFactorEntriesChain * n;
   const bool one = kind == SolveKind::kOneSolve || kind == SolveKind::kFastOneSolve;
   const double solves = one ? 1 : std::min(double(opt.max_iterations), kTypicalNewtonIterations);
-  const double cap = one ? 1 : std::min(double(opt.max_iterations),
-                                        kOverrunFactor * kTypicalNewtonIterations);
+  const double cap =
+      one ? 1 : std::min(double(opt.max_iterations), kOverrunFactor * kTypicalNewtonIterations);
   const std::string key = one ? "--integrator" : "newton.max_iterations";
-  const std::string per = one ? " x 1 solve" : " x " + num(solves) + " to " + num(cap) + " solves";
+  const std::string per =
+      one ? " x 1 solve" : " x " + num(solves) + " to " + num(cap) + " solves";
   if (kind == SolveKind::kNewton || kind == SolveKind::kOneSolve) {
-    const double t =
-        (grid ? grid_solve_seconds(n) : kSecondsPerSolveChain * n) + kSecondsPerSolveSpring * springs;
+    const double t = (grid ? grid_solve_seconds(n) : kSecondsPerSolveChain * n) +
+                     kSecondsPerSolveSpring * springs;
     c.step.add(it.name + ": linear solves (I3 assembly, LDLT): " + size + per, key, solves, t,
                entries * kBytesPerFactorEntry + springs * kBytesPerSystemSpring,
                one ? 1 : double(opt.max_iterations));
@@ -523,8 +525,8 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
   }
   // The provided fast path: its analysis once, then per solve a numeric
   // factorisation or CG (auto: CG for a 2D network, a factorisation for a chain).
-  const bool direct = fo.solver == FastSolverOptions::kAuto ? !grid
-                                                             : fo.solver != FastSolverOptions::kCG;
+  const bool direct =
+      fo.solver == FastSolverOptions::kAuto ? !grid : fo.solver != FastSolverOptions::kCG;
   c.once.add(it.name + ": the pattern's analysis: " + size, "newton.fast_solver", n,
              kSecondsPerFastAnalysis,
              springs * kBytesPerFastSpring + (direct ? entries * kBytesPerFactorEntry : 0.0));
@@ -534,10 +536,10 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
     c.step.add(it.name + ": factorisations: " + size + per, key, solves, t, 0.0, cap);
   } else {
     const double iteration = kSecondsPerCgParticle * n;
-    c.step.add(it.name + ": CG: " + size + per + " x about " + num(kTypicalCgIterations) +
-                   " iterations",
-               "newton.fast_cg_tol", solves * kTypicalCgIterations, iteration, 0.0,
-               kOverrunFactor * kTypicalCgIterations * kTypicalNewtonIterations);
+    c.step.add(
+        it.name + ": CG: " + size + per + " x about " + num(kTypicalCgIterations) + " iterations",
+        "newton.fast_cg_tol", solves * kTypicalCgIterations, iteration, 0.0,
+        kOverrunFactor * kTypicalCgIterations * kTypicalNewtonIterations);
     c.step.add(it.name + ": assembly: " + num(springs) + " springs" + per, key, solves, assembly,
                0.0, cap);
   }

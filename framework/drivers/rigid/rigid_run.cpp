@@ -165,12 +165,52 @@ wb::Summary simulate(const Scene& scene, const Integrator& integ, const wb::RunR
 // the memory of a body.
 constexpr double kSecondsPerBodyStep = 200e-9;
 constexpr double kSecondsPerPointTest = 30e-9;
-constexpr double kSecondsPerPointIteration = 30e-9;  // of a touching point (half of them)
+constexpr double kSecondsPerPointIteration = 50e-9;  // of a touching point (half of them)
 constexpr double kSecondsPerHingeStep = 150e-9;
 constexpr double kBytesPerBody = 600;
 constexpr double kBytesPerKeptPoint = 100;  // the accumulated solver keeps every point's Contact
 
 std::string count(std::size_t n) { return std::to_string(n); }
+
+}  // namespace
+
+void step_cost(const Scene& scene, wb::StepCost& c) {
+  const std::size_t n = scene.bodies.size(), np = scene.planes.size();
+  c.once.add("bodies: " + count(n), "bodies", 0, 0, double(n) * kBytesPerBody);
+  c.step.add("bodies: " + count(n), "bodies", double(n), kSecondsPerBodyStep);
+  if (!scene.hinges.empty()) {
+    c.step.add("hinges: " + count(scene.hinges.size()), "hinges", double(scene.hinges.size()),
+               kSecondsPerHingeStep);
+  }
+  if (np > 0) {
+    double points = 0;  // contact candidates per plane (contact_points)
+    for (const BodyDef& d : scene.bodies) {
+      points += d.shape == BodyDef::kSphere ? 1 : d.shape == BodyDef::kBox ? 8 : 32;
+    }
+    // The passes solver stops when a pass applies no impulse (typically 2, at most
+    // kContactPasses); the accumulated one tests every point once, then runs its
+    // iterations and as many of push-out on the points that touch.
+    const double tests = points * double(np);
+    if (scene.solver == Solver::kPasses) {
+      c.step.add("contact tests: " + wb::num(points) +
+                     " points (8 per box, 1 per sphere, 32 per cylinder) x " + count(np) +
+                     " planes x 2 to " + std::to_string(kContactPasses) + " passes",
+                 "planes", tests * 2, kSecondsPerPointTest, 0.0, tests * kContactPasses);
+    } else {
+      c.step.add("contact tests: " + wb::num(points) +
+                     " points (8 per box, 1 per sphere, 32 per cylinder) x " + count(np) +
+                     " planes, then 2 x " + std::to_string(scene.iterations) +
+                     " iterations on those that touch",
+                 "contact.iterations", tests,
+                 kSecondsPerPointTest + 0.5 * 2.0 * scene.iterations * kSecondsPerPointIteration,
+                 tests * kBytesPerKeptPoint, tests * (1 + 2.0 * scene.iterations));
+    }
+  }
+  c.record.add("trace and stats rows: " + count(n) + " bodies", "--out", double(n),
+               2 * wb::kSecondsPerTraceRow);
+}
+
+namespace {
 
 class RigidScene : public wb::LabScene {
  public:
@@ -182,41 +222,7 @@ class RigidScene : public wb::LabScene {
     integrator = scene_.integrator;
   }
 
-  void cost(std::size_t /*integrator*/, wb::StepCost& c) const override {
-    const std::size_t n = scene_.bodies.size(), np = scene_.planes.size();
-    c.once.add("bodies: " + count(n), "bodies", 0, 0, double(n) * kBytesPerBody);
-    c.step.add("bodies: " + count(n), "bodies", double(n), kSecondsPerBodyStep);
-    if (!scene_.hinges.empty()) {
-      c.step.add("hinges: " + count(scene_.hinges.size()), "hinges",
-                 double(scene_.hinges.size()), kSecondsPerHingeStep);
-    }
-    if (np > 0) {
-      double points = 0;  // contact candidates per plane (contact_points)
-      for (const BodyDef& d : scene_.bodies) {
-        points += d.shape == BodyDef::kSphere ? 1 : d.shape == BodyDef::kBox ? 8 : 32;
-      }
-      // The passes solver stops when a pass applies no impulse (typically 2, at most
-      // kContactPasses); the accumulated one tests every point once, then runs its
-      // iterations and as many of push-out on the points that touch.
-      const double tests = points * double(np);
-      if (scene_.solver == Solver::kPasses) {
-        c.step.add("contact tests: " + wb::num(points) +
-                       " points (8 per box, 1 per sphere, 32 per cylinder) x " + count(np) +
-                       " planes x 2 to " + std::to_string(kContactPasses) + " passes",
-                   "planes", tests * 2, kSecondsPerPointTest, 0.0, tests * kContactPasses);
-      } else {
-        c.step.add("contact tests: " + wb::num(points) +
-                       " points (8 per box, 1 per sphere, 32 per cylinder) x " + count(np) +
-                       " planes, then 2 x " + std::to_string(scene_.iterations) +
-                       " iterations on those that touch",
-                   "contact.iterations", tests,
-                   kSecondsPerPointTest + 0.5 * 2.0 * scene_.iterations * kSecondsPerPointIteration,
-                   tests * kBytesPerKeptPoint, tests * (1 + 2.0 * scene_.iterations));
-      }
-    }
-    c.record.add("trace and stats rows: " + count(n) + " bodies", "--out", double(n),
-                 2 * wb::kSecondsPerTraceRow);
-  }
+  void cost(std::size_t /*integrator*/, wb::StepCost& c) const override { step_cost(scene_, c); }
 
   std::vector<std::string> prepare(const std::vector<std::size_t>& /*integrators*/,
                                    const wb::SweepPlan* sweep) override {
@@ -286,7 +292,8 @@ int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
   spec.lab = info.lab;
   spec.side = info.side;
   spec.summary = info.summary;
-  for (const Integrator& it : info.integrators) spec.integrators.push_back({it.name, it.description, 1, 1});
+  for (const Integrator& it : info.integrators)
+    spec.integrators.push_back({it.name, it.description, 1, 1});
   spec.help_sections = {
       "Scene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
       "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"

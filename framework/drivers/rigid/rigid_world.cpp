@@ -261,7 +261,8 @@ void check_hinge(const JsonObject& o, const BodyDef& d, const Hinge& hg) {
   o.fail("anchor", &o.raw().at("anchor"),
          "an anchor and a body centre within 2^42 body sizes (" + wb::num(kMaxHingeReach * size) +
              " m) of the origin, so that the hinge's drift is resolvable at the body's scale "
-             "(this one reaches " + wb::num(reach) + " m)");
+             "(this one reaches " +
+             wb::num(reach) + " m)");
 }
 
 }  // namespace

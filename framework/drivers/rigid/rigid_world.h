@@ -11,6 +11,7 @@
 
 #include "plane_contact.h"
 #include "rigid_body.h"
+#include "wb/cost.h"
 #include "wb/input.h"
 
 namespace rigid {
@@ -127,6 +128,10 @@ Totals totals(const Scene& scene, const std::vector<Body>& bodies);
 
 // The contact candidates of a body against a plane (world points).
 std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane& plane);
+
+// The cost model's terms of a rigid scene (docs/scenes.md, "Cost"): its bodies,
+// hinges and contact tests per step, from the scene's numbers.
+void step_cost(const Scene& scene, wb::StepCost& c);
 
 struct LabInfo {
   std::string lab, side, summary;

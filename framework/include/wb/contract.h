@@ -162,21 +162,21 @@ ordered_json sweep_summary(const std::string& csv, const std::vector<SweepRow>& 
 // What the loop needs of a lab's state: the particle labs' (framework/src/particle_lab.cpp)
 // and the rigid lab's (framework/drivers/rigid/rigid_run.cpp).
 struct SweepHooks {
-  std::function<void()> reset;                                 // back to the initial state
+  std::function<void()> reset;  // back to the initial state
   // `n` steps of size h with integrator `i` (a loop of its own: the timed runs
   // measure the step, not a call per step)
   std::function<void(std::size_t i, double h, long n)> steps;
-  std::function<bool()> finite;                                // is the state finite?
-  std::function<double()> energy;                              // its total energy (J)
-  std::function<bool()> moved;       // has the state changed since reset()?
-  std::function<long()> evals;       // force evaluations since reset()
-  std::function<long()> unconverged;  // steps whose implicit solve failed since reset()
+  std::function<bool()> finite;           // is the state finite?
+  std::function<double()> energy;         // its total energy (J)
+  std::function<bool()> moved;            // has the state changed since reset()?
+  std::function<long()> evals;            // force evaluations since reset()
+  std::function<long()> unconverged;      // steps whose implicit solve failed since reset()
   std::function<double(double t)> error;  // the run's error, at its end (time t)
   double energy0 = 0;                     // the initial total energy (J)
   double energy_scale = 1;                // what makes an energy error relative
   double blowup_scale = 0;                // the divergence rule's E_s (energy_scale())
   std::string reference;                  // "exact" or "rk4"
-  std::string unmoved;  // ends the warning of a run whose state never changed
+  std::string unmoved;                    // ends the warning of a run whose state never changed
 };
 
 // Runs every (integrator, step size) of the plan: an untimed run (divergence, the

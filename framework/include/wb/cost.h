@@ -53,8 +53,8 @@ class Estimate {
  public:
   // A term of `units` of work at `seconds_per_unit`, holding `bytes`; `cap_units`
   // (>= units) where the work stops on a test (an iteration cap), else the same.
-  void add(const std::string& what, const std::string& key, double units,
-           double seconds_per_unit, double bytes = 0, double cap_units = -1);
+  void add(const std::string& what, const std::string& key, double units, double seconds_per_unit,
+           double bytes = 0, double cap_units = -1);
   // Every term of `e` repeated `times` (steps, runs), `how` appended to its text.
   void add_times(const Estimate& e, double times, const std::string& how);
   const std::vector<CostTerm>& terms() const { return terms_; }
@@ -77,7 +77,7 @@ struct StepCost {
 // Rates shared by every lab (measured with the solution on an idle machine,
 // docs/scenes.md "Cost"): a process's start (reading the scene's first bytes, the
 // libraries) and its resident base, a byte of scene file parsed, and a trace row.
-constexpr double kStartSeconds = 2.0e-3;
+constexpr double kStartSeconds = 3.0e-3;
 constexpr double kBaseBytes = 32e6;
 constexpr double kSecondsPerFileByte = 35e-9;
 constexpr double kBytesPerFileByte = 16;
