@@ -60,13 +60,14 @@ void Estimate::add(const std::string& what, const std::string& key, double units
   terms_.push_back(std::move(t));
 }
 
-void Estimate::add_times(const Estimate& e, double times, const std::string& how) {
+void Estimate::add_times(const Estimate& e, double times, const std::string& how, bool hold) {
   for (const CostTerm& t : e.terms_) {
     CostTerm s = t;
     s.what += how;
     s.seconds *= times;
     s.cap_seconds *= times;
-    terms_.push_back(std::move(s));  // memory is held, not repeated
+    if (!hold) s.bytes = 0;  // memory is held once, not repeated
+    terms_.push_back(std::move(s));
   }
 }
 

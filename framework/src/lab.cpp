@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
 namespace wb {
 
@@ -83,13 +84,26 @@ Estimate sweep_estimate(const LabScene& s, const SweepPlan& plan, int repeats,
   add_start(e, scene_file);
   double steps = 0;  // every run of one integrator: an untimed run and `repeats` timed ones
   for (long n : plan.steps) steps += double(n) * double(1 + repeats);
-  for (std::size_t k = 0; k < plan.integrators.size(); ++k) {
-    StepCost c;
-    s.cost(plan.integrators[k], c);
-    if (k == 0) e.add_times(c.once, 1, "");
-    e.add_times(c.step, steps,
+  // The integrators' runs follow one another: the one that holds the most memory
+  // while it runs sets the sweep's peak.
+  std::vector<StepCost> costs(plan.integrators.size());
+  std::size_t peak = 0;
+  for (std::size_t k = 0; k < costs.size(); ++k) {
+    s.cost(plan.integrators[k], costs[k]);
+    if (costs[k].step.bytes() > costs[peak].step.bytes()) peak = k;
+  }
+  // What is built once: the first integrator's, and what another adds (an analysis).
+  std::set<std::string> built;
+  for (std::size_t k = 0; k < costs.size(); ++k) {
+    Estimate once;
+    for (const CostTerm& t : costs[k].once.terms()) {
+      if (built.insert(t.what).second) once.add(t.what, t.key, 1, t.seconds, t.bytes);
+    }
+    e.add_times(once, 1, "");
+    e.add_times(costs[k].step, steps,
                 times_text(steps, "steps") + " (" + std::to_string(plan.dts.size()) +
-                    " step sizes, each run 1 + " + std::to_string(repeats) + " times)");
+                    " step sizes, each run 1 + " + std::to_string(repeats) + " times)",
+                k == peak);
   }
   s.sweep_cost(plan, e);
   return e;

@@ -102,7 +102,9 @@ class ParticleScene : public LabScene {
     opt.every = r.every;
     opt.trace = &files.trace;
     opt.stats = &files.stats;
-    return summary_of(simulate(scene_, *world_, opt));
+    const Summary s = summary_of(simulate(scene_, *world_, opt));
+    for (const std::string& n : world_->notes()) say(exe, "warning", n);
+    return s;
   }
 
   SweepHooks sweep_hooks() override { return sweep_->hooks(); }

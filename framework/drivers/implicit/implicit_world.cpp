@@ -424,6 +424,7 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
   if (++failed_ > 1) return;
   first_failure_ = std::string(integrator) + " step " + std::to_string(steps_) + ": ";
   if (r.iterations == 0 && !r.solver_failed) {
+    stub_failure_ = true;
     first_failure_ +=
         "the step did no linear solve: are backward_euler_step (TODO(I4)) and "
         "implicit_trapezoid_step (TODO(I5)) still stubs?";
@@ -457,7 +458,13 @@ std::vector<const Force*> ImplicitWorld::terms() const {
 
 std::vector<std::string> ImplicitWorld::warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
   const std::string w = dyn_.unconverged_warning();
-  if (w.empty()) return {};
+  if (w.empty() || !dyn_.unconverged_by_stub()) return {};
+  return {w};
+}
+
+std::vector<std::string> ImplicitWorld::notes() const {
+  const std::string w = dyn_.unconverged_warning();
+  if (w.empty() || dyn_.unconverged_by_stub()) return {};
   return {w};
 }
 

@@ -112,8 +112,10 @@ class ImplicitDynamics : public Dynamics {
   // Counts Newton's work (the cost model's running check: WorkMeter) and keeps
   // what a step that did not converge said, for the run's warnings.
   void record(const char* integrator, const NewtonReport& r) const;
-  // One sentence on the steps that did not converge ("" when all did).
+  // One sentence on the steps that did not converge ("" when all did), and
+  // whether the first did no linear solve at all (what the lab's stubs do).
   std::string unconverged_warning() const;
+  bool unconverged_by_stub() const { return stub_failure_; }
 
  protected:
   void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const override;
@@ -130,6 +132,7 @@ class ImplicitDynamics : public Dynamics {
   mutable long steps_ = 0, iterations_ = 0, failed_ = 0;
   mutable int max_iterations_ = 0;
   mutable std::string first_failure_;  // what the first step that failed said
+  mutable bool stub_failure_ = false;  // it did no linear solve
   mutable WorkMeter newton_;           // Newton's linear solves, step by step
   mutable WorkMeter cg_;               // the fast path's CG iterations, step by step
 };
@@ -140,8 +143,10 @@ class ImplicitWorld : public World {
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
   std::vector<const Force*> terms() const override;
-  // Steps whose Newton solve did not converge, said once at the end.
+  // Steps whose Newton solve did not converge, said once at the end: a warning
+  // (the summary's) when the steps did no linear solve (the lab's stubs), else a note.
   std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
+  std::vector<std::string> notes() const override;
 
  private:
   VecX m_;

@@ -55,8 +55,10 @@ class Estimate {
   // (>= units) where the work stops on a test (an iteration cap), else the same.
   void add(const std::string& what, const std::string& key, double units, double seconds_per_unit,
            double bytes = 0, double cap_units = -1);
-  // Every term of `e` repeated `times` (steps, runs), `how` appended to its text.
-  void add_times(const Estimate& e, double times, const std::string& how);
+  // Every term of `e` repeated `times` (steps, runs), `how` appended to its text;
+  // its memory counted once, or not at all without `hold` (runs that follow
+  // one another: only the largest holds its memory at the peak).
+  void add_times(const Estimate& e, double times, const std::string& how, bool hold = true);
   const std::vector<CostTerm>& terms() const { return terms_; }
   double seconds() const;
   double cap_seconds() const;

@@ -41,6 +41,10 @@ class World {
   virtual std::vector<std::string> warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
     return {};
   }
+  // Plain sentences about a run that are not what a stub does (an implicit
+  // solve that did not converge on some steps): printed on stderr as warnings
+  // at the end of the run, not in the summary's "warnings" (which mean a stub).
+  virtual std::vector<std::string> notes() const { return {}; }
 };
 
 // Builds a scene's World; throws InputError for bad scene entries.
