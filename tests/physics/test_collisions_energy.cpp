@@ -78,7 +78,7 @@ Run run(const wb::Scene& scene, int steps) {
   wb::Scratch s;
   s.resize(x.cols());
   Run r;
-  r.warnings = world.cost_warnings;
+  r.warnings = world.initial_notes();
   r.k0 = world.energy(x, v).kinetic;
   for (int k = 0; k < steps; ++k) {
     wb::semi_implicit_euler_step(world.dynamics(), *scene.dt, x, v, s);

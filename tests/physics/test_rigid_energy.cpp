@@ -45,7 +45,7 @@ Run run(const rigid::Scene& scene) {
   for (const rigid::BodyDef& d : scene.bodies) bodies.push_back(d.body);
   rigid::StepState state;
   Run r;
-  r.warnings = scene.cost_warnings;
+  r.warnings = rigid::initial_overlap_notes(scene);
   r.k0 = rigid::totals(scene, bodies).kinetic;
   for (int k = 0; k < 2000; ++k) {
     rigid::step(scene, integ, *scene.dt, bodies, state);
@@ -110,17 +110,17 @@ TEST_CASE("physics: a rigid scene that starts inside a plane warns once", "[phys
       "inside.json", cube({0, 0, 0.3}, {1, 0, 0, 0}, {0, 0, 0}, {0, 0, 0}));
   int lines = 0;
   std::string line;
-  for (const std::string& w : inside.cost_warnings) {
+  for (const std::string& w : rigid::initial_overlap_notes(inside)) {
     if (w.find("at t = 0") != std::string::npos) ++lines, line = w;
   }
-  INFO("the warnings: " << wb::json(inside.cost_warnings).dump());
+  INFO("the warnings: " << wb::json(rigid::initial_overlap_notes(inside)).dump());
   REQUIRE(lines == 1);
   REQUIRE(line.find('\n') == std::string::npos);
   REQUIRE(line.find("inside.json: 1 overlap of a body with a plane at t = 0") == 0);
   REQUIRE(line.find("the deepest 0.2 m (bodies[0] and planes[0])") != std::string::npos);
   const rigid::Scene resting = rigid::scene_from_json(
       "resting.json", cube({0, 0, 0.5}, {1, 0, 0, 0}, {0, 0, 0}, {0, 0, 0}));
-  for (const std::string& w : resting.cost_warnings) {
+  for (const std::string& w : rigid::initial_overlap_notes(resting)) {
     INFO(w);
     REQUIRE(w.find("at t = 0") == std::string::npos);
   }
