@@ -147,6 +147,25 @@ TEST_CASE("physics: a scene that starts with overlaps warns once with the count 
   }
 }
 
+TEST_CASE("physics: the overlap count at t = 0 holds far from the origin",
+          "[physics][collisions]") {
+  // Near 1e308 a cell index c has c + 1 == c: a neighbour cell that is the particle's own
+  // would pair each disc with itself (distance 0, an overlap of 2 r). Discs at -1e308 and
+  // 1e308 (apart), and two that coincide at 1e300 (c + 1 == c there too).
+  const wb::Mat2X x = (wb::Mat2X(2, 4) << -1e308, 1e308, 1e300, 1e300, 0, 0, 0, 0).finished();
+  const wb::VecX radius = wb::VecX::Ones(4);
+  const wb::InitialOverlaps far = wb::initial_overlaps(x.leftCols(2), radius.head(2), {});
+  REQUIRE(far.count == 0);
+  // The coinciding pair: one overlap of 2 m (each disc against itself would add more).
+  const wb::InitialOverlaps near = wb::initial_overlaps(x, radius, {});
+  INFO("count " << near.count << ", deepest " << near.deepest << " (" << near.a << ", " << near.b
+                << ")");
+  REQUIRE(near.count == 1);
+  REQUIRE(near.a == 2);
+  REQUIRE(near.b == 3);
+  REQUIRE(near.deepest == 2.0);
+}
+
 TEST_CASE("physics: Newton's cradle runs the same with the accumulated solver",
           "[physics][collisions]") {
   // scenes/collisions/cradle.json with the default (accumulated) solver: the impacts are

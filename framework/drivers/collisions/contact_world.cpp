@@ -294,9 +294,21 @@ InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
     for (auto jt = std::next(it);
          jt != cells.end() && std::get<0>(*jt) == row && std::get<1>(*jt) == col; ++jt)
       test(i, std::get<2>(*jt));
-    const std::pair<double, double> next[] = {
-        {row, col + 1}, {row + 1, col - 1}, {row + 1, col}, {row + 1, col + 1}};
-    for (const auto& [r, c] : next) {
+    // The forward neighbours, each once and never the particle's own cell: beyond 2^53
+    // cells from the origin col + 1 == col (discs near 1e308), and a cell that is its
+    // own neighbour would test every particle in it against itself.
+    std::pair<double, double> next[4];
+    int count = 0;
+    for (const std::pair<double, double>& cell : {std::pair<double, double>{row, col + 1},
+                                                  {row + 1, col - 1},
+                                                  {row + 1, col},
+                                                  {row + 1, col + 1}}) {
+      if (cell == std::make_pair(row, col) || std::find(next, next + count, cell) != next + count)
+        continue;
+      next[count++] = cell;
+    }
+    for (int q = 0; q < count; ++q) {
+      const auto [r, c] = next[q];
       for (auto jt = first_in(r, c);
            jt != cells.end() && std::get<0>(*jt) == r && std::get<1>(*jt) == c; ++jt)
         test(i, std::get<2>(*jt));

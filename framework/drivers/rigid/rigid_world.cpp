@@ -287,12 +287,11 @@ std::vector<std::string> initial_overlap_notes(const Scene& s) {
   if (count == 0) return {};
   char depth[32];
   std::snprintf(depth, sizeof depth, "%.3g", deepest);
-  return {
-      s.file + ": " + std::to_string(count) + (count == 1 ? " overlap" : " overlaps") +
-      " of a body with a plane at t = 0, the deepest " + depth + " m (bodies[" +
-      std::to_string(body) + "] and planes[" + std::to_string(plane) +
-      "]): the contact pushes the bodies out by moving positions only, which adds no kinetic "
-      "energy"};
+  return {s.file + ": " + std::to_string(count) + (count == 1 ? " overlap" : " overlaps") +
+          " of a body with a plane at t = 0, the deepest " + depth + " m (bodies[" +
+          std::to_string(body) + "] and planes[" + std::to_string(plane) +
+          "]): the contact pushes the bodies out by moving positions only, which adds no kinetic "
+          "energy"};
 }
 
 Scene load_scene(const std::string& file) {
