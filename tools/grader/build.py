@@ -31,6 +31,7 @@ from .stubs import lab_headers
 from .stubs import parse as parse_header
 from .symbols import check_objects
 from .worker import WORKER_DIR, run_test, worker_files
+from . import heldout
 
 # ------------------------------------------------------------- scratch build
 
@@ -63,6 +64,8 @@ def check_list(lab, tests, problems=None):
             problems.append(f"'{n}': {t.points} points, but tagged {pts[0]}")
     if not tests:
         problems.append("no test cases")
+    if not problems:
+        problems += heldout.list_problems(lab, tests)
     total = sum(t.points for t in tests if isinstance(t.points, int))
     if not problems and total != 100:
         problems.append(f"the points add up to {total}, expected 100")
@@ -74,8 +77,10 @@ class Grader:
     """A scratch copy of the project and its build, reusable across runs."""
 
     def __init__(self, repo, build_root=None, jobs=2, timeout=60.0, verbose=True, screen=True,
-                 lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET):
+                 lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET, seed=None):
         self.repo, self.jobs, self.timeout, self.verbose = repo, max(1, jobs), timeout, verbose
+        # The held-out inputs' seed (heldout.py): given to every test process.
+        self.seed = heldout.random_seed() if seed is None else seed
         self.lab_budget, self.submission_budget = lab_budget, submission_budget
         self._deadline = None
         self.build_isolation = "nothing built in this run (the build folder was up to date)"
@@ -497,7 +502,7 @@ class Grader:
             began = time.monotonic()
             try:
                 return run_test(self.sandbox, runnable[lab], workers[lab], t,
-                                min(self.timeout, left), self.src + "/", self.cwd)
+                                min(self.timeout, left), self.src + "/", self.cwd, self.seed)
             finally:
                 with budget_lock:
                     used[lab] += time.monotonic() - began
@@ -528,6 +533,8 @@ class Grader:
                                                   "The lab does not compile:\n" + rep.compile_error))
                 else:
                     rep.results.append(futures[(lab, t.name)].result())
+            if rep.gradable:
+                heldout.gate(rep.results)  # public points need the task's held-out check
         return reports
 
 
