@@ -138,8 +138,8 @@ TEST_CASE(
     v.y() -= g * h;
     x += h * v;
     collide_plane(p, n, r, m, e, rest, x, v);
-    highest = std::max(highest, x.y());
-    fastest = std::max(fastest, v.norm());
+    highest = wbtest::worst_of(highest, x.y());
+    fastest = wbtest::worst_of(fastest, v.norm());
   }
   constexpr double kRestTol = 1e-12;  // rounding of x -= d n at a height of 0.1 m
   require_near(highest, r, kRestTol, "highest centre over 10^5 steps: resting, never above r");
@@ -160,7 +160,7 @@ TEST_CASE("C1 collide_plane: the rebound height of a dropped ball is e^2 times t
       x += h * v;
       t += h;
       if (collide_plane(p, n, r, m, e, 0.0, x, v) > 0) bounced = true;
-      if (bounced) apex = std::max(apex, x.y() - r);
+      if (bounced) apex = wbtest::worst_of(apex, x.y() - r);
       if (bounced && v.y() < 0) break;  // past the apex
     }
     INFO("restitution " << e);

@@ -231,7 +231,7 @@ TEST_CASE("C5 a column of five discs on a floor rests to rounding with the total
     }
   }
   INFO("largest speed after 500 steps " << v.colwise().norm().maxCoeff() << " m/s");
-  REQUIRE(v.colwise().norm().maxCoeff() <= kRestTol);
+  REQUIRE(wbtest::max_abs(v.colwise().norm()) <= kRestTol);  // NaN fails
   for (int k = 0; k < n; ++k) {
     wbtest::require_near(contacts[std::size_t(k)].Pn, (n - k) * kG * h, 0.0,
                          "contact k carries the weight of the n - k discs above it, per step",

@@ -1,6 +1,7 @@
 // Helpers for the rigid lab's graded tests: bodies, a reference free motion
 // written independently of the student's files, and 3D comparisons.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -134,7 +135,7 @@ inline Body random_body(wbtest::HeldOut& g) {
   Vec3 I;
   do {
     I = Vec3(g.uniform(0.1, 3.0), g.uniform(0.1, 3.0), g.uniform(0.1, 3.0));
-  } while (I.maxCoeff() >= I.sum() - I.maxCoeff());
+  } while (2 * std::max({I.x(), I.y(), I.z()}) >= I.sum());
   b.I_body = I.asDiagonal();
   b.q = Eigen::Quaterniond(g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1),
                            g.uniform(-1, 1)).normalized();

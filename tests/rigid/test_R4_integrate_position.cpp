@@ -27,8 +27,9 @@ constexpr double kOrthoTol = 1e-12;
 constexpr double kSameMotionTol = 1e-6;
 
 double orthonormality_error(const Mat3& R) {
-  return std::max((R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff(),
-                  std::abs(R.determinant() - 1.0));
+  // NaN-safe (wbtest::max_abs_diff, worst_of): a NaN anywhere makes the error infinite.
+  return wbtest::worst_of(wbtest::max_abs_diff(Mat3(R.transpose() * R), Mat3::Identity()),
+                          std::abs(R.determinant() - 1.0));
 }
 
 }  // namespace

@@ -85,6 +85,11 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
       if ((p - b.x).dot(n) < 0) kept[std::size_t(j++)].p = p;  // the four lower corners
     }
     total = solve_plane_contacts(b, kept, n, 0.0, 0.05, mu, iterations);
+    {  // the vector comes back from the lab's code: its size is checked before it is indexed
+      INFO("solve_plane_contacts returned " << kept.size() << " contacts, it was given 4 (it "
+                                                 "updates their totals, it never adds or drops one)");
+      REQUIRE(kept.size() == 4);
+    }
     ref_position(b, h);
   }
   return total;

@@ -108,7 +108,7 @@ TEST_CASE("R7 drift correction: beta/h of the drift is removed and a long run st
   double worst = 0;
   for (int k = 0; k < 100000; ++k) {
     p.step(h, beta);
-    worst = std::max(worst, p.drift());
+    worst = wbtest::worst_of(worst, p.drift());
   }
   INFO("largest drift of the pin over 100 s: " << worst << " m");
   REQUIRE(worst <= 4 * h * h * 30.0 * 0.5 / beta);
@@ -220,8 +220,8 @@ TEST_CASE("R7 revolute pendulum: period 2 pi sqrt(I_a / (m g d)) and the axis st
   double s_prev = p.b.x.dot(across);
   for (int k = 1; k <= 10000; ++k) {
     p.step(h, 0.2);
-    worst_angle = std::max(worst_angle, p.angle_error());
-    worst_drift = std::max(worst_drift, p.drift());
+    worst_angle = wbtest::worst_of(worst_angle, p.angle_error());
+    worst_drift = wbtest::worst_of(worst_drift, p.drift());
     const double s = p.b.x.dot(across);
     if (s_prev > 0 && s <= 0) crossings.push_back(h * (k - 1 + s_prev / (s_prev - s)));
     s_prev = s;

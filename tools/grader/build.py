@@ -450,6 +450,14 @@ class Grader:
                         staged[os.path.join("labs", lab, name)] = data
         self.sync(staged)
         self.configure(labs)
+        # Nothing an earlier build left may differ between the screening and the build: the
+        # binaries build_lab removes are removed now, before the screening preprocesses.
+        for lab in labs:
+            for old in (self.binary(lab), self.worker(lab)):
+                try:
+                    os.remove(old)
+                except FileNotFoundError:
+                    pass
         commands = self.compile_commands() if self.screen else {}
         for lab in labs:
             allowed = set(student_files(self.repo, lab))
