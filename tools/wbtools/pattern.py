@@ -19,6 +19,8 @@ tests/<lab>/), so a new lab is checked without anyone remembering it:
             compared with a tolerance or inside an assertion (wbtest::max_abs_diff, max_abs),
             no running maximum or minimum by std::max/std::min (wbtest::worst_of, least_of);
             and every task has a [held-out] test (tests/common/heldout.h)
+  answers   no provided source of the pack of all labs computes what a task's solution
+            computes (tools/wbtools/answers.py: the fast path ships compiled only)
   reportdoc docs/report.md names every figure the last report drew (build/report), and
             names no figure file the report does not draw
 
@@ -39,7 +41,7 @@ sys.dont_write_bytecode = True
 
 from wbplot import recipes  # noqa: E402
 
-STAGES = ["stubs", "periods", "claims", "asserts", "nanfree", "reportdoc"]
+STAGES = ["stubs", "periods", "claims", "asserts", "nanfree", "answers", "reportdoc"]
 RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
 # The smallest error a skeleton's sweep may show for an integrator, relative to the scene
 # size: a stub that does nothing is off by O(1) of the motion, rounding by 1e-16; a whole
@@ -467,6 +469,23 @@ def stage_nanfree(build, out, verbose):
                      "earned by replaying the public tests' answers (tests/common/heldout.h, "
                      "docs/grading.md \"Held-out checks\")" for t in sorted(tasks - held)]
     return findings
+
+
+# ----------------------------------------------------------------------------
+# answers: the student pack holds no task's answer (tools/wbtools/answers.py)
+
+def stage_answers(build, out, verbose):
+    from . import answers
+    everything = labs()
+    found = answers.overlaps(answers.repo_shipped(everything), everything)
+    if verbose:
+        for rel, sol, share, why in found:
+            if why:
+                print(f"answers: {rel} holds {100 * share:.0f} % of solutions/{sol}: allowed: {why}")
+    return [f"{rel} holds {100 * share:.0f} % of solutions/{sol}: a source the pack ships computes "
+            "what the task's solution computes; ship it compiled only or make it call the "
+            "student's function (tools/wbtools/answers.py)" for rel, sol, share, why in found
+            if not why]
 
 
 # ----------------------------------------------------------------------------
