@@ -27,7 +27,10 @@ namespace wbrpc {
 
 constexpr std::uint32_t kMaxMessage = 64u << 20;  // bytes: larger is a protocol error
 constexpr std::size_t kMaxText = 2048;            // bytes of an error message kept
-constexpr std::int64_t kMaxDim = INT32_MAX;       // rows, columns, non-zeros: Eigen's own indices
+// Rows, columns, non-zeros: at most what one message could fill with doubles, even where the
+// dimension itself takes no bytes (a sparse matrix's rows, an empty matrix's other side),
+// so that nothing the trusted side sizes from it (a dense copy, a column count) is huge.
+constexpr std::int64_t kMaxDim = kMaxMessage / sizeof(double);
 
 enum Kind : std::int32_t {
   kCall = 1,      // trusted -> worker: function id, arguments
