@@ -68,46 +68,45 @@ inline void require_near(const wb::Mat2X& got, const wb::Mat2X& expected, double
 // The one NaN-safe way to measure a difference (docs/grading.md, "Every value from the worker
 // is hostile"): a value that came back from the lab's code may be NaN or infinite anywhere,
 // and Eigen's maxCoeff() may skip a NaN that is not the first entry, so that
-// "(got - expected).cwiseAbs().maxCoeff() <= tol" passes. These return +infinity when any
-// entry of either side is not finite, or when the shapes differ: every comparison with a
-// tolerance then fails.
+// "(got - expected).cwiseAbs().maxCoeff() <= tol" passes. These return NaN when any entry of
+// either side is not finite, or when the shapes differ: every comparison with NaN is false,
+// so "<= tol", "> tol" and "== 0" all fail (an infinity would still pass "> tol").
 template <class A, class B>
 double max_abs_diff(const Eigen::DenseBase<A>& a, const Eigen::DenseBase<B>& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols()) return HUGE_VAL;
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return std::nan("");
   double worst = 0;
   for (Eigen::Index j = 0; j < a.cols(); ++j) {
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
-      const double d = std::abs(double(a(i, j)) - double(b(i, j)));
-      if (!std::isfinite(d) || !std::isfinite(double(a(i, j))) || !std::isfinite(double(b(i, j))))
-        return HUGE_VAL;
-      worst = std::max(worst, d);
+      const double x = double(a(i, j)), y = double(b(i, j));
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(x - y)) return std::nan("");
+      worst = std::max(worst, std::abs(x - y));
     }
   }
   return worst;
 }
 
-// The largest |entry|, +infinity when an entry is not finite.
+// The largest |entry|, NaN when an entry is not finite.
 template <class A>
 double max_abs(const Eigen::DenseBase<A>& a) {
   double worst = 0;
   for (Eigen::Index j = 0; j < a.cols(); ++j) {
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
-      const double v = std::abs(double(a(i, j)));
-      if (!std::isfinite(v)) return HUGE_VAL;
-      worst = std::max(worst, v);
+      const double v = double(a(i, j));
+      if (!std::isfinite(v)) return std::nan("");
+      worst = std::max(worst, std::abs(v));
     }
   }
   return worst;
 }
 
 // A running maximum that a NaN or an infinity cannot hide from: once x is not finite the
-// result is +infinity (std::max(acc, NaN) returns acc, and the NaN is lost).
+// result is NaN for good (std::max(acc, NaN) returns acc, and the NaN is lost).
 inline double worst_of(double acc, double x) {
-  return std::isfinite(x) && !std::isnan(acc) ? std::max(acc, x) : HUGE_VAL;
+  return std::isfinite(x) && !std::isnan(acc) ? std::max(acc, x) : std::nan("");
 }
-// The same for a running minimum: once x is not finite the result is -infinity.
+// The same for a running minimum.
 inline double least_of(double acc, double x) {
-  return std::isfinite(x) && !std::isnan(acc) ? std::min(acc, x) : -HUGE_VAL;
+  return std::isfinite(x) && !std::isnan(acc) ? std::min(acc, x) : std::nan("");
 }
 
 inline void require_finite(const wb::Mat2X& m, const std::string& what) {

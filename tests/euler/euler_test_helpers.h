@@ -185,9 +185,12 @@ inline void check_random_steps(wbtest::HeldOut& g, wb::StepFn step, bool velocit
 // state, and three segments chosen after the run replay exactly with the lab's step called one
 // step at a time (wbtest::check_segments). What the test judges is then computed here, from
 // the checkpoints.
+// `law(c, x, v)` checks the law the test is about at every checkpoint c (after c * every
+// steps): a run that does nothing between checkpoints and jumps at the end fails there.
 inline void check_long_run(wb::StepFn step, double w, double h, const Mat2X& x0, const Mat2X& v0,
                            long n, long every, const Mat2X& x, const Mat2X& v, const Mat2X& xs,
-                           const Mat2X& vs, const std::string& name) {
+                           const Mat2X& vs, const std::string& name,
+                           const std::function<void(long, const Mat2X&, const Mat2X&)>& law) {
   const Eigen::Index p = x0.cols();
   const long checkpoints = n / every + 1;
   {
@@ -204,6 +207,10 @@ inline void check_long_run(wb::StepFn step, double w, double h, const Mat2X& x0,
   wbtest::require_near(vs.leftCols(p).eval(), v0, 0.0, name + ": the first checkpoint is v0");
   wbtest::require_near(xs.rightCols(p).eval(), x, 0.0, name + ": the last checkpoint is the final x");
   wbtest::require_near(vs.rightCols(p).eval(), v, 0.0, name + ": the last checkpoint is the final v");
+  for (long c = 0; c < checkpoints; ++c) {
+    INFO(name << ": the state after " << c * every << " steps (checkpoint " << c << ")");
+    law(c, xs.middleCols(c * p, p), vs.middleCols(c * p, p));
+  }
   wbtest::check_segments(name, checkpoints, 3, [&](long c) {
     Run r(oscillator(w), xs.middleCols(c * p, p), vs.middleCols(c * p, p));
     for (long k = 0; k < every; ++k) r.step(step, h);

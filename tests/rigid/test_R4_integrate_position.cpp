@@ -114,6 +114,16 @@ TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid
   }
   require_body(states.front(), b0, 0.0, "the first checkpoint is the start");
   require_body(states.back(), b, 0.0, "the last checkpoint is the final body");
+  for (std::size_t c = 0; c < states.size(); ++c) {  // the law at every checkpoint
+    const double angle = double(c) * double(every) * h * w.norm();
+    INFO("after " << c * std::size_t(every) << " steps: q = "
+                  << states[c].q.coeffs().transpose());
+    REQUIRE(orthonormality_error(rot(states[c])) <= kOrthoTol);
+    require_near(rot(states[c]),
+                 Mat3(Eigen::AngleAxisd(angle, w.normalized()).toRotationMatrix() *
+                      q0.toRotationMatrix()),
+                 kSameMotionTol, "R = rotation by n h |omega| about omega, times R_0");
+  }
   wbtest::check_segments("R4, 10^6 steps", long(states.size()), 3, [&](long c) {
     Body r = states[std::size_t(c)];
     for (long k = 0; k < every; ++k) integrate_position(r, h);
