@@ -312,6 +312,7 @@ def build_prebuilt(stage, tmp):
     for rel, lab in answers.COMPILED_ONLY.items():
         if lab in packed and os.path.isfile(os.path.join(stage, rel)):
             shutil.copyfile(os.path.join(answers.FALLBACKS, rel), os.path.join(stage, rel))
+            check_compiles(build, os.path.join(stage, rel))
     check_no_answers(stage, packed)
     out = os.path.join(stage, "prebuilt")
     os.makedirs(out)
@@ -333,6 +334,36 @@ def build_prebuilt(stage, tmp):
                 "set(WB_PREBUILT_SOURCES\n" + "\n".join(sources) + ")\n")
     print(f"tools/pack: compiled the prebuilt framework ({len(parts)} parts) in "
           f"{time.monotonic() - t0:.1f} s", flush=True)
+
+
+def check_compiles(build, path):
+    """PackError unless `path` (a replacement of a compiled-only file) compiles with the command
+    the prebuilt build compiled the real file with: a build that cannot use prebuilt/
+    compiles it, and no other check would."""
+    import shlex
+    with open(os.path.join(build, "compile_commands.json"), encoding="utf-8") as f:
+        entries = json.load(f)
+    entry = next((e for e in entries if os.path.realpath(e["file"]) == os.path.realpath(path)),
+                 None)
+    if entry is None:
+        raise PackError(f"{path}: the prebuilt build does not compile it")
+    args = entry.get("arguments") or shlex.split(entry["command"])
+    kept, skip = [], False
+    for a in args:  # no dependency file: -MD, -MMD, and -MT/-MF/-MQ with their argument
+        if skip:
+            skip = False
+        elif a in ("-MT", "-MF", "-MQ"):
+            skip = True
+        elif a not in ("-MD", "-MMD"):
+            kept.append(a)
+    args = kept
+    if "-o" in args:
+        args[args.index("-o") + 1] = os.devnull
+    p = subprocess.run(args, cwd=entry["directory"], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT)
+    if p.returncode != 0:
+        raise PackError(f"the replacement of a compiled-only file does not compile: {path}\n" +
+                        p.stdout.decode("utf-8", "replace")[-2000:])
 
 
 def check_no_answers(stage, labs):
