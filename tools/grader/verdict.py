@@ -113,8 +113,11 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
     elif kind == "idle":
         reason = (f"stopped: its processes used almost no CPU for {value:g} s (sleeping or "
                   "waiting in the lab's code?)")
+    elif data is None:  # the report is over its cap: the tests print values the worker chose
+        reason = (f"the test's report is larger than {REPORT_CAP // (1024 * 1024)} MiB: the lab's "
+                  "code returned values too large to report (a huge matrix?)")
     else:
-        crashed = kind == "signal" or (data is not None and b"<FatalErrorCondition" in data)
+        crashed = kind == "signal" or b"<FatalErrorCondition" in data
         incomplete = verdict == "missing"
         disagree = (verdict == "passed") != (kind == "exit" and value == 0)
         if crashed or incomplete or disagree:
