@@ -28,8 +28,9 @@ TEST_UID_RANGE = (1 << 20, 1 << 30)
 LAYER_TEXT = {
     "seccomp": "seccomp filter: no processes, threads, exec, signals to others, sockets, "
                "sleeping or timed waits; files read-only",
-    "namespaces": "own PID, mount, network and IPC namespaces and /proc: everything the test "
-                  "started ends with it, no other process is visible",
+    "namespaces": "own PID, mount, network and IPC namespaces: everything the test started ends "
+                  "with it",
+    "proc": "its own /proc: no other process is visible (their command lines, environments)",
     "view": "the worker's file system holds its binary and libraries only (no sources, build "
             "tree, tests or solutions)",
     "user": "unprivileged user, a random one for each process (cannot write the grader's files "
@@ -53,13 +54,13 @@ class Sandbox:
         except Exception as e:  # no compiler or no libseccomp: the limits alone
             self.launcher = None
             reason = str(e).strip().splitlines()[-1:] or ["unknown"]
-            for layer in ("seccomp", "namespaces", "view", "user"):
+            for layer in ("seccomp", "namespaces", "proc", "view", "user"):
                 self.missing[layer] = f"the launcher could not be built: {reason[0]}"
             return
         if not os.path.isdir(self.view_root):
             os.mkdir(self.view_root, 0o755)
         true = shutil.which("true") or "/bin/true"
-        wanted = {"seccomp": ["--seccomp"], "namespaces": ["--ns"],
+        wanted = {"seccomp": ["--seccomp"], "namespaces": ["--ns"], "proc": ["--ns", "--proc"],
                   "view": ["--ns"] + self._view_flags(true),
                   "user": ["--uid", str(TEST_UID_RANGE[0])]}
         disabled = set(os.environ.get("WB_SANDBOX_DISABLE", "").replace(",", " ").split())
@@ -67,7 +68,7 @@ class Sandbox:
             if layer in disabled:  # to see what the other layers hold alone
                 self.missing[layer] = "disabled by WB_SANDBOX_DISABLE"
                 continue
-            if layer == "view" and "namespaces" not in self.layers:
+            if layer in ("proc", "view") and "namespaces" not in self.layers:
                 self.missing[layer] = "needs the namespaces layer"
                 continue
             ok, why = self._probe(flags)
@@ -153,6 +154,8 @@ class Sandbox:
             f.append("--seccomp")
         if "namespaces" in self.layers:
             f.append("--ns")
+            if "proc" in self.layers:
+                f.append("--proc")
             if view and "view" in self.layers:
                 f += self._view_flags(view)
         if "user" in self.layers:

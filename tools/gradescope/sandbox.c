@@ -1,6 +1,6 @@
 // wb-sandbox: runs one graded test process inside the layers tools/grade asks for.
 //
-//   wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] [--fsize B]
+//   wb-sandbox --status-fd N [--ns [--proc]] [--uid U] [--seccomp] [--as B] [--fsize B]
 //              [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE]...
 //              [--view-root DIR --view FILE...] -- PROGRAM ARGS...
 //
@@ -10,8 +10,10 @@
 //              process 2 of its own PID namespace under a tiny init (process 1)
 //              that reports its status; when the test ends the init exits and
 //              the kernel kills everything left in the namespace. No network.
-//              /proc is the namespace's own (its two processes, nothing of the
-//              host's: no other process's command line or environment).
+//   --proc     (with --ns) /proc is the namespace's own (its two processes,
+//              nothing of the host's: no other process's command line or
+//              environment). Needs mount (a container may refuse it: then this
+//              layer alone is missing).
 //   --view-root DIR --view FILE...  (with --ns) the test sees a file system
 //              that holds the FILEs only, each at its own path, read-only: an
 //              empty tmpfs mounted on DIR (in the test's mount namespace only)
@@ -254,7 +256,7 @@ static void private_mounts(const char* root, const char** files, int n) {
 }
 
 int main(int argc, char** argv) {
-  int use_ns = 0, use_seccomp = 0;
+  int use_ns = 0, use_seccomp = 0, use_proc = 0;
   long uid = -1;
   unsigned long long as = 0, fsize = 0, cpu = 0, nofile = 64;
   const char* cwd = NULL;
@@ -272,6 +274,8 @@ int main(int argc, char** argv) {
       break;
     } else if (!strcmp(a, "--ns")) {
       use_ns = 1;
+    } else if (!strcmp(a, "--proc")) {
+      use_proc = 1;
     } else if (!strcmp(a, "--seccomp")) {
       use_seccomp = 1;
     } else if (i + 1 < argc && !strcmp(a, "--status-fd")) {
@@ -302,12 +306,12 @@ int main(int argc, char** argv) {
   }
   if (i >= argc) {
     fprintf(stderr, "usage: wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] "
-                    "[--fsize B] [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE]... "
+                    "[--fsize B] [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE]... [--proc] "
                     "[--view-root DIR --view FILE...] -- PROGRAM ARGS...\n");
     return 125;
   }
-  if ((view_root != NULL) != (n_view > 0) || (view_root && !use_ns)) {
-    fprintf(stderr, "wb-sandbox: --view-root and --view go together, and need --ns\n");
+  if ((view_root != NULL) != (n_view > 0) || ((view_root || use_proc) && !use_ns)) {
+    fprintf(stderr, "wb-sandbox: --view-root and --view go together; they and --proc need --ns\n");
     return 125;
   }
   if (status_fd >= 0) fcntl(status_fd, F_SETFD, FD_CLOEXEC);
@@ -331,7 +335,7 @@ int main(int argc, char** argv) {
   }
   // The init of the namespace (or, without --ns, a plain reaper).
   prctl(PR_SET_PDEATHSIG, SIGKILL);  // the grader killed the launcher: end everything
-  if (use_ns) private_mounts(view_root, view, n_view);
+  if (use_proc || view_root) private_mounts(view_root, view, n_view);
   pid_t test = fork();
   if (test < 0) fail("fork");
   if (test == 0) {
