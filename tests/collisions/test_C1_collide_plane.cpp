@@ -210,7 +210,8 @@ TEST_CASE("C1 held-out: random planes and particles in and out of contact follow
       // and an approach speed of exactly rest_speed are exact; the others tilted at random.
       const bool exact = s % 2 == 0;
       const Vec2 n = exact ? Vec2(0, g.sign()) : Vec2(g.unit2());
-      const Vec2 p = exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
+      const Vec2 p =
+          exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
       const double r = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
       const double m = g.uniform(0.1, 5.0), e = g.uniform(0.0, 1.0);
       const double rest_speed = exact ? g.integer(0, 8) / 8.0 : g.uniform(0.0, 1.0);
@@ -222,9 +223,10 @@ TEST_CASE("C1 held-out: random planes and particles in and out of contact follow
       // The normal velocity: approaching fast or slowly (below rest_speed), exactly at
       // rest_speed, or receding.
       const long which = g.integer(0, 3);
-      const double vn = which == 0 ? -g.uniform(1.0, 5.0)
+      const double vn = which == 0   ? -g.uniform(1.0, 5.0)
                         : which == 1 ? -rest_speed * g.uniform(0.0, 0.99)
-                        : which == 2 ? -rest_speed : g.uniform(0.0, 2.0);
+                        : which == 2 ? -rest_speed
+                                     : g.uniform(0.0, 2.0);
       const Vec2 v0 = vn * n + g.uniform(-3, 3) * t;
       Vec2 xe = x0, ve = v0;
       double je = 0;
@@ -241,8 +243,8 @@ TEST_CASE("C1 held-out: random planes and particles in and out of contact follow
       const double j = collide_plane(p, n, r, m, e, rest_speed, x, v);
       INFO("plane through " << wbtest::str(p) << " normal " << wbtest::str(n) << ", r = " << r
                             << ", m = " << m << ", e = " << e << ", rest_speed = " << rest_speed
-                            << "; x = " << wbtest::str(x0) << " (gap " << d << "), v = "
-                            << wbtest::str(v0) << " (v.n = " << vne << ")");
+                            << "; x = " << wbtest::str(x0) << " (gap " << d
+                            << "), v = " << wbtest::str(v0) << " (v.n = " << vne << ")");
       const double scale = 1.0 + x0.norm() + v0.norm();
       wbtest::require_near(j, je, 1e-12 * (1.0 + m * std::abs(vne)),
                            "the impulse j = -(1 + e) m v.n when in contact and approaching, "

@@ -193,7 +193,8 @@ TEST_CASE("C2 held-out: random pairs of discs in and out of contact follow the h
       const bool exact = s % 4 == 0;  // touching exactly: binary fractions along an axis
       const double r1 = exact ? g.integer(0, 8) / 8.0 : g.uniform(0.0, 1.0);
       const double r2 = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
-      const Vec2 x2 = exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
+      const Vec2 x2 =
+          exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
       Vec2 x1;
       if (exact) {
         x1 = x2 + (r1 + r2) * (g.coin() ? Vec2(g.sign(), 0) : Vec2(0, g.sign()));
@@ -220,10 +221,10 @@ TEST_CASE("C2 held-out: random pairs of discs in and out of contact follow the h
       }
       Vec2 y1 = x1, y2 = x2, u1 = v1, u2 = v2;
       const double J = collide_particles(m1, r1, m2, r2, e, y1, u1, y2, u2);
-      INFO("m1 = " << m1 << ", r1 = " << r1 << ", x1 = " << wbtest::str(x1) << ", v1 = "
-                   << wbtest::str(v1) << "; m2 = " << m2 << ", r2 = " << r2 << ", x2 = "
-                   << wbtest::str(x2) << ", v2 = " << wbtest::str(v2) << "; e = " << e
-                   << " (overlap " << sgap << ", (v1 - v2).n = " << vn << ")");
+      INFO("m1 = " << m1 << ", r1 = " << r1 << ", x1 = " << wbtest::str(x1)
+                   << ", v1 = " << wbtest::str(v1) << "; m2 = " << m2 << ", r2 = " << r2
+                   << ", x2 = " << wbtest::str(x2) << ", v2 = " << wbtest::str(v2)
+                   << "; e = " << e << " (overlap " << sgap << ", (v1 - v2).n = " << vn << ")");
       const double scale = 1.0 + x1.norm() + x2.norm() + v1.norm() + v2.norm();
       wbtest::require_near(J, Je, 1e-12 * (1 + std::abs(Je)),
                            "J = -(1 + e) v_n / (1/m1 + 1/m2) in contact and approaching, else 0");

@@ -164,7 +164,8 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
         // whole spacings): boxes touch exactly on the cells' boundaries.
         const double r = g.integer(1, 8) / 16.0;
         const long cols = g.integer(3, 8);
-        const wb::Vec2 origin(2 * r * double(g.integer(-20, 20)), 2 * r * double(g.integer(-20, 20)));
+        const wb::Vec2 origin(2 * r * double(g.integer(-20, 20)),
+                              2 * r * double(g.integer(-20, 20)));
         for (Eigen::Index i = 0; i < n; ++i) {
           x.col(i) = origin + 2 * r * wb::Vec2(double(i % cols), double(i / cols));
           radius[i] = r;
@@ -201,11 +202,13 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
       what << (s == 0 ? "a lattice of touching discs" : "mixed radii") << ", " << n
            << " discs: " << expected.size() << " pairs expected, " << got.size() << " found";
       if (!missing.empty())
-        what << "; missing (" << missing[0].first << ", " << missing[0].second << "): x = "
-             << wbtest::str(x.col(missing[0].first)) << " r = " << radius[missing[0].first]
-             << " and x = " << wbtest::str(x.col(missing[0].second)) << " r = "
-             << radius[missing[0].second];
-      if (!extra.empty()) what << "; not overlapping (" << extra[0].first << ", " << extra[0].second << ")";
+        what << "; missing (" << missing[0].first << ", " << missing[0].second
+             << "): x = " << wbtest::str(x.col(missing[0].first))
+             << " r = " << radius[missing[0].first]
+             << " and x = " << wbtest::str(x.col(missing[0].second))
+             << " r = " << radius[missing[0].second];
+      if (!extra.empty())
+        what << "; not overlapping (" << extra[0].first << ", " << extra[0].second << ")";
       if (repeated) what << "; a pair found twice";
       INFO(what.str());
       REQUIRE(missing.empty());

@@ -160,8 +160,10 @@ TEST_CASE("C4 held-out: random contacts inside and outside the friction cone fol
       const double m = g.uniform(0.1, 5.0), mu = s == 0 ? 0.0 : g.uniform(0.0, 1.5);
       const double jn = s == 0 ? 0.0 : g.uniform(0.0, 5.0);
       // Tangential speed: none, inside the cone, or outside it.
-      const double vt = s < 2 ? 0.0 : g.sign() * (g.coin() ? g.uniform(0.0, 0.95) : g.uniform(1.05, 4.0)) *
-                                          (mu * jn / m + (s % 3 == 0 ? g.uniform(0.0, 1.0) : 0.0));
+      const double vt = s < 2 ? 0.0
+                              : g.sign() *
+                                    (g.coin() ? g.uniform(0.0, 0.95) : g.uniform(1.05, 4.0)) *
+                                    (mu * jn / m + (s % 3 == 0 ? g.uniform(0.0, 1.0) : 0.0));
       const Vec2 v0 = g.uniform(-3, 3) * n + vt * t;
       const Vec2 vtv = v0 - v0.dot(n) * n;
       Vec2 ve = v0;

@@ -89,16 +89,14 @@ class HeldOut {
   // What a failure prints first: the inputs are not in the pack, so say how to see them again.
   std::string replay() const {
     return "held-out inputs of " + task_ + " from seed " + hex(seed_) +
-           " (replay: tools/grade ... --seed " + hex(seed_) + ", or WB_HELDOUT_SEED=" +
-           hex(seed_) + " when running the tests)";
+           " (replay: tools/grade ... --seed " + hex(seed_) +
+           ", or WB_HELDOUT_SEED=" + hex(seed_) + " when running the tests)";
   }
 
   double unit() { return double(gen_() >> 11) * 0x1.0p-53; }  // [0, 1)
   double uniform(double lo, double hi) { return lo + (hi - lo) * unit(); }
   // log-uniform in [lo, hi] (lo > 0): every order of magnitude as likely
-  double log_uniform(double lo, double hi) {
-    return lo * std::exp(std::log(hi / lo) * unit());
-  }
+  double log_uniform(double lo, double hi) { return lo * std::exp(std::log(hi / lo) * unit()); }
   // an integer in [lo, hi]
   long integer(long lo, long hi) { return lo + long(gen_() % std::uint64_t(hi - lo + 1)); }
   bool coin(double p = 0.5) { return unit() < p; }

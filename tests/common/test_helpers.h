@@ -113,7 +113,8 @@ inline void require_finite(const wb::Mat2X& m, const std::string& what) {
   if (m.allFinite()) return;
   // The first columns only: the matrix came from the lab's code and may be huge.
   INFO(what << ": every entry must be finite (no NaN or inf)\n  got (first columns of "
-            << m.cols() << ")\n" << m.leftCols(std::min<Eigen::Index>(m.cols(), 8)));
+            << m.cols() << ")\n"
+            << m.leftCols(std::min<Eigen::Index>(m.cols(), 8)));
   REQUIRE(m.allFinite());
 }
 

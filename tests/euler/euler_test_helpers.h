@@ -137,13 +137,16 @@ inline void check_independent_particles(wb::StepFn step,
 // with exactly one force evaluation, at the state the step started from.
 inline void check_random_steps(wbtest::HeldOut& g, wb::StepFn step, bool velocity_first,
                                const std::string& method) {
-  for (Eigen::Index n : {Eigen::Index(g.integer(3, 7)), Eigen::Index(1), Eigen::Index(g.integer(2, 7))}) {
+  for (Eigen::Index n :
+       {Eigen::Index(g.integer(3, 7)), Eigen::Index(1), Eigen::Index(g.integer(2, 7))}) {
     // a_i = c0 + c1 x_i + c2 v_i + c3 (x_i.y x_i.x, v_i.x v_i.y): each particle its own.
     std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
     Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
     for (Eigen::Index i = 0; i < n; ++i) {
-      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4);
-      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2);
+      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4),
+          g.uniform(-4, 4);
+      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2),
+          g.uniform(-2, 2);
     }
     auto accel = [=](const Mat2X& x, const Mat2X& v, Mat2X& a) {
       for (Eigen::Index i = 0; i < x.cols(); ++i) {
@@ -165,7 +168,8 @@ inline void check_random_steps(wbtest::HeldOut& g, wb::StepFn step, bool velocit
         REQUIRE(r.seen_x.size() == before + 1);
       }
       wbtest::require_near(r.seen_x.back(), xn, 0.0, "the evaluation must see the positions x_n");
-      wbtest::require_near(r.seen_v.back(), vn, 0.0, "the evaluation must see the velocities v_n");
+      wbtest::require_near(r.seen_v.back(), vn, 0.0,
+                           "the evaluation must see the velocities v_n");
       Mat2X a(2, n);
       accel(xn, vn, a);
       const Mat2X v1 = vn + h * a;
@@ -205,8 +209,10 @@ inline void check_long_run(wb::StepFn step, double w, double h, const Mat2X& x0,
   wbtest::require_finite(vs, name + ": every velocity of the run");
   wbtest::require_near(xs.leftCols(p).eval(), x0, 0.0, name + ": the first checkpoint is x0");
   wbtest::require_near(vs.leftCols(p).eval(), v0, 0.0, name + ": the first checkpoint is v0");
-  wbtest::require_near(xs.rightCols(p).eval(), x, 0.0, name + ": the last checkpoint is the final x");
-  wbtest::require_near(vs.rightCols(p).eval(), v, 0.0, name + ": the last checkpoint is the final v");
+  wbtest::require_near(xs.rightCols(p).eval(), x, 0.0,
+                       name + ": the last checkpoint is the final x");
+  wbtest::require_near(vs.rightCols(p).eval(), v, 0.0,
+                       name + ": the last checkpoint is the final v");
   for (long c = 0; c < checkpoints; ++c) {
     INFO(name << ": the state after " << c * every << " steps (checkpoint " << c << ")");
     law(c, xs.middleCols(c * p, p), vs.middleCols(c * p, p));

@@ -2,8 +2,8 @@
 // (labs/forces/newton_gravity.h).
 #include <cmath>
 
-#include "newton_gravity.h"
 #include "heldout.h"
+#include "newton_gravity.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its

@@ -2,8 +2,8 @@
 // (labs/forces/spring.h).
 #include <cmath>
 
-#include "spring.h"
 #include "heldout.h"
+#include "spring.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -160,8 +160,7 @@ TEST_CASE("F5 held-out: random springs give f_i = -(k (L - rest) + kd (v_i - v_j
     for (int s = 0; s < 12; ++s) {
       const Vec2 xi = g.vec2(-3.0, 3.0), vi = g.vec2(-4.0, 4.0), vj = g.vec2(-4.0, 4.0);
       const Vec2 xj = s == 0 ? xi : Vec2(g.vec2(-3.0, 3.0));  // the first: zero length
-      const double k = g.uniform(0.5, 50.0), rest = g.uniform(0.1, 4.0),
-                   kd = g.uniform(0.0, 3.0);
+      const double k = g.uniform(0.5, 50.0), rest = g.uniform(0.1, 4.0), kd = g.uniform(0.0, 3.0);
       const Vec2 d = xi - xj;
       const double L = d.norm();
       Vec2 expected(0, 0);
@@ -169,9 +168,9 @@ TEST_CASE("F5 held-out: random springs give f_i = -(k (L - rest) + kd (v_i - v_j
         const Vec2 u = d / L;
         expected = -(k * (L - rest) + kd * (vi - vj).dot(u)) * u;
       }
-      INFO("x_i = " << wbtest::str(xi) << ", x_j = " << wbtest::str(xj) << ", v_i = "
-                    << wbtest::str(vi) << ", v_j = " << wbtest::str(vj) << ", k = " << k
-                    << ", rest = " << rest << ", kd = " << kd);
+      INFO("x_i = " << wbtest::str(xi) << ", x_j = " << wbtest::str(xj)
+                    << ", v_i = " << wbtest::str(vi) << ", v_j = " << wbtest::str(vj)
+                    << ", k = " << k << ", rest = " << rest << ", kd = " << kd);
       wbtest::require_near(spring_force(xi, xj, vi, vj, k, rest, kd), expected,
                            1e-12 * (1.0 + expected.norm()),
                            "spring-damper f_i = -(k (L - rest) + kd (v_i - v_j) . u) u, "

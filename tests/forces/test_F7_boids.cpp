@@ -247,7 +247,8 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("F7 held-out: random flocks get the four rules of the header", "[forces][F7][held-out][3pts]") {
+TEST_CASE("F7 held-out: random flocks get the four rules of the header",
+          "[forces][F7][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("F7")) {
     INFO(g.replay());
     const Eigen::Index n = g.integer(6, 12);

@@ -254,7 +254,8 @@ TEST_CASE("F9 held-out: random fields and obstacles give the ramped psi and its 
     p.b = g.uniform(0.2, 3.0);
     p.h = g.log_uniform(1e-5, 1e-3);
     p.ramp = g.uniform(0.3, 2.0);
-    for (long k2 = g.integer(0, 3); k2 > 0; --k2) p.obstacles.push_back({g.vec2(-3, 3), g.uniform(0.3, 1.2)});
+    for (long k2 = g.integer(0, 3); k2 > 0; --k2)
+      p.obstacles.push_back({g.vec2(-3, 3), g.uniform(0.3, 1.2)});
     auto psi_c = [&](const Vec2& y) {
       if (p.obstacles.empty()) return p.psi(y);
       double d = std::numeric_limits<double>::infinity();

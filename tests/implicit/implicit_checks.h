@@ -237,8 +237,8 @@ inline Network random_network(wbtest::HeldOut& g, bool pin) {
   auto add = [&](Eigen::Index i, Eigen::Index j, const Vec2& anchor) {
     const Vec2 xj = j < 0 ? anchor : Vec2(w.x.col(j));
     const double L = (Vec2(w.x.col(i)) - xj).norm();
-    w.net.springs.push_back(spring(i, j, g.uniform(5.0, 60.0), L * g.uniform(0.6, 1.4),
-                                   g.uniform(0.0, 1.0), anchor));
+    w.net.springs.push_back(
+        spring(i, j, g.uniform(5.0, 60.0), L * g.uniform(0.6, 1.4), g.uniform(0.0, 1.0), anchor));
   };
   for (Eigen::Index i = 1; i < n; ++i) add(i, g.integer(0, i - 1), Vec2::Zero());
   add(n - 1, 0, Vec2::Zero());
@@ -281,8 +281,8 @@ struct NewtonRun {
   double scale = 0;
 };
 
-inline NewtonRun newton_run(const SpringNetwork& net, const Mat2X& f_ext, double h,
-                            bool definite, const Mat2X& x0, const Mat2X& v0, int solves) {
+inline NewtonRun newton_run(const SpringNetwork& net, const Mat2X& f_ext, double h, bool definite,
+                            const Mat2X& x0, const Mat2X& v0, int solves) {
   NewtonRun r;
   Mat2X vs = v0;
   for (Eigen::Index p = 0; p < net.n(); ++p)

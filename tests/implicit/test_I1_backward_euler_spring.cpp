@@ -98,8 +98,8 @@ TEST_CASE("I1 held-out: random springs solve (m + h b + h^2 k) v' = m v - h k (x
       const Vec2 xe = x0 + h * ve;
       backward_euler_spring_step(m, k, b, c, f, h, x, v);
       INFO("m = " << m << ", k = " << k << ", b = " << b << ", c = " << wbtest::str(c)
-                  << ", f_ext = " << wbtest::str(f) << ", h = " << h << ", x = "
-                  << wbtest::str(x0) << ", v = " << wbtest::str(v0));
+                  << ", f_ext = " << wbtest::str(f) << ", h = " << h
+                  << ", x = " << wbtest::str(x0) << ", v = " << wbtest::str(v0));
       const double scale = x0.norm() + c.norm() + h * v0.norm() + h * h * f.norm() / m;
       wbtest::require_near(v, ve, kRelTol * (v0.norm() + (k * scale + f.norm()) * h / m),
                            "v' = (m v - h k (x - c) + h f_ext) / (m + h b + h^2 k)", kRelTol);

@@ -129,8 +129,8 @@ TEST_CASE("I2 held-out: random springs stretched or compressed give the header's
       const double kk = g.uniform(1.0, 100.0), kdd = g.uniform(0.0, 5.0);
       const double L = (a - b).norm();
       // Half of them compressed (rest > L), half stretched.
-      const double rest = s == 0 ? g.uniform(0.0, 1.0) : L * (s % 2 ? g.uniform(1.1, 2.0)
-                                                                     : g.uniform(0.3, 0.9));
+      const double rest =
+          s == 0 ? g.uniform(0.0, 1.0) : L * (s % 2 ? g.uniform(1.1, 2.0) : g.uniform(0.3, 0.9));
       const bool definite = g.coin();
       Vec2 f;
       Mat2 K, D;
@@ -144,9 +144,11 @@ TEST_CASE("I2 held-out: random springs stretched or compressed give the header's
       INFO("x_i = " << wbtest::str(a) << ", x_j = " << wbtest::str(b) << " (L = " << L
                     << "), v_i = " << wbtest::str(va) << ", v_j = " << wbtest::str(vb)
                     << ", k = " << kk << ", rest = " << rest << ", kd = " << kdd
-                    << ", definite = " << definite << "\n  got f = " << f.transpose()
-                    << ", K =\n" << K << "\n  D =\n" << D << "\n  expected K =\n" << Ke
-                    << "\n  D =\n" << De);
+                    << ", definite = " << definite << "\n  got f = " << f.transpose() << ", K =\n"
+                    << K << "\n  D =\n"
+                    << D << "\n  expected K =\n"
+                    << Ke << "\n  D =\n"
+                    << De);
       const double fscale = kk * (L + rest) + kdd * (va - vb).norm();
       wbtest::require_near(f, fe, kRelTol * (1 + fscale),
                            "f = -(k (L - rest) + kd (v_i - v_j).u) u (0 when L = 0)");

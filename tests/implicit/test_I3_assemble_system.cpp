@@ -93,7 +93,8 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
   REQUIRE(A.cols() == 8);
   const Eigen::MatrixXd Ad = A;
   INFO("A - A^T: largest entry " << (Ad - Ad.transpose()).cwiseAbs().maxCoeff());
-  REQUIRE(wbtest::max_abs_diff(Ad, Ad.transpose()) <= kRelTol * wbtest::max_abs(Ad));  // NaN fails
+  REQUIRE(wbtest::max_abs_diff(Ad, Ad.transpose()) <=
+          kRelTol * wbtest::max_abs(Ad));  // NaN fails
   // Blocks that may hold entries: diagonal, and the pairs joined by a spring.
   Eigen::Matrix4i allowed = Eigen::Matrix4i::Identity();
   for (const NetworkSpring& sp : s.net.springs)
@@ -185,8 +186,10 @@ TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks"
   }
 }
 
-TEST_CASE("I3 held-out: random networks assemble A = M - h D - h^2 K and b with only the allowed blocks",
-          "[implicit][I3][held-out][3pts]") {
+TEST_CASE(
+    "I3 held-out: random networks assemble A = M - h D - h^2 K and b with only the allowed "
+    "blocks",
+    "[implicit][I3][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("I3")) {
     INFO(g.replay());
     for (const bool pin : {false, true}) {
@@ -196,7 +199,8 @@ TEST_CASE("I3 held-out: random networks assemble A = M - h D - h^2 K and b with 
       const bool definite = g.coin();
       Mat2X vl = w.v + g.points(n, -0.5, 0.5), xl = w.x + h * vl + g.points(n, -0.05, 0.05);
       for (Eigen::Index p = 0; p < n; ++p) {
-        if (w.net.is_pinned(p)) vl.col(p).setZero(), xl.col(p) = w.x.col(p);  // as the caller does
+        if (w.net.is_pinned(p))
+          vl.col(p).setZero(), xl.col(p) = w.x.col(p);  // as the caller does
       }
       Eigen::SparseMatrix<double> A;
       Eigen::VectorXd b;
@@ -229,8 +233,9 @@ TEST_CASE("I3 held-out: random networks assemble A = M - h D - h^2 K and b with 
         }
       }
       const Eigen::MatrixXd Ad = A;
-      INFO("A =\n" << Ad << "\nexpected\n" << Ae << "\nb = " << b.transpose() << "\nexpected "
-                   << be.transpose());
+      INFO("A =\n"
+           << Ad << "\nexpected\n"
+           << Ae << "\nb = " << b.transpose() << "\nexpected " << be.transpose());
       REQUIRE(wbtest::max_abs_diff(Ad, Ae) <= kRelTol * wbtest::max_abs(Ae));
       REQUIRE(wbtest::max_abs_diff(b, be) <= kRelTol * (1 + wbtest::max_abs(be)));
     }

@@ -469,7 +469,8 @@ TEST_CASE("I4 held-out: random networks take the Newton steps of the header and 
       if (kind < 2) {
         o.max_iterations = 20;
         int k = 1;
-        while (k < 8 && !(run.residuals[k] > 1e4 * floor && run.residuals[k] > 100 * std::max(run.residuals[k + 1], floor)))
+        while (k < 8 && !(run.residuals[k] > 1e4 * floor &&
+                          run.residuals[k] > 100 * std::max(run.residuals[k + 1], floor)))
           ++k;
         if (k == 8) continue;  // converged at once: nothing to place a threshold between
         const double t = std::sqrt(run.residuals[k] * std::max(run.residuals[k + 1], floor));
@@ -485,13 +486,14 @@ TEST_CASE("I4 held-out: random networks take the Newton steps of the header and 
       const NewtonReport r = backward_euler_step(w.net, w.f_ext, h, o, x, v);
       const double g1 = imtest::newton_residual(w.net, w.x, w.v, w.f_ext, h, v);
       INFO(w.net.n() << " particles, " << w.net.springs.size() << " springs, h = " << h
-                     << (o.solver == NewtonOptions::kCG ? ", CG" : ", LDLT") << ", tol = " << o.tol
-                     << ", max_iterations = " << o.max_iterations << ", one_iteration = "
-                     << o.one_iteration << "\n  report {iterations " << r.iterations << ", residual "
-                     << r.residual << ", scale " << r.scale << ", converged " << r.converged
-                     << ", solver_failed " << r.solver_failed << "}; expected iterations " << solves
-                     << ", residual |G(y)| = " << g1 << " at the returned y, scale " << run.scale
-                     << ", converged " << (kind != 2));
+                     << (o.solver == NewtonOptions::kCG ? ", CG" : ", LDLT")
+                     << ", tol = " << o.tol << ", max_iterations = " << o.max_iterations
+                     << ", one_iteration = " << o.one_iteration << "\n  report {iterations "
+                     << r.iterations << ", residual " << r.residual << ", scale " << r.scale
+                     << ", converged " << r.converged << ", solver_failed " << r.solver_failed
+                     << "}; expected iterations " << solves << ", residual |G(y)| = " << g1
+                     << " at the returned y, scale " << run.scale << ", converged "
+                     << (kind != 2));
       REQUIRE_FALSE(r.solver_failed);
       REQUIRE(r.iterations == solves);
       REQUIRE(r.converged == (kind != 2));
@@ -535,17 +537,20 @@ TEST_CASE("I4 held-out: random networks take the Newton steps of the header and 
     Mat2X vs = v0;
     for (Eigen::Index p = 0; p < n; ++p)
       if (net.is_pinned(p)) vs.col(p).setZero();
-    INFO("particle 0 on a spring compressed to half its rest length, m = h^2 k, definite false: "
-         "the first factorisation meets a zero pivot; report {iterations " << r.iterations
-         << ", residual " << r.residual << ", converged " << r.converged << ", solver_failed "
-         << r.solver_failed << "}: expected solver_failed, not converged, 0 solves, residual NaN");
+    INFO(
+        "particle 0 on a spring compressed to half its rest length, m = h^2 k, definite false: "
+        "the first factorisation meets a zero pivot; report {iterations "
+        << r.iterations << ", residual " << r.residual << ", converged " << r.converged
+        << ", solver_failed " << r.solver_failed
+        << "}: expected solver_failed, not converged, 0 solves, residual NaN");
     REQUIRE(r.solver_failed);
     REQUIRE_FALSE(r.converged);
     REQUIRE(r.iterations == 0);
     REQUIRE(std::isnan(r.residual));
     wbtest::require_finite(x, "positions after a failed solve");
     wbtest::require_finite(v, "velocities after a failed solve");
-    wbtest::require_near(v, vs, 0.0, "v after a failed first solve: y = the start v (pinned 0)", 1e-15);
+    wbtest::require_near(v, vs, 0.0, "v after a failed first solve: y = the start v (pinned 0)",
+                         1e-15);
     wbtest::require_near(x, Mat2X(x0 + vs), 0.0, "x after a failed first solve: x + h y", 1e-15);
   }
 }

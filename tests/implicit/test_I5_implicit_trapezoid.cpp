@@ -202,9 +202,10 @@ TEST_CASE("I5 held-out: random networks step by the trapezoid rule and return th
       const double res = imtest::trapezoid_residual(w.net, w.x, vs, w.f_ext, h, x, v);
       const double scale = imtest::momentum_scale(w.net, w.x, vs, w.f_ext, h);
       const double g1 = imtest::newton_residual(w.net, xt, vt, w.f_ext, 0.5 * h, v);
-      INFO(n << " particles, h = " << h << "; report {iterations " << r.iterations << ", residual "
-             << r.residual << ", converged " << r.converged << "}; trapezoid residual " << res
-             << " against the momentum scale " << scale << "; the backward Euler half's |G| at "
+      INFO(n << " particles, h = " << h << "; report {iterations " << r.iterations
+             << ", residual " << r.residual << ", converged " << r.converged
+             << "}; trapezoid residual " << res << " against the momentum scale " << scale
+             << "; the backward Euler half's |G| at "
              << "the returned v: " << g1);
       REQUIRE(r.converged);
       REQUIRE(r.iterations >= 1);

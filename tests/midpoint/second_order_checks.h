@@ -261,8 +261,10 @@ inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
     std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
     const Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
     for (Eigen::Index i = 0; i < n; ++i) {
-      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4);
-      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2);
+      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4),
+          g.uniform(-4, 4);
+      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2),
+          g.uniform(-2, 2);
     }
     auto accel = [=](const Mat2X& x, const Mat2X& v, Mat2X& a) {
       for (Eigen::Index i = 0; i < x.cols(); ++i) {
@@ -282,7 +284,8 @@ inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
       const Mat2X xn = x, vn = v;
       Mat2X a0(2, n), a1(2, n);
       accel(xn, vn, a0);
-      const Mat2X x1 = xn + (trapezoid ? h : 0.5 * h) * vn, v1 = vn + (trapezoid ? h : 0.5 * h) * a0;
+      const Mat2X x1 = xn + (trapezoid ? h : 0.5 * h) * vn,
+                  v1 = vn + (trapezoid ? h : 0.5 * h) * a0;
       accel(x1, v1, a1);
       const Mat2X xe = trapezoid ? Mat2X(xn + 0.5 * h * (vn + v1)) : Mat2X(xn + h * v1);
       const Mat2X ve = trapezoid ? Mat2X(vn + 0.5 * h * (a0 + a1)) : Mat2X(vn + h * a1);
@@ -300,14 +303,17 @@ inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
       wbtest::require_near(seen_v[0], vn, 0.0, "the first evaluation sees the velocities v_n");
       const std::string mid = trapezoid ? "the full Euler step X_a = X + h f(X)"
                                         : "the half Euler step X_mid = X + (h/2) f(X)";
-      wbtest::require_near(seen_x[1], x1, 1e-11, "the second evaluation sees the positions of " + mid, 1e-12);
-      wbtest::require_near(seen_v[1], v1, 1e-11, "the second evaluation sees the velocities of " + mid, 1e-12);
-      wbtest::require_near(x, xe, 1e-11,
-                           method + (trapezoid ? ": x' = x + h/2 (v + v_a)" : ": x' = x + h v_mid"),
-                           1e-12);
-      wbtest::require_near(v, ve, 1e-11,
-                           method + (trapezoid ? ": v' = v + h/2 (a(X) + a(X_a))" : ": v' = v + h a(X_mid)"),
-                           1e-12);
+      wbtest::require_near(seen_x[1], x1, 1e-11,
+                           "the second evaluation sees the positions of " + mid, 1e-12);
+      wbtest::require_near(seen_v[1], v1, 1e-11,
+                           "the second evaluation sees the velocities of " + mid, 1e-12);
+      wbtest::require_near(
+          x, xe, 1e-11, method + (trapezoid ? ": x' = x + h/2 (v + v_a)" : ": x' = x + h v_mid"),
+          1e-12);
+      wbtest::require_near(
+          v, ve, 1e-11,
+          method + (trapezoid ? ": v' = v + h/2 (a(X) + a(X_a))" : ": v' = v + h a(X_mid)"),
+          1e-12);
     }
   }
 }

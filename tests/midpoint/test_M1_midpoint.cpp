@@ -48,8 +48,10 @@ TEST_CASE("M1 midpoint: exactly two force evaluations per step", "[midpoint][M1]
   mptest::check_two_evaluations(midpoint_step, kMethod);
 }
 
-TEST_CASE("M1 held-out: every step of random systems follows the midpoint rule with its two evaluations",
-          "[midpoint][M1][held-out][8pts]") {
+TEST_CASE(
+    "M1 held-out: every step of random systems follows the midpoint rule with its two "
+    "evaluations",
+    "[midpoint][M1][held-out][8pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("M1")) {
     INFO(g.replay());
     mptest::check_random_steps(g, midpoint_step, false, "midpoint");

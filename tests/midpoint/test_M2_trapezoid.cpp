@@ -49,8 +49,10 @@ TEST_CASE("M2 trapezoid: exactly two force evaluations per step", "[midpoint][M2
   mptest::check_two_evaluations(trapezoid_step, kMethod);
 }
 
-TEST_CASE("M2 held-out: every step of random systems follows the trapezoid rule with its two evaluations",
-          "[midpoint][M2][held-out][8pts]") {
+TEST_CASE(
+    "M2 held-out: every step of random systems follows the trapezoid rule with its two "
+    "evaluations",
+    "[midpoint][M2][held-out][8pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("M2")) {
     INFO(g.replay());
     mptest::check_random_steps(g, trapezoid_step, true, "trapezoid");

@@ -137,8 +137,8 @@ inline Body random_body(wbtest::HeldOut& g) {
     I = Vec3(g.uniform(0.1, 3.0), g.uniform(0.1, 3.0), g.uniform(0.1, 3.0));
   } while (2 * std::max({I.x(), I.y(), I.z()}) >= I.sum());
   b.I_body = I.asDiagonal();
-  b.q = Eigen::Quaterniond(g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1),
-                           g.uniform(-1, 1)).normalized();
+  b.q = Eigen::Quaterniond(g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1))
+            .normalized();
   b.x = g.vec3(-2, 2);
   b.v = g.vec3(-2, 2);
   b.omega = g.vec3(-3, 3);

@@ -91,18 +91,19 @@ TEST_CASE("R1 held-out: random boxes spheres and cylinders have the header's mom
                    c = g.uniform(0.1, 3.0);
       INFO("m = " << m << ", box edges " << a << " " << b << " " << c << ", sphere radius " << a
                   << ", cylinder radius " << a << " and length " << b);
-      rigidtest::require_near(box_inertia(m, Vec3(a, b, c)),
-                              Mat3(Vec3(m / 12 * (b * b + c * c), m / 12 * (a * a + c * c),
-                                        m / 12 * (a * a + b * b)).asDiagonal()),
-                              1e-13 * m * (a * a + b * b + c * c),
-                              "box: m/12 (b^2 + c^2), m/12 (a^2 + c^2), m/12 (a^2 + b^2)");
+      rigidtest::require_near(
+          box_inertia(m, Vec3(a, b, c)),
+          Mat3(Vec3(m / 12 * (b * b + c * c), m / 12 * (a * a + c * c), m / 12 * (a * a + b * b))
+                   .asDiagonal()),
+          1e-13 * m * (a * a + b * b + c * c),
+          "box: m/12 (b^2 + c^2), m/12 (a^2 + c^2), m/12 (a^2 + b^2)");
       rigidtest::require_near(sphere_inertia(m, a), Mat3((0.4 * m * a * a) * Mat3::Identity()),
                               1e-13 * m * a * a, "sphere: 2/5 m r^2 on every axis");
       const double Ixy = m / 12 * (3 * a * a + b * b);
-      rigidtest::require_near(cylinder_inertia(m, a, b),
-                              Mat3(Vec3(Ixy, Ixy, 0.5 * m * a * a).asDiagonal()),
-                              1e-13 * m * (a * a + b * b),
-                              "cylinder along z: m/12 (3 r^2 + L^2) about x and y, m r^2/2 about z");
+      rigidtest::require_near(
+          cylinder_inertia(m, a, b), Mat3(Vec3(Ixy, Ixy, 0.5 * m * a * a).asDiagonal()),
+          1e-13 * m * (a * a + b * b),
+          "cylinder along z: m/12 (3 r^2 + L^2) about x and y, m r^2/2 about z");
     }
   }
 }

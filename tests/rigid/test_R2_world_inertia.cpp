@@ -72,16 +72,19 @@ TEST_CASE("R2 parallel axis: a box about its corner equals the integral over the
                "I_corner = I_c + m (|d|^2 E - d d^T) for a 1 x 3 x 2 m box of 2 kg");
 }
 
-TEST_CASE("R2 held-out: random rotations and offsets give R I R^T and its inverse and the parallel axis",
-          "[rigid][R2][held-out][2pts]") {
+TEST_CASE(
+    "R2 held-out: random rotations and offsets give R I R^T and its inverse and the parallel "
+    "axis",
+    "[rigid][R2][held-out][2pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("R2")) {
     INFO(g.replay());
     for (int s = 0; s < 5; ++s) {
       const Body b = rigidtest::random_body(g);
       const Mat3 R = rot(b), I = b.I_body;
       const Vec3 d = g.vec3(-2, 2);
-      INFO("R =\n" << R << "\nI_body diagonal " << I.diagonal().transpose() << ", m = " << b.m
-                   << ", d = " << rigidtest::str(d));
+      INFO("R =\n"
+           << R << "\nI_body diagonal " << I.diagonal().transpose() << ", m = " << b.m
+           << ", d = " << rigidtest::str(d));
       const double scale = I.diagonal().sum();
       rigidtest::require_near(world_inertia(R, I), Mat3(R * I * R.transpose()), 1e-13 * scale,
                               "I = R I_body R^T");
@@ -90,10 +93,10 @@ TEST_CASE("R2 held-out: random rotations and offsets give R I R^T and its invers
                               1e-13 * I.diagonal().cwiseInverse().sum(),
                               "I^-1 = R I_body^-1 R^T");
       const Mat3 Iw = R * I * R.transpose();
-      rigidtest::require_near(parallel_axis(Iw, b.m, d),
-                              Mat3(Iw + b.m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose())),
-                              1e-13 * (scale + b.m * d.squaredNorm()),
-                              "I_P = I + m (|d|^2 E - d d^T)");
+      rigidtest::require_near(
+          parallel_axis(Iw, b.m, d),
+          Mat3(Iw + b.m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose())),
+          1e-13 * (scale + b.m * d.squaredNorm()), "I_P = I + m (|d|^2 E - d d^T)");
     }
   }
 }

@@ -69,7 +69,8 @@ TEST_CASE("R3 held-out: random forces at random points add F and (p - x) x F and
                   << rigidtest::str(b0.x) << ", f and tau already there: " << rigidtest::str(b0.f)
                   << ", " << rigidtest::str(b0.tau));
       apply_force(b, F, p);
-      rigidtest::require_body(b, e, 1e-13, "apply_force: f += F, tau += (p - x) x F, nothing else");
+      rigidtest::require_body(b, e, 1e-13,
+                              "apply_force: f += F, tau += (p - x) x F, nothing else");
       e.f += b0.m * grav;
       apply_gravity(b, grav);
       INFO("g = " << rigidtest::str(grav) << ", m = " << b0.m);

@@ -116,13 +116,13 @@ TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid
   require_body(states.back(), b, 0.0, "the last checkpoint is the final body");
   for (std::size_t c = 0; c < states.size(); ++c) {  // the law at every checkpoint
     const double angle = double(c) * double(every) * h * w.norm();
-    INFO("after " << c * std::size_t(every) << " steps: q = "
-                  << states[c].q.coeffs().transpose());
+    INFO("after " << c * std::size_t(every)
+                  << " steps: q = " << states[c].q.coeffs().transpose());
     REQUIRE(orthonormality_error(rot(states[c])) <= kOrthoTol);
-    require_near(rot(states[c]),
-                 Mat3(Eigen::AngleAxisd(angle, w.normalized()).toRotationMatrix() *
-                      q0.toRotationMatrix()),
-                 kSameMotionTol, "R = rotation by n h |omega| about omega, times R_0");
+    require_near(
+        rot(states[c]),
+        Mat3(Eigen::AngleAxisd(angle, w.normalized()).toRotationMatrix() * q0.toRotationMatrix()),
+        kSameMotionTol, "R = rotation by n h |omega| about omega, times R_0");
   }
   wbtest::check_segments("R4, 10^6 steps", long(states.size()), 3, [&](long c) {
     Body r = states[std::size_t(c)];
@@ -150,7 +150,7 @@ TEST_CASE("R4 held-out: random spins turn q on the left by |omega| h and renorma
     for (int s = 0; s < 6; ++s) {
       Body b0 = rigidtest::random_body(g);
       const double h = s == 2 ? g.uniform(1.0, 100.0) : g.log_uniform(1e-3, 0.2);
-      if (s == 1) b0.omega.setZero();                                   // no axis: q stays
+      if (s == 1) b0.omega.setZero();                                 // no axis: q stays
       if (s == 2) b0.omega = g.log_uniform(1e-11, 1e-9) * g.unit3();  // a very slow spin
       // q slightly off unit length (rounding builds up over a run): the result is unit.
       b0.q.coeffs() *= 1.0 + g.uniform(-1e-3, 1e-3);
@@ -165,9 +165,10 @@ TEST_CASE("R4 held-out: random spins turn q on the left by |omega| h and renorma
       INFO("omega = " << rigidtest::str(b0.omega) << " (world), h = " << h << ", q = "
                       << b0.q.coeffs().transpose() << " (|q| = " << b0.q.norm() << ")");
       integrate_position(b, h);
-      rigidtest::require_body(b, e, 1e-14,
-                              "x += h v; q = dq q (dq: angle |omega| h about omega, on the LEFT), "
-                              "then |q| = 1");
+      rigidtest::require_body(
+          b, e, 1e-14,
+          "x += h v; q = dq q (dq: angle |omega| h about omega, on the LEFT), "
+          "then |q| = 1");
     }
   }
 }

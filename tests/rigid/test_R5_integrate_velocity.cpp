@@ -252,10 +252,10 @@ TEST_CASE("R5 held-out: random bodies take the explicit and implicit steps of th
       Body e = b0;
       e.v = b0.v + h * b0.f / b0.m;
       e.omega = b0.omega + h * Iinv * (b0.tau - b0.omega.cross(Iw * b0.omega));
-      INFO("m = " << b0.m << ", I_body diagonal " << Ib.diagonal().transpose() << ", q = "
-                  << b0.q.coeffs().transpose() << ", v = " << rigidtest::str(b0.v) << ", omega = "
-                  << rigidtest::str(b0.omega) << ", f = " << rigidtest::str(b0.f) << ", tau = "
-                  << rigidtest::str(b0.tau) << ", h = " << h);
+      INFO("m = " << b0.m << ", I_body diagonal " << Ib.diagonal().transpose()
+                  << ", q = " << b0.q.coeffs().transpose() << ", v = " << rigidtest::str(b0.v)
+                  << ", omega = " << rigidtest::str(b0.omega) << ", f = " << rigidtest::str(b0.f)
+                  << ", tau = " << rigidtest::str(b0.tau) << ", h = " << h);
       Body b = b0;
       integrate_velocity_explicit(b, h);
       rigidtest::require_body(b, e, 1e-12,

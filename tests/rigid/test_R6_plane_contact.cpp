@@ -86,8 +86,10 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
     }
     total = solve_plane_contacts(b, kept, n, 0.0, 0.05, mu, iterations);
     {  // the vector comes back from the lab's code: its size is checked before it is indexed
-      INFO("solve_plane_contacts returned " << kept.size() << " contacts, it was given 4 (it "
-                                                 "updates their totals, it never adds or drops one)");
+      INFO("solve_plane_contacts returned "
+           << kept.size()
+           << " contacts, it was given 4 (it "
+              "updates their totals, it never adds or drops one)");
       REQUIRE(kept.size() == 4);
     }
     ref_position(b, h);
@@ -379,16 +381,19 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
           cs[std::size_t(i)].Pn = g.uniform(0.0, 2.0);
           Vec3 t = g.vec3(-1, 1);
           t -= t.dot(n) * n;
-          if (t.norm() > 0) cs[std::size_t(i)].Pt = t / t.norm() * g.uniform(0.0, 1.0) * mu * cs[std::size_t(i)].Pn;
+          if (t.norm() > 0)
+            cs[std::size_t(i)].Pt =
+                t / t.norm() * g.uniform(0.0, 1.0) * mu * cs[std::size_t(i)].Pn;
         }
         refs[std::size_t(i)].p = cs[std::size_t(i)].p;
         refs[std::size_t(i)].Pn = cs[std::size_t(i)].Pn;
         refs[std::size_t(i)].Pt = cs[std::size_t(i)].Pt;
       }
       const int iterations = int(g.integer(1, 6));
-      INFO(k << " contacts, n = " << rigidtest::str(n) << ", e = " << e << ", threshold = "
-             << threshold << ", mu = " << mu << ", " << iterations << " iterations; body m = "
-             << b0.m << ", v = " << rigidtest::str(b0.v) << ", omega = " << rigidtest::str(b0.omega));
+      INFO(k << " contacts, n = " << rigidtest::str(n) << ", e = " << e
+             << ", threshold = " << threshold << ", mu = " << mu << ", " << iterations
+             << " iterations; body m = " << b0.m << ", v = " << rigidtest::str(b0.v)
+             << ", omega = " << rigidtest::str(b0.omega));
       // One contact step by step: prepare, warm start, two iterations.
       {
         Body b = b0, e_b = b0;
@@ -400,7 +405,8 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
         rigidtest::require_near(c.K, ref.K, 1e-12 * (1 + wbtest::max_abs(ref.K)),
                                 "prepare: K = E/m - [r]x I^-1 [r]x");
         wbtest::require_near(c.mass_n, ref.mass_n, 0.0, "prepare: mass_n = 1 / (n^T K n)", 1e-12);
-        wbtest::require_near(c.bias, ref.bias, 1e-12, "prepare: bias = -e u.n above the threshold, else 0", 1e-12);
+        wbtest::require_near(c.bias, ref.bias, 1e-12,
+                             "prepare: bias = -e u.n above the threshold, else 0", 1e-12);
         warm_start_contact(b, c, n);
         heldout_R6::apply(e_b, ref.r, ref.Pn * n + ref.Pt);
         rigidtest::require_body(b, e_b, 1e-12, "warm start: J = Pn n + Pt applied at p");
@@ -409,8 +415,11 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
           const double want = heldout_R6::solve(e_b, ref, n, mu);
           INFO("solve_contact, iteration " << it + 1);
           wbtest::require_near(got, want, 1e-12, "returns Pn' - Pn", 1e-11);
-          wbtest::require_near(c.Pn, ref.Pn, 1e-12, "Pn' = max(Pn + mass_n (bias - u.n), 0)", 1e-11);
-          rigidtest::require_near(c.Pt, ref.Pt, 1e-12, "Pt' = Pt - |ut| / (d^T K d) d, scaled to mu Pn at most", 1e-11);
+          wbtest::require_near(c.Pn, ref.Pn, 1e-12, "Pn' = max(Pn + mass_n (bias - u.n), 0)",
+                               1e-11);
+          rigidtest::require_near(c.Pt, ref.Pt, 1e-12,
+                                  "Pt' = Pt - |ut| / (d^T K d) d, scaled to mu Pn at most",
+                                  1e-11);
           rigidtest::require_body(b, e_b, 1e-11, "the body after the iteration's two impulses");
         }
       }
@@ -428,11 +437,14 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
         INFO("solve_plane_contacts returned " << got.size() << " contacts, expected " << k);
         REQUIRE(got.size() == std::size_t(k));
       }
-      wbtest::require_near(total, want, 1e-11, "solve_plane_contacts returns the sum of the Pn", 1e-10);
+      wbtest::require_near(total, want, 1e-11, "solve_plane_contacts returns the sum of the Pn",
+                           1e-10);
       for (int i = 0; i < k; ++i) {
         INFO("contact " << i);
-        wbtest::require_near(got[std::size_t(i)].Pn, refs[std::size_t(i)].Pn, 1e-11, "its Pn total", 1e-10);
-        rigidtest::require_near(got[std::size_t(i)].Pt, refs[std::size_t(i)].Pt, 1e-11, "its Pt total", 1e-10);
+        wbtest::require_near(got[std::size_t(i)].Pn, refs[std::size_t(i)].Pn, 1e-11,
+                             "its Pn total", 1e-10);
+        rigidtest::require_near(got[std::size_t(i)].Pt, refs[std::size_t(i)].Pt, 1e-11,
+                                "its Pt total", 1e-10);
       }
       rigidtest::require_body(b, e_b, 1e-10, "the body after prepare, warm start and the passes");
     }

@@ -249,9 +249,10 @@ TEST_CASE("R7 held-out: random bodies pinned at random points take the header's 
       const Vec3 anchor = b0.x + r + g.vec3(-0.05, 0.05);  // drifted a little
       const Vec3 C = b0.x + r - anchor;
       const Mat3 K = Mat3::Identity() / b0.m - rigid::skew(r) * Iinv * rigid::skew(r);
-      INFO("body m = " << b0.m << ", v = " << rigidtest::str(b0.v) << ", omega = "
-                       << rigidtest::str(b0.omega) << "; r_body = " << rigidtest::str(r_body)
-                       << ", anchor " << rigidtest::str(anchor) << ", h = " << h << ", beta = " << beta);
+      INFO("body m = " << b0.m << ", v = " << rigidtest::str(b0.v)
+                       << ", omega = " << rigidtest::str(b0.omega)
+                       << "; r_body = " << rigidtest::str(r_body) << ", anchor "
+                       << rigidtest::str(anchor) << ", h = " << h << ", beta = " << beta);
       // The point joint.
       const Vec3 P = K.ldlt().solve(-(b0.v + b0.omega.cross(r) + beta / h * C));
       Body e = b0;
@@ -259,7 +260,8 @@ TEST_CASE("R7 held-out: random bodies pinned at random points take the header's 
       e.omega += Iinv * r.cross(P);
       Body b = b0;
       const Vec3 Pg = apply_hinge(b, r_body, anchor, h, beta);
-      rigidtest::require_near(Pg, P, 1e-10, "apply_hinge: P from K P = -(v + omega x r + beta/h C)", 1e-10);
+      rigidtest::require_near(Pg, P, 1e-10,
+                              "apply_hinge: P from K P = -(v + omega x r + beta/h C)", 1e-10);
       rigidtest::require_body(b, e, 1e-10, "apply_hinge: v += P / m, omega += I^-1 (r x P)");
       // The revolute hinge: its axis a near the body's axis.
       const Vec3 u = R * axis_body;
@@ -275,7 +277,8 @@ TEST_CASE("R7 held-out: random bodies pinned at random points take the header's 
       KK.bottomLeftCorner<2, 3>() = B.transpose() * Iinv * rigid::skew(r);
       KK.bottomRightCorner<2, 2>() = B.transpose() * Iinv * B;
       Eigen::Matrix<double, 5, 1> rhs;
-      rhs << -(b0.v + b0.omega.cross(r)) - beta / h * C, -B.transpose() * b0.omega - beta / h * Ca;
+      rhs << -(b0.v + b0.omega.cross(r)) - beta / h * C,
+          -B.transpose() * b0.omega - beta / h * Ca;
       const Eigen::Matrix<double, 5, 1> lam = KK.ldlt().solve(rhs);
       const Vec3 P2 = lam.head<3>(), M2 = B * lam.tail<2>();
       e = b0;
@@ -286,7 +289,8 @@ TEST_CASE("R7 held-out: random bodies pinned at random points take the header's 
       INFO("revolute: axis " << rigidtest::str(a) << ", the body's axis " << rigidtest::str(u));
       rigidtest::require_near(ri.P, P2, 1e-9, "apply_revolute: P of the 5x5 system", 1e-9);
       rigidtest::require_near(ri.M, M2, 1e-9, "apply_revolute: M = B mu of the 5x5 system", 1e-9);
-      rigidtest::require_body(b, e, 1e-9, "apply_revolute: v += P / m, omega += I^-1 (r x P + M)");
+      rigidtest::require_body(b, e, 1e-9,
+                              "apply_revolute: v += P / m, omega += I^-1 (r x P + M)");
     }
   }
 }

@@ -10,8 +10,8 @@
 #include "hinge.h"
 #include "integrate_position.h"
 #include "plane_contact.h"
-#include "world_inertia.h"
 #include "wb/run.h"
+#include "world_inertia.h"
 
 namespace rigid {
 

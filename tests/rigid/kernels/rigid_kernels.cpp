@@ -3,7 +3,8 @@
 
 #include "integrate_position.h"
 
-void rigid_spin_run(rigid::Body& b, double h, long n, long every, std::vector<rigid::Body>& states) {
+void rigid_spin_run(rigid::Body& b, double h, long n, long every,
+                    std::vector<rigid::Body>& states) {
   states.assign(1, b);
   for (long k = 1; k <= n; ++k) {
     integrate_position(b, h);

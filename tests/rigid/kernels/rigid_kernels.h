@@ -16,4 +16,5 @@
 // n steps of integrate_position(b, h), b.omega left as it is (a constant spin); n a multiple
 // of `every`. states: the body before the first step and after every `every` steps
 // (n / every + 1 of them).
-void rigid_spin_run(rigid::Body& b, double h, long n, long every, std::vector<rigid::Body>& states);
+void rigid_spin_run(rigid::Body& b, double h, long n, long every,
+                    std::vector<rigid::Body>& states);

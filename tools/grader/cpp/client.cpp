@@ -53,9 +53,9 @@ static void require_particles(const char* what, const char* name, Eigen::Index g
   if (n < 0 || got != n)
     throw std::invalid_argument(
         std::string("the lab's code called ") + what + " with " + name + " of " +
-        std::to_string(got) + (n < 0 ? " particles, in a call that has no particles"
-                                     : " columns (entries), but the system has " +
-                                           std::to_string(n) + " particles"));
+        std::to_string(got) +
+        (n < 0 ? " particles, in a call that has no particles"
+               : " columns (entries), but the system has " + std::to_string(n) + " particles"));
 }
 
 void run_callback(Session& s, In& in) {

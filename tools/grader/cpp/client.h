@@ -27,9 +27,9 @@ struct Registered {
 
 struct Session {
   Channel ch;
-  std::vector<Registered<wb::Dynamics>> dyn;                                    // callbacks of
-  std::vector<Registered<std::vector<std::unique_ptr<wb::Force>>>> forces;      // the calls
-  std::vector<const PointFunction*> points;                                     // under way
+  std::vector<Registered<wb::Dynamics>> dyn;                                // callbacks of
+  std::vector<Registered<std::vector<std::unique_ptr<wb::Force>>>> forces;  // the calls
+  std::vector<const PointFunction*> points;                                 // under way
   std::vector<std::int64_t> particles;  // of each call under way (innermost last)
   std::exception_ptr callback_error;    // the first exception a callback threw in this call
   int depth = 0;

@@ -136,9 +136,9 @@ void get(In& in, Eigen::Matrix<S, R, C, O, MR, MC>& m) {
   if ((R != Eigen::Dynamic && r != R) || (C != Eigen::Dynamic && c != C) || r < 0 || c < 0 ||
       r > kMaxDim || c > kMaxDim)
     throw ProtocolError("a matrix of the wrong shape");
-  check_count(in, c, sizeof(S));                             // c columns of at least one entry,
+  check_count(in, c, sizeof(S));  // c columns of at least one entry,
   if (c > 0 && std::uint64_t(r) > in.left() / sizeof(S) / std::uint64_t(c))  // r c entries: by
-    throw ProtocolError("a size larger than the message");                    // division
+    throw ProtocolError("a size larger than the message");                   // division
   m.resize(r, c);
   in.raw(m.data(), std::size_t(r) * std::size_t(c) * sizeof(S));
 }
@@ -187,7 +187,8 @@ inline void get(In& in, Eigen::SparseMatrix<double>& a) {
       throw ProtocolError("bad sparse columns");
   for (int i : inner)
     if (i < 0 || i >= r) throw ProtocolError("a sparse row index out of range");
-  for (std::int64_t k = 0; k < c; ++k)  // Eigen's compressed columns are sorted (it searches them)
+  for (std::int64_t k = 0; k < c;
+       ++k)  // Eigen's compressed columns are sorted (it searches them)
     for (int p = outer[std::size_t(k)] + 1; p < outer[std::size_t(k + 1)]; ++p)
       if (inner[std::size_t(p - 1)] >= inner[std::size_t(p)])
         throw ProtocolError("a sparse column whose rows are not increasing");
