@@ -13,7 +13,7 @@ import os
 import re
 import secrets
 
-from .common import BadInput
+from .common import BadInput, Defect
 
 HELD_OUT_TAG = "[held-out]"
 TASK_TAG = re.compile(r"^\[([A-Z]\d+)\]$")
@@ -86,15 +86,17 @@ def submission_digest(overlays):
 def seed_from_key(path, overlays):
     """The autograder's seed: HMAC-SHA256(the secret in `path`, the submission's files), so it
     differs for every change of the code and cannot be computed without the secret (which only
-    the grader's user can read). A TA replays it with --seed (it is printed with the results)."""
+    the grader's user can read). A TA replays it with --seed (it is printed with the results).
+    A missing or short secret is the autograder's defect (exit 1), never the submission's."""
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW)
         with os.fdopen(fd, "rb") as f:
             key = f.read(4096)
-    except OSError as e:
-        raise BadInput(f"--seed-key {path}: cannot read it ({e.strerror})")
+    except OSError as e:  # the autograder's own set-up, never the submission's fault
+        raise Defect(f"--seed-key {path}: cannot read the held-out secret ({e.strerror}): "
+                     "setup.sh makes it")
     if len(key) < 16:
-        raise BadInput(f"--seed-key {path}: expected a secret of at least 16 bytes, got {len(key)}")
+        raise Defect(f"--seed-key {path}: expected a secret of at least 16 bytes, got {len(key)}")
     mac = hmac.new(key, submission_digest(overlays), hashlib.sha256).digest()
     return int.from_bytes(mac[:8], "big")
 
