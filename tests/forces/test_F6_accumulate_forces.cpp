@@ -193,17 +193,18 @@ TEST_CASE("F6 held-out: random systems and term lists sum to exactly the terms' 
       if (kind == 2) terms.push_back(std::make_unique<VelocityTerm>());
       terms.back()->add(s.x, s.v, s.m, expected);
     }
-    // f comes in with any size and any contents.
-    const Eigen::Index cols = g.pick(std::vector<Eigen::Index>{0, n, n + 3, 1});
-    Mat2X f = g.points(cols, -1e3, 1e3);
-    if (cols > 0 && g.coin()) f(0, 0) = std::numeric_limits<double>::quiet_NaN();
-    INFO(kinds.size() << " terms, " << n << " particles, f coming in with " << cols
-                      << " columns");
-    accumulate_forces(terms, s.x, s.v, s.m, f);
-    wbtest::require_near(f, expected, kTol, "f = the sum of every term's force, nothing else",
-                         kTol);
-    accumulate_forces(terms, s.x, s.v, s.m, f);
-    wbtest::require_near(f, expected, kTol, "a second call gives the same sum again", kTol);
+    // f comes in with any size and any contents: too few columns, the right number, too many.
+    for (const Eigen::Index cols : {Eigen::Index(g.integer(0, 1)), n, n + g.integer(1, 3)}) {
+      Mat2X f = g.points(cols, -1e3, 1e3);
+      if (cols > 0 && g.coin()) f(0, 0) = std::numeric_limits<double>::quiet_NaN();
+      INFO(kinds.size() << " terms, " << n << " particles, f coming in with " << cols
+                        << " columns");
+      accumulate_forces(terms, s.x, s.v, s.m, f);
+      wbtest::require_near(f, expected, kTol, "f = the sum of every term's force, nothing else",
+                           kTol);
+      accumulate_forces(terms, s.x, s.v, s.m, f);
+      wbtest::require_near(f, expected, kTol, "a second call gives the same sum again", kTol);
+    }
   }
 }
 

@@ -253,17 +253,19 @@ TEST_CASE("F7 held-out: random flocks get the four rules of the header",
     INFO(g.replay());
     const Eigen::Index n = g.integer(6, 12);
     // Boids in a box about as wide as the radii, so that each has some neighbours and not
-    // others; two at the same place (never neighbours) and one at the goal.
+    // others; two at the same place (never neighbours), one at the goal, and the last one
+    // close to another (so that it always feels something).
     Mat2X x = g.points(n, -1.5, 1.5);
     const Mat2X v = g.points(n, -2.0, 2.0);
     const VecX m = g.values(n, 0.2, 3.0);
     x.col(1) = x.col(0);
+    x.col(n - 1) = x.col(3) + g.uniform(0.1, 0.35) * g.unit2();  // the last has neighbours
     BoidsParams p;
     p.separation = {g.uniform(0.05, 1.0), g.uniform(0.4, 1.2)};
     p.alignment = {g.uniform(0.05, 1.0), g.uniform(0.8, 2.0)};
     p.cohesion = {g.uniform(0.05, 1.0), g.uniform(1.2, 3.0)};
     p.goal_weight = g.uniform(0.1, 2.0);
-    p.goal = x.col(n - 1);
+    p.goal = x.col(2);
     const Mat2X f0 = g.points(n, -3.0, 3.0);
     Mat2X f = f0;
     add_boids(x, v, m, p, f);

@@ -254,7 +254,7 @@ TEST_CASE("F9 held-out: random fields and obstacles give the ramped psi and its 
     p.b = g.uniform(0.2, 3.0);
     p.h = g.log_uniform(1e-5, 1e-3);
     p.ramp = g.uniform(0.3, 2.0);
-    for (long k2 = g.integer(0, 3); k2 > 0; --k2)
+    for (long k2 = g.integer(2, 3); k2 > 0; --k2)
       p.obstacles.push_back({g.vec2(-3, 3), g.uniform(0.3, 1.2)});
     auto psi_c = [&](const Vec2& y) {
       if (p.obstacles.empty()) return p.psi(y);
@@ -263,9 +263,15 @@ TEST_CASE("F9 held-out: random fields and obstacles give the ramped psi and its 
       const double s = std::clamp(d / p.ramp, -1.0, 1.0);
       return (15.0 / 8 * s - 10.0 / 8 * s * s * s + 3.0 / 8 * s * s * s * s * s) * p.psi(y);
     };
-    const Eigen::Index n = g.integer(3, 8);
-    const Mat2X x = g.points(n, -4.0, 4.0), v = g.points(n, -2.0, 2.0),
-                f0 = g.points(n, -3.0, 3.0);
+    const Eigen::Index n = g.integer(6, 9);
+    Mat2X x = g.points(n, -4.0, 4.0);
+    // About the first obstacle: one inside it, one in its ramp band, one beyond the band (the
+    // others anywhere).
+    const Disc& o = p.obstacles[0];
+    x.col(0) = o.center + g.uniform(0.1, 0.9) * o.radius * g.unit2();
+    x.col(1) = o.center + (o.radius + g.uniform(0.1, 0.9) * p.ramp) * g.unit2();
+    x.col(2) = o.center + (o.radius + g.uniform(1.2, 2.0) * p.ramp) * g.unit2();
+    const Mat2X v = g.points(n, -2.0, 2.0), f0 = g.points(n, -3.0, 3.0);
     Mat2X expected = f0;
     for (Eigen::Index i = 0; i < n; ++i) {
       const Vec2 y = x.col(i), ex(p.h, 0), ey(0, p.h);

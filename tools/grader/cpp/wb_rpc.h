@@ -136,9 +136,12 @@ void get(In& in, Eigen::Matrix<S, R, C, O, MR, MC>& m) {
   if ((R != Eigen::Dynamic && r != R) || (C != Eigen::Dynamic && c != C) || r < 0 || c < 0 ||
       r > kMaxDim || c > kMaxDim)
     throw ProtocolError("a matrix of the wrong shape");
-  check_count(in, c, sizeof(S));  // c columns of at least one entry,
-  if (c > 0 && std::uint64_t(r) > in.left() / sizeof(S) / std::uint64_t(c))  // r c entries: by
-    throw ProtocolError("a size larger than the message");                   // division
+  // r c entries must fit in what is left: by division, never by a product that could wrap
+  // (an empty matrix, r or c zero, takes no bytes whatever the other dimension).
+  if (r > 0 && c > 0 &&
+      (std::uint64_t(c) > in.left() / sizeof(S) ||
+       std::uint64_t(r) > in.left() / sizeof(S) / std::uint64_t(c)))
+    throw ProtocolError("a size larger than the message");
   m.resize(r, c);
   in.raw(m.data(), std::size_t(r) * std::size_t(c) * sizeof(S));
 }
