@@ -255,7 +255,11 @@ TEST_CASE(
                                s % 4 == 1 ? 0.0 : g.uniform(0.0, 3.0), 0.0);
       const Vec2 n = c.n, t = wb::perp(n);
       c.Pt = g.uniform(-1, 1) * c.mu * c.Pn;
-      const Mat2X v0 = g.points(np, -3.0, 3.0);
+      Mat2X v0 = g.points(np, -3.0, 3.0);
+      if (s % 4 == 2) {  // closing slower than the threshold: a resting contact, no bounce
+        const Vec2 u = Vec2(v0.col(a)) - (b < 0 ? Vec2(0, 0) : Vec2(v0.col(b)));
+        v0.col(a) += (-threshold * g.uniform(0.1, 0.9) - u.dot(n)) * n;
+      }
       const double wa = w[a], wb = b < 0 ? 0.0 : w[b];
       auto rel = [&](const Mat2X& v) {
         return Vec2(v.col(a) - (b < 0 ? Vec2(0, 0) : Vec2(v.col(b))));

@@ -260,6 +260,7 @@ TEST_CASE("F7 held-out: random flocks get the four rules of the header",
     const VecX m = g.values(n, 0.2, 3.0);
     x.col(1) = x.col(0);
     x.col(n - 1) = x.col(3) + g.uniform(0.1, 0.35) * g.unit2();  // the last has neighbours
+    x.col(n - 2) = g.vec2(40, 60);  // a lone boid: no neighbours at all, means over empty sets
     BoidsParams p;
     p.separation = {g.uniform(0.05, 1.0), g.uniform(0.4, 1.2)};
     p.alignment = {g.uniform(0.05, 1.0), g.uniform(0.8, 2.0)};
