@@ -158,6 +158,19 @@ def save_figure(fig, path):
             os.remove(tmp)
 
 
+def summary_line(stdout):
+    """The JSON summary a run prints on the last non-empty line of its standard output
+    (docs/run-contract.md, "The summary line") as a dict, or None when there is none (no
+    output, not JSON, or JSON that is not an object)."""
+    import json
+    lines = [s for s in stdout.splitlines() if s.strip()]
+    try:
+        j = json.loads(lines[-1]) if lines else None
+    except ValueError:
+        return None
+    return j if isinstance(j, dict) else None
+
+
 def write_text_atomic(path, text):
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):

@@ -34,6 +34,7 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.dont_write_bytecode = True
 
 from wbplot import recipes  # noqa: E402
+from wbplot.common import summary_line  # noqa: E402
 
 STAGES = ["stubs", "periods", "claims", "asserts", "reportdoc"]
 RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
@@ -57,15 +58,6 @@ def labs():
 
 def scenes(lab):
     return sorted(glob.glob(os.path.join(ROOT, "scenes", lab, "*.json")))
-
-
-def summary_of(stdout):
-    lines = [s for s in stdout.splitlines() if s.strip()]
-    try:
-        j = json.loads(lines[-1]) if lines else None
-    except json.JSONDecodeError:
-        return None
-    return j if isinstance(j, dict) else None
 
 
 def run(argv, timeout=RUN_TIMEOUT):
@@ -94,7 +86,7 @@ def stage_stubs(build, out, verbose):
         exe = skeleton(lab, build)
         for scene in scenes(lab):
             status, stdout, stderr = run([exe, "--scene", rel(scene)])
-            s = summary_of(stdout)
+            s = summary_line(stdout)
             where = f"{rel(scene)} on the skeleton ({rel(exe)})"
             if status != 0 or s is None:
                 why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
