@@ -111,3 +111,21 @@ def test_check_signatures_names_what_changed(tmp_path, monkeypatch):
     assert mutants.check_signatures("/r", "euler", doc, write=False) is None
     changed = dict(doc, mutants={"a": {"failed": {"t": "z"}}, "b": doc["mutants"]["b"]})
     assert mutants.check_signatures("/r", "euler", changed, write=False) == "a: changed"
+
+
+def test_run_again_finds_a_variant_judged_differently():
+    """Defect: a variant whose failure depends on something else than its input (undefined
+    behaviour: the rows-for-cols mutants read past a matrix and were judged stale one run in
+    three) passes the check, and its signature changes from run to run."""
+    first = ("", 50, 100, [("t1", [], False, "expected 1 got nan"), ("t2", [], True, "")])
+    same_numbers_differ = ("", 50, 100, [("t1", [], False, "expected 1 got 3.5")])
+    text_differs = ("", 50, 100, [("t1", [], False, "expected 1 got -nan")])
+    passes_now = ("", 50, 100, [("t1", [], True, "")])
+    assert mutants.differences(first, ("", 0, 0, [("t1", [], False, "expected 7 got nan")])) == []
+    assert mutants.differences(first, same_numbers_differ) == [
+        ("t1", (False, "expected # got nan"), (False, "expected # got #"))]
+    assert mutants.differences(first, text_differs)
+    (diff,) = mutants.differences(first, passes_now)
+    assert mutants.flaky_verdict([diff]).startswith(
+        "FLAKY: judged differently when run again (1 test(s)), e.g. 't1': first failed: "
+        "'expected # got nan', then passed")
