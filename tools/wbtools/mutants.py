@@ -113,7 +113,7 @@ def direct_build(grader, lab, files):
     return binary, tests
 
 
-def direct_run(grader, lab, binary, tests):
+def direct_run(grader, lab, binary, tests, again=False):
     """Runs `tests` from the direct binary, one process each, and judges each report with the
     grader's own verdict code. Returns the graded tuple (as grade_files), or None when the
     grader itself must judge them (a test did not end the plain way)."""
@@ -138,20 +138,14 @@ def direct_run(grader, lab, binary, tests):
     t0 = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(grader.jobs) as pool:
         results = list(pool.map(one, tests))
-    grade.log(f"mutants: {lab}: ran {len(tests)} test processes in {time.monotonic() - t0:.1f} s")
+    grade.log(f"mutants: {lab}: ran {len(tests)} test processes{' again' if again else ''} in "
+              f"{time.monotonic() - t0:.1f} s")
     if any(r is None for r in results):
         return None
     score = sum(r.score for r in results)
     return ("", score, sum(t.points for t in tests),
             [(r.test.name, list(r.test.tags), r.status == "passed", r.output or r.reason)
              for r in results])
-
-
-def direct_files(grader, lab, files):
-    """Grades `files` from <lab>-tests-direct; None when the grader itself must judge them
-    (the build failed, or a test did not end the plain way)."""
-    built = direct_build(grader, lab, files)
-    return None if built is None else direct_run(grader, lab, *built)
 
 
 # ------------------------------------------------------------ run again, compare
@@ -303,7 +297,7 @@ class Row:
         self.got, self.verdict, self.ok, self.details = "", "", False, []
         self.signature = None  # {failed test: assertion class} of a graded mutant
         self.comments = []
-        self.how = ""  # "direct" or "grader ..." (see direct_files)
+        self.how = ""  # "direct" or "grader ..." (see direct_build, direct_run)
 
 
 def read(path):
@@ -608,7 +602,7 @@ def run_lab(repo, grader, lab, args, stop):
                 failed = [t for t in built[1] if t.name in
                           {r[0] for r in graded[3] if not r[2]}] if graded else []
                 if failed and not args.no_rerun:
-                    again = direct_run(grader, lab, built[0], failed)
+                    again = direct_run(grader, lab, built[0], failed, again=True)
                     if again is None:  # plain the first time, not the second
                         again = ("", 0, 0, [(t.name, t.tags, False, "(the run again was not "
                                              "plain: a crash, an exception, a time-out)")

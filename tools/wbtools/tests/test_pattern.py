@@ -129,3 +129,19 @@ def test_every_doc_of_the_repository_is_covered():
     for must in ("README.md", "docs/grading.md", "handouts/euler.md", "tools/pack.d/README.md",
                  "tools/gradescope/README.md", "fuzz/README.md"):
         assert must in docs
+
+
+def test_every_unit_test_names_the_defect_it_guards():
+    """Defect: a unit test that does not say which defect class it guards (then nobody can
+    tell whether it still guards anything when the code moves)."""
+    import ast
+    import glob
+    root = os.path.dirname(docrefs.TOOLS)
+    missing = []
+    for path in sorted(glob.glob(os.path.join(docrefs.TOOLS, "*", "tests", "test_*.py"))):
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read(), path)
+        missing += [f"{os.path.relpath(path, root)}: {node.name}" for node in tree.body
+                    if isinstance(node, ast.FunctionDef) and node.name.startswith("test_")
+                    and not (ast.get_docstring(node) or "").startswith("Defect")]
+    assert missing == []
