@@ -44,10 +44,12 @@ def test_a_malformed_claim_is_an_error_naming_its_place(body):
 
 
 def test_judge_fails_a_non_finite_or_out_of_range_measure():
-    """Defect: a claim that cannot fail: NaN (a diverged run) compared false both ways and
-    read as holding."""
+    """Defect: a diverged run's measure (inf, NaN) read as holding: 'grows more than 10
+    times' holds for inf, which says the run blew up, not that it grew as stated."""
     c = one("x <!-- claim: stats e/x energy ratio < 2 -->")
     assert c.judge(1.5) == "" and c.judge(2.5) and c.judge(math.nan) and c.judge(None)
+    g = one("x <!-- claim: stats e/x energy ratio > 10 -->")
+    assert g.judge(23.0) == "" and g.judge(math.inf) and g.judge(-math.inf)
     w = one("x <!-- claim: summary e/x status = ok -->")
     assert w.judge("ok") == "" and w.judge("diverged")
 
