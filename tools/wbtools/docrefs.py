@@ -236,21 +236,10 @@ def python_functions(root=ROOT):
 
 
 def split_args(text):
-    """The arguments of a quoted call, split at top-level commas."""
-    out, depth, cur = [], 0, ""
-    for c in text:
-        if c in "([{<":
-            depth += 1
-        elif c in ")]}>":
-            depth -= 1
-        if c == "," and depth == 0:
-            out.append(cur.strip())
-            cur = ""
-        else:
-            cur += c
-    if cur.strip():
-        out.append(cur.strip())
-    return out
+    """The arguments of a quoted call, split at top-level commas (the grader's own splitter
+    of C++ parameter lists)."""
+    from grader import stubs
+    return [a.strip() for a in stubs._split_top(text)]
 
 
 def call_findings(doc, text, lab_funcs, py_funcs, cpp, counts):
