@@ -500,11 +500,9 @@ class Grader:
             if (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
                 raise Defect(f"the test binary or the worker of {lab} changed while grading")
             with budget_lock:
-                left = min(self.lab_budget - used[lab], submission_end - time.monotonic())
-            if left <= 0:
-                which = ("the lab's" if self.lab_budget - used[lab] <= 0 else "the submission's")
-                why = (f"not run: {which} time budget ({self.lab_budget:g} s for a lab, "
-                       f"{self.submission_budget:g} s for a submission) is used up")
+                left, why = time_left(self.lab_budget, used[lab], self.submission_budget,
+                                      submission_end, time.monotonic())
+            if why:
                 return TestResult(t, 0, "failed", why, why + ": earlier tests took that long "
                                   "(timeouts, or a slow or sleeping lab)")
             began = time.monotonic()
@@ -544,6 +542,19 @@ class Grader:
             if rep.gradable:
                 heldout.gate(rep.results)  # public points need the task's held-out check
         return reports
+
+
+def time_left(lab_budget, used, submission_budget, submission_end, now):
+    """(seconds the next test of a lab may run, why it may not run): the least of what is
+    left of the lab's budget (lab_budget less the `used` seconds its tests took so far) and
+    of the submission's (until submission_end, on the clock of `now`); why is "" while both
+    are left, else the reason a test is not run, naming the budget used up."""
+    left = min(lab_budget - used, submission_end - now)
+    if left > 0:
+        return left, ""
+    which = "the lab's" if lab_budget - used <= 0 else "the submission's"
+    return left, (f"not run: {which} time budget ({lab_budget:g} s for a lab, "
+                  f"{submission_budget:g} s for a submission) is used up")
 
 
 def _world_traversable(path):

@@ -11,12 +11,15 @@
 #   - the mutants' failure signatures (which tests each fails, at which
 #     assertion) must equal the stored tests/mutants/<lab>/signatures.json, the
 #     data the grader's hints come from (tools/wbgrade_hints.py); --signatures
-#     rewrites it, --leave-one-out measures the hints from it (no build).
+#     rewrites it, --leave-one-out measures the hints from it (no build);
+#   - every variant is judged the same way when run again: each failed test is run a
+#     second time (and a variant the grader judged is graded a second time), and a
+#     difference in which tests fail or in their failure texts is FLAKY.
 # Each variant is graded by tools/grade's machinery in one scratch build per
 # lab, so a variant recompiles only the files that differ from the last one
 # (grade_files below is the only call into it).
 # Exit status: 0 all as expected, 1 a mutant survived / an alternative lost
-# points / a mutant file is broken, 2 bad input.
+# points / a mutant file is broken / a variant is FLAKY, 2 bad input.
 
 import argparse
 import concurrent.futures
@@ -72,7 +75,8 @@ def grade_files(grader, lab, files):
 # grader's own verdict code (grader.verdict.judge) reads each report. That is taken only when
 # every test ended the plain way: the process exited, its report is complete, and nothing in
 # it could read differently through the worker (no exception, crash, output or time-out):
-# else the variant goes through the grader itself, as each lab's solution always does. The
+# else the variant goes through the grader itself. Each lab's solution is judged the same
+# way (tools/check grades every solution through the grader in the stage before). The
 # stored signatures, made by the grader (--signatures runs everything through it), are
 # compared with what the direct run found: a mutant the two would judge differently fails
 # the check as stale.
@@ -81,9 +85,10 @@ DIRECT_TIMEOUT = 20.0  # s, one test case run directly (the slowest solution tes
 UNSURE = (b"<Exception", b"<FatalErrorCondition", b"<StdOut", b"<StdErr", b"<Warning")
 
 
-def direct_binary(grader, lab, files):
-    """<lab>-tests-direct built with `files` in place of the lab's student files, or None when
-    it does not build; and the lab's test list."""
+def direct_build(grader, lab, files):
+    """Builds <lab>-tests-direct with `files` in place of the lab's student files. Returns
+    (binary, [TestCase]), or None when the grader itself must judge them (the build failed:
+    the grader reports the compile error in its own words)."""
     from grader.project import pristine_files
     from grader.worker import worker_files
     pristine = pristine_files(grader.repo)
@@ -103,7 +108,7 @@ def direct_binary(grader, lab, files):
                            "-j", str(grader.jobs)], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, timeout=600)
     if proc.returncode != 0 or not os.path.isfile(binary):
-        return None, tests  # the grader reports the compile error in its own words
+        return None
     grade.log(f"mutants: {lab}: built {lab}-tests-direct in {time.monotonic() - t0:.1f} s")
     return binary, tests
 
@@ -112,15 +117,12 @@ def heldout_env(seed, count=1):
     return dict(os.environ, WB_HELDOUT_SEED=str(seed), WB_HELDOUT_SEEDS=str(count))
 
 
-def direct_files(grader, lab, files):
-    """Grades `files` from <lab>-tests-direct; None when the grader itself must judge them
-    (the build failed, or a test did not end the plain way)."""
+def direct_run(grader, lab, binary, tests, again=False):
+    """Runs `tests` from the direct binary, one process each, and judges each report with the
+    grader's own verdict code. Returns the graded tuple (as grade_files), or None when the
+    grader itself must judge them (a test did not end the plain way)."""
     from grader.verdict import judge as verdict, read_report
     from grader import heldout
-    binary, tests = direct_binary(grader, lab, files)
-    if binary is None:
-        return None
-    t1 = time.monotonic()
 
     def one(t):
         nonce = "wb-" + secrets.token_hex(8)
@@ -139,9 +141,11 @@ def direct_files(grader, lab, files):
         return verdict(t, ("exit", p.returncode), p.stdout, "", nonce, grader.timeout,
                        grader.src + "/")
 
+    t0 = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(grader.jobs) as pool:
         results = list(pool.map(one, tests))
-    grade.log(f"mutants: {lab}: ran {len(tests)} test processes in {time.monotonic() - t1:.1f} s")
+    grade.log(f"mutants: {lab}: ran {len(tests)} test processes{' again' if again else ''} in "
+              f"{time.monotonic() - t0:.1f} s")
     if any(r is None for r in results):
         return None
     heldout.gate(results)  # as the grader does
@@ -186,9 +190,10 @@ def heldout_failures(binary, cwd, seed, count=1, timeout=300):
 def measure_heldout(grader, lab, files, expected, args):
     """For a correct variant: the held-out failures over args.heldout_seeds seeds (one
     process). For a mutant: {seed: caught?} over args.heldout_mutant_seeds seeds."""
-    binary, _ = direct_binary(grader, lab, files)
-    if binary is None:
+    built = direct_build(grader, lab, files)
+    if built is None:
         return None
+    binary = built[0]
     if expected == "100":
         return heldout_failures(binary, grader.cwd, args.heldout_first, args.heldout_seeds)
     return {s: bool(heldout_failures(binary, grader.cwd, s))
@@ -225,6 +230,38 @@ def print_heldout(labs, rows, args):
     print(f"aim: every correct variant passes every seed; at least {100 * HELDOUT_AIM:.0f} % of "
           "each lab's mutants caught for every seed")
     return ok
+
+
+# ------------------------------------------------------------ run again, compare
+# A variant judged twice on the same tree must be judged the same way: the same tests
+# failed, each with the same failure text as a signature keeps it (wbgrade_hints.failure_text:
+# numbers blanked). Run again, at a small cost (tools/check's mutants stage, ~1 % of it):
+# every test that failed, in the direct path (the run is seconds; the build is most of a
+# variant's time and is not repeated), and the whole grading of a variant the grader judged
+# (a crash, an exception, a time-out: where undefined behaviour and the machine's load show).
+
+
+def judged(graded):
+    """{test name: (passed?, the failure text a signature keeps)} of a graded tuple."""
+    return {name: (passed, "" if passed else hints.failure_text(output))
+            for name, _, passed, output in graded[3]}
+
+
+def differences(first, second):
+    """[(test, what the first run gave, what the second gave)] for the tests of `second` that
+    the two runs judged differently (graded tuples; `second` may hold fewer tests)."""
+    a, b = judged(first), judged(second)
+    return [(name, a.get(name), b[name]) for name in sorted(b) if a.get(name) != b[name]]
+
+
+def flaky_verdict(diffs):
+    """The row's verdict for a variant judged differently when run again."""
+    def said(j):
+        return "(not run)" if j is None else "passed" if j[0] else f"failed: {j[1][:120]!r}"
+    name, a, b = diffs[0]
+    return (f"FLAKY: judged differently when run again ({len(diffs)} test(s)), e.g. {name!r}: "
+            f"first {said(a)}, then {said(b)}: the test or the variant depends on something "
+            "else than its input (undefined behaviour, time, the machine's load)")
 
 
 class PatchError(Exception):
@@ -344,7 +381,7 @@ class Row:
         self.got, self.verdict, self.ok, self.details = "", "", False, []
         self.signature = None  # {failed test: assertion class} of a graded mutant
         self.comments = []
-        self.how = ""  # "direct" or "grader ..." (see direct_files)
+        self.how = ""  # "direct" or "grader ..." (see direct_build, direct_run)
         self.heldout = None  # --heldout-seeds: see measure_heldout
 
 
@@ -646,24 +683,39 @@ def run_lab(repo, grader, lab, args, stop):
                 row.heldout = measure_heldout(grader, lab, files, expected, args)
                 row.got, row.verdict, row.ok = "-", "measured", row.heldout is not None
                 continue
-            graded = None
-            if name != "solution" and not args.through_grader:
-                graded = direct_files(grader, lab, files)
+            graded = again = None
+            if not args.through_grader:
+                built = direct_build(grader, lab, files)
+                graded = direct_run(grader, lab, *built) if built else None
                 row.how = "direct" if graded else "grader (the direct run was not plain)"
+                failed = [t for t in built[1] if t.name in
+                          {r[0] for r in graded[3] if not r[2]}] if graded else []
+                if failed and not args.no_rerun:
+                    again = direct_run(grader, lab, built[0], failed, again=True)
+                    if again is None:  # plain the first time, not the second
+                        again = ("", 0, 0, [(t.name, t.tags, False, "(the run again was not "
+                                             "plain: a crash, an exception, a time-out)")
+                                            for t in failed])
             if graded is None:
                 graded = grade_files(grader, lab, files)
                 row.how = row.how or "grader"
+                if not args.no_rerun and not args.signatures:
+                    again = grade_files(grader, lab, files)
             if name == "solution":
                 all_tests = sorted(r[0] for r in graded[3])
             judge(row, graded, expected, comments)
+            diffs = differences(graded, again) if again else []
+            if diffs:
+                row.ok, row.verdict = False, flaky_verdict(diffs)
+                row.details += [f"run again: {n}: first {a}, then {b}" for n, a, b in diffs]
             if args.heldout_seeds:
                 row.heldout = measure_heldout(grader, lab, files, expected, args)
             elif expected == "100" and args.ci_seeds:  # a few fresh seeds on every run
-                binary, _ = direct_binary(grader, lab, files)
+                built = direct_build(grader, lab, files)
                 from grader.heldout import random_seed
                 first = random_seed()
-                failed = heldout_failures(binary, grader.cwd, first, args.ci_seeds) \
-                    if binary else {"(build)": "the direct tests do not build"}
+                failed = heldout_failures(built[0], grader.cwd, first, args.ci_seeds) \
+                    if built else {"(build)": "the direct tests do not build"}
                 if failed:
                     row.ok, row.verdict = False, f"LOST POINTS on held-out seeds from {first:#x}"
                     row.details += [f"failed: {t}: {why}" for t, why in failed.items()]
@@ -717,6 +769,10 @@ def main(argv):
     p.add_argument("--through-grader", action="store_true",
                    help="grade every mutant through the grader (sandboxed test and worker "
                         "processes) instead of first running the tests linked straight with it")
+    p.add_argument("--no-rerun", action="store_true",
+                   help="do not run again, to compare, the failed tests of each variant (and "
+                        "the whole grading of one the grader judged); a variant judged "
+                        "differently the second time is FLAKY")
     p.add_argument("--refresh-hints", action="store_true",
                    help="no build: rewrite only the hint, kind and task of each mutant in the stored "
                         "signatures from the patches' headers (after editing a '# hint:'); the "
@@ -795,16 +851,23 @@ def main(argv):
         return 0 if print_heldout(labs, rows, args) else 1
     bad = [r for r in rows if not r.ok]
     mut = [r for r in rows if r.expected == "< 100"]
+    flaky = sum(1 for r in rows if r.verdict.startswith("FLAKY"))
     print(f"\nmutants: {sum(r.ok for r in mut)} of {len(mut)} caught; "
           f"{sum(r.ok for r in rows if r.expected == '100')} of "
           f"{sum(1 for r in rows if r.expected == '100')} correct variants kept 100"
+          + (f"; {flaky} FLAKY (judged differently when run again)" if flaky else "")
           + (" (stopped at the first wrong one: --keep-going runs them all)" if stop.is_set()
              else ""))
-    direct = sum(1 for r in mut if r.how == "direct")
+
+    def direct(rs):
+        return f"{sum(1 for r in rs if r.how == 'direct')} of {len(rs)}"
     alts = [r for r in rows if r.expected == "100" and r.variant != "solution"]
-    print(f"mutants: {direct} of {len(mut)} mutants and {sum(1 for r in alts if r.how == 'direct')} "
-          f"of {len(alts)} alternatives judged from their tests run directly, the others (and "
-          "each solution) through the grader")
+    sols = [r for r in rows if r.variant == "solution"]
+    again = "" if args.no_rerun or args.signatures else (
+        " (each failed test run again, to compare)")
+    print(f"mutants: {direct(mut)} mutants, {direct(alts)} alternatives and {direct(sols)} "
+          f"solutions judged from their tests run directly{again}, the others through the "
+          "grader" + ("" if again == "" else " (graded twice, to compare)"))
     return 1 if bad else 0
 
 
