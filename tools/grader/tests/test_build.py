@@ -13,7 +13,8 @@ def case(name, tags, points):
 
 
 GOOD = [case("F5 spring: -k (L - rest)", ["[forces]", "[F5]", "[60pts]"], 60),
-        case("F5 damper along the spring", ["[forces]", "[F5]", "[40pts]"], 40)]
+        case("F5 damper along the spring", ["[forces]", "[F5]", "[25pts]"], 25),
+        case("F5 held-out: random springs", ["[forces]", "[F5]", "[held-out]", "[15pts]"], 15)]
 
 
 def test_a_good_list_passes():
@@ -22,7 +23,9 @@ def test_a_good_list_passes():
 
 
 @pytest.mark.parametrize("tests,words", [
-    ([GOOD[0]], "add up to 60, expected 100"),
+    ([GOOD[0], GOOD[2]], "add up to 75, expected 100"),
+    (GOOD[:2] + [case("F5 more", ["[forces]", "[F5]", "[15pts]"], 15)], "F5 has no test tagged"),
+    (GOOD[:2] + [case("x", ["[forces]", "[held-out]", "[15pts]"], 15)], "exactly one task tag"),
     ([GOOD[0], case("F5 x", ["[F5]", "[40pts]", "[1pts]"], 40)], "2 points tags"),
     ([GOOD[0], case("F5 x", ["[F5]"], 40)], "0 points tags"),
     ([GOOD[0], case("F5 x", ["[F5]", "[40pts]"], 30)], "30 points, but tagged [40pts]"),

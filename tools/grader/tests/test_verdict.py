@@ -8,7 +8,7 @@ import pytest
 
 from grader import common
 from grader.common import Defect
-from grader.verdict import judge, read_report
+from grader.verdict import GraderError, judge, read_report
 
 NONCE = "wb-0123456789abcdef"
 NAME = "E1 one step: positions move with the old velocities"
@@ -77,31 +77,43 @@ def test_a_passing_report_with_a_failed_expression_fails():
 
 def test_a_pass_needs_exit_status_zero():
     """Defect: a complete passing report from a process that then exited non-zero (or was
-    killed) scores points."""
-    r = judge(TEST, ("exit", 3), report(), "", NONCE, 60, SRC)
-    assert r.score == 0 and "exited with status 3" in r.reason
-    r = judge(TEST, ("signal", signal.SIGKILL), report(), "", NONCE, 60, SRC)
-    assert r.score == 0 and "SIGKILL" in r.output
+    killed) scores points. No byte of student code runs in the test process, so that is the
+    grader's own defect (docs/grading.md, "Blame"): GraderError, the lab not scored."""
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("exit", 3), report(), "", NONCE, 60, SRC)
+    assert "exited with status 3" in str(e.value) and "not of the submission" in str(e.value)
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("signal", signal.SIGKILL), report(), "", NONCE, 60, SRC)
+    assert "SIGKILL" in str(e.value)
 
 
 @pytest.mark.parametrize("status,words", [
     (("timeout", 60), "timed out after 60 s"),
-    (("idle", 10), "without using the CPU"),
-    (("signal", signal.SIGSEGV), "crashed (SIGSEGV"),
+    (("idle", 10), "used almost no CPU for 10 s"),
 ])
 def test_how_the_process_ended_is_the_reason(status, words):
-    """Defect: a time-out, a sleeping test or a crash reported as a bare 'failed', which tells
-    the student nothing to act on."""
+    """Defect: a time-out or a sleeping test reported as a bare 'failed', which tells the
+    student nothing to act on."""
     r = judge(TEST, status, b"", "", NONCE, 60, SRC)
     assert r.score == 0 and words in r.reason
 
 
-def test_leaving_in_the_middle_of_the_test_names_exit():
-    """Defect: exit(0) in student code mid-test (a report cut inside the test case) read as a
-    pass or as an unexplained failure."""
+def test_a_crash_of_the_trusted_side_is_the_graders_defect():
+    """Defect: a crash of the trusted test process (issue 29, "Blame") reported as the
+    student's fault ("exit() called in student code?")."""
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("signal", signal.SIGSEGV), b"", "", NONCE, 60, SRC)
+    assert "crashed (SIGSEGV" in str(e.value) and "the lab is not scored" in str(e.value)
+
+
+def test_leaving_in_the_middle_of_the_test_is_the_graders_defect():
+    """Defect: a report cut inside the test case read as a pass or blamed on the submission:
+    student code runs in the worker, never in the test process, so only the grader can cut
+    it."""
     cut = report().split(b"<OverallResult")[0]
-    r = judge(TEST, ("exit", 0), cut, "", NONCE, 60, SRC)
-    assert r.score == 0 and "exit()" in r.reason
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("exit", 0), cut, "", NONCE, 60, SRC)
+    assert "incomplete" in str(e.value)
 
 
 def test_the_workers_end_explains_but_never_passes():
@@ -124,5 +136,6 @@ def test_a_sandbox_that_cannot_start_is_the_graders_defect():
 def test_output_is_capped_and_printable():
     """Defect: a test that floods stdout or prints terminal escapes makes an unbounded or
     forged result (fake lines in the table)."""
-    r = judge(TEST, ("exit", 1), b"", "\x1b[2J" + "x" * 100000, NONCE, 60, SRC)
+    r = judge(TEST, ("exit", 1), report(FAILED_EXPR, ok=False), "\x1b[2J" + "x" * 100000, NONCE,
+              60, SRC)
     assert "\x1b" not in r.output and len(r.output) < 20000
