@@ -47,7 +47,7 @@ VecX inverse_masses() { return (VecX(3) << 0.5, 2.0, 1.0).finished(); }
 }  // namespace
 
 TEST_CASE("C5 prepare: effective mass and the restitution target on both sides of the threshold",
-          "[collisions][C5][3pts]") {
+          "[collisions][C5][2pts]") {
   const VecX w = inverse_masses();
   Mat2X v(2, 3);
   v << 1.0, -0.5, 7.0, -2.0, 1.0, 7.0;             // columns: v0 = (1, -2), v1 = (-0.5, 1), v2
@@ -95,7 +95,7 @@ TEST_CASE("C5 prepare: effective mass and the restitution target on both sides o
 }
 
 TEST_CASE("C5 warm start: the stored totals are applied again with their own sign",
-          "[collisions][C5][3pts]") {
+          "[collisions][C5][2pts]") {
   const VecX w = inverse_masses();
   Mat2X v = Mat2X::Zero(2, 3);
   const Vec2 n(0.6, 0.8), t(-0.8, 0.6);  // t = perp(n)
@@ -116,7 +116,7 @@ TEST_CASE("C5 warm start: the stored totals are applied again with their own sig
 }
 
 TEST_CASE("C5 one iteration: the normal impulse is a clamped total that can be taken back",
-          "[collisions][C5][4pts]") {
+          "[collisions][C5][3pts]") {
   const VecX w = inverse_masses();
   const Vec2 n(0.6, 0.8);
   // Closing with nothing stored: the iteration makes un = bias and returns what it added;

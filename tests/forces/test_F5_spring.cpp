@@ -50,7 +50,7 @@ TEST_CASE("F5 spring: a compressed spring pushes apart and a spring at rest leng
 }
 
 TEST_CASE("F5 spring: the spring force is minus the gradient of 1/2 k (L - rest)^2",
-          "[forces][F5][3pts]") {
+          "[forces][F5][2pts]") {
   // Random ends 0.5 to 3 apart, random rest lengths, no damping. Central
   // differences, h = 1e-5: truncation h^2/6 |V'''| with |V'''| ~ 3 k / L < 100
   // here gives < 2e-9, rounding eps_mach |V| / h ~ 1e-16 * 50 / 1e-5 = 5e-10;

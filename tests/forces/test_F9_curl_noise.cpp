@@ -66,7 +66,7 @@ constexpr double kRampHalf = 15.0 / 16 - 10.0 / 64 + 3.0 / 256;       // 0.79296
 }  // namespace
 
 TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the differences",
-          "[forces][F9][2pts]") {
+          "[forces][F9][1pts]") {
   CurlNoiseParams p = noise_field();
   const Mat2X pts = wbtest::random_points(40, 91, -5.0, 5.0);
   for (int with_obstacles = 0; with_obstacles < 2; ++with_obstacles) {

@@ -186,7 +186,7 @@ TEST_CASE("R6 warm start: the stored totals are applied at the point with their 
 }
 
 TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be taken back",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   // A point moving INTO the plane with nothing stored: the iteration adds the impulse
   // that makes u.n = bias, and returns it.
   Vec3 p;
