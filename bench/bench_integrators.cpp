@@ -42,6 +42,7 @@
 
 #include "forces_world.h"
 #include "wb/dynamics.h"
+#include "wb/run.h"
 #include "wb/scene.h"
 #include "wb/semi_implicit.h"
 #ifdef WB_BENCH_HAS_EULER
@@ -55,6 +56,7 @@
 #ifdef WB_BENCH_HAS_RK4
 #include <boost/numeric/odeint/algebra/default_operations.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta4_classic.hpp>
 #include <boost/numeric/odeint/util/is_resizeable.hpp>
 #include <boost/numeric/odeint/util/resize.hpp>
 #include <boost/numeric/odeint/util/same_size.hpp>
@@ -612,7 +614,100 @@ void bm_odeint(benchmark::State& st) {
   report(st, "odeint/rk4", n, allocations() - before, dyn.evals());
   st.SetLabel("boost::numeric::odeint::runge_kutta4");
 }
+
+// A plain Boost.Odeint program (odeint_fused/rk4/<n>): runge_kutta4_classic on
+// one std::vector<double> (positions as Eigen lays them out, then velocities)
+// with odeint's default range algebra, and a fused right-hand side, one loop
+// over the particles: dx/dt = v, dv/dt = g - (b/m) v. What a scene's rk4 run
+// (run/rk4/<n>) is held against (issue 34): the same particles, the same build
+// flags.
+struct FusedSystem {
+  const std::vector<double>* rate;  // b / m_i per particle (1/s)
+  void operator()(const std::vector<double>& s, std::vector<double>& dsdt, double) const {
+    const std::size_t n = rate->size(), v0 = 2 * n;
+    const double* c = rate->data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double vx = s[v0 + 2 * i], vy = s[v0 + 2 * i + 1];
+      dsdt[2 * i] = vx;
+      dsdt[2 * i + 1] = vy;
+      dsdt[v0 + 2 * i] = kGx - c[i] * vx;
+      dsdt[v0 + 2 * i + 1] = kGy - c[i] * vy;
+    }
+  }
+};
+using FusedStepper = boost::numeric::odeint::runge_kutta4_classic<std::vector<double>>;
+
+std::vector<double> fused_state(const wb::Scene& scene) {
+  const Eigen::Index n = scene.n();
+  std::vector<double> s(std::size_t(4 * n));
+  std::copy(scene.x.data(), scene.x.data() + 2 * n, s.begin());
+  std::copy(scene.v.data(), scene.v.data() + 2 * n, s.begin() + 2 * n);
+  return s;
+}
+
+std::vector<double> fused_rates(const wb::Scene& scene) {
+  std::vector<double> c(std::size_t(scene.n()));
+  for (Eigen::Index i = 0; i < scene.n(); ++i) c[std::size_t(i)] = kB / scene.m[i];
+  return c;
+}
+
+void bm_odeint_fused(benchmark::State& st) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const std::vector<double> rate = fused_rates(scene);
+  std::vector<double> state = fused_state(scene);
+  FusedStepper stepper;
+  const FusedSystem system{&rate};
+  stepper.do_step(system, state, 0.0, kH);  // warm-up: odeint sizes its stage arrays
+  const long before = allocations();
+  for (auto _ : st) {
+    stepper.do_step(system, state, 0.0, kH);
+    benchmark::DoNotOptimize(state.data());
+    benchmark::ClobberMemory();
+  }
+  report(st, "odeint_fused/rk4", n, allocations() - before, -1);
+  st.SetLabel("boost::numeric::odeint::runge_kutta4_classic, fused right-hand side");
+}
 #endif
+
+// A scene's whole run (run/<integrator>/<n>): wb::simulate, the run contract's
+// loop (docs/run-contract.md) with its bookkeeping after every step (is the
+// state finite, its energy for the divergence rule, the records; no output
+// file), on a ForceWorld built from the scene as the executables build it.
+// Timed by the run's own clock (the summary's cpu_s: the step loop's CPU time,
+// without loading and setting up), per step: the counter step_loop_cpu_s,
+// which bench/summarize.py reads for these rows. run/ over scene/ is what the
+// loop adds to the bare step.
+constexpr double kRunParticleSteps = 2e7;  // per simulate() call: 20 steps at n = 10^6
+
+void bm_run(benchmark::State& st, const Method& method) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceWorld world(scene);
+  const wb::Integrator integ{method.name, method.step, 1, 1, ""};
+  wb::RunOptions opt;
+  opt.integrator = &integ;
+  opt.dt = kH;
+  opt.steps = std::max(20L, long(kRunParticleSteps / double(n)));
+  double cpu = 0, wall = 0;
+  long steps = 0;
+  for (auto _ : st) {
+    const wb::RunResult r = wb::simulate(scene, world, opt);
+    if (r.steps != opt.steps || !r.diverged.empty()) {
+      st.SkipWithError("the run stopped early (diverged)");
+      break;
+    }
+    cpu += r.cpu_s;
+    wall += r.wall_s;
+    steps += r.steps;
+    benchmark::DoNotOptimize(r.x.data());
+  }
+  st.counters["step_loop_cpu_s"] = steps > 0 ? cpu / double(steps) : 0.0;
+  st.counters["step_loop_wall_s"] = steps > 0 ? wall / double(steps) : 0.0;
+  st.counters["steps_per_run"] = double(opt.steps);
+  st.counters["n"] = double(n);
+  st.SetLabel("wb::simulate");
+}
 
 void bm_hand(benchmark::State& st, const Method& method, bool fused) {
   const HandFn fn = fused ? method.fused : method.passes;
@@ -758,7 +853,13 @@ void register_all(const std::vector<Method>& all) {
     }
 #ifdef WB_BENCH_HAS_RK4
     benchmark::RegisterBenchmark("odeint/rk4", bm_odeint)->Arg(n);
+    benchmark::RegisterBenchmark("odeint_fused/rk4", bm_odeint_fused)->Arg(n);
 #endif
+    for (const Method& method : all) {
+      benchmark::RegisterBenchmark(("run/" + std::string(method.name)).c_str(), bm_run, method)
+          ->Arg(n)
+          ->Iterations(2);
+    }
     benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
   }
 }

@@ -3,6 +3,7 @@
 // optional phase after every step (collisions). The core knows no lab: each
 // lab's glue (framework/drivers/<lab>/) makes its own World.
 #pragma once
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -21,6 +22,13 @@ struct Energy {
 // Total linear momentum sum m_i v_i (kg m/s).
 inline Vec2 momentum(const Mat2X& v, const VecX& m) { return v * m; }
 
+// Are every position and velocity finite? One pass over both, without a branch
+// per coefficient: q - q is 0 for a finite q and NaN for an infinite or NaN one,
+// so the sum is 0 exactly when all are finite.
+inline bool all_finite(const Mat2X& x, const Mat2X& v) {
+  return (x - x).sum() + (v - v).sum() == 0.0;
+}
+
 class World {
  public:
   virtual ~World() = default;
@@ -28,6 +36,15 @@ class World {
   virtual const Dynamics& dynamics() const = 0;
   // Kinetic and potential energy at (x, v).
   virtual Energy energy(const Mat2X& x, const Mat2X& v) const = 0;
+  // The divergence rule's questions after every step (docs/run-contract.md):
+  // are x and v finite (`finite`), and, when they are, the total energy. A
+  // world answers both in one pass over the particles where it can (the step
+  // loop's bookkeeping, docs/benchmarks.md); the default asks all_finite, then
+  // energy(). Equal to energy().total() up to the order of the sums.
+  virtual double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const {
+    finite = all_finite(x, v);
+    return finite ? energy(x, v).total() : NAN;
+  }
   // Called after every integrator step of size h, before the state is
   // recorded (collision detection and response). The default does nothing.
   virtual void after_step(double /*h*/, Mat2X& /*x*/, Mat2X& /*v*/) const {}
