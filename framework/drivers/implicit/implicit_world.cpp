@@ -2,6 +2,7 @@
 // adapters that call the student's implicit steps (labs/implicit/).
 #include "implicit_world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -412,6 +413,23 @@ std::string newton_check(const Integrator& self, const Dynamics& dyn) {
            " (a sparse factorisation per Newton iteration): expect up to seconds per step "
            "(a cloth of 10^4 particles: about 1 s)";
   }
+  // LDLT factorises in the particles' own order (backward_euler.h): a factor as wide as the
+  // band, the largest index distance a spring between two free particles spans (a rope: 1,
+  // a 2D grid: its row length or more).
+  if (d.options().solver == NewtonOptions::kLDLT) {
+    Eigen::Index band = 0;
+    for (const NetworkSpring& s : net.springs)
+      if (s.j >= 0 && !net.is_pinned(s.i) && !net.is_pinned(s.j))
+        band = std::max(band, s.i > s.j ? s.i - s.j : s.j - s.i);
+    const double flops = 2.0 * double(net.n()) * std::pow(2.0 * double(band), 2.0);
+    if (flops > kLdltWarnFlops) {
+      return d.file() + ": " + self.name + ": newton.solver \"ldlt\" factorises in the "
+             "particles' order, and this network's springs join particles up to " +
+             std::to_string(band) + " apart: about " + num(flops) +
+             " flops per factorisation, every step; \"newton\": {\"solver\": \"cg\", "
+             "\"cg_tol\": 1e-2} is made for such networks (2D cloths)";
+    }
+  }
   return "";
 }
 
@@ -432,11 +450,16 @@ namespace {
 void newton_adapter(const char* name, bool trapezoid, bool one_iteration, const Dynamics& dyn,
                     double h, Mat2X& x, Mat2X& v, Scratch& s) {
   const ImplicitDynamics& d = implicit_dynamics(dyn);
+  NewtonWorkspace& ws = d.workspace();
+  // A run's first step (no evaluation counted yet: every run resets the count)
+  // starts CG from 0, not from another run's last step: the same run, alone or
+  // in a sweep, takes the same steps.
+  if (d.evals() == 0) ws.dv.resize(0);
   d.external_forces(x, v, s.a0);
   NewtonOptions opt = d.options();
   opt.one_iteration = one_iteration;
-  const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v)
-                                   : backward_euler_step(d.network(), s.a0, h, opt, x, v);
+  const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v, ws)
+                                   : backward_euler_step(d.network(), s.a0, h, opt, x, v, ws);
   d.record(name, r);
 }
 void fast_adapter(const char* name, bool one_iteration, const Dynamics& dyn, double h, Mat2X& x,

@@ -80,6 +80,10 @@ ForceList implicit_forces(const Scene& scene, std::vector<std::string>* warnings
 // baraff-witkin step of a 316 x 316 cloth: 34 s of CPU, 645 MB). Above
 // kNewtonWarnParticles a run warns; above kMaxNewtonParticles it is refused.
 constexpr Eigen::Index kNewtonWarnParticles = 20'000;
+// The lab's LDLT (backward_euler.h) keeps the particles' order: a network whose band makes a
+// factorisation cost more than this many flops (2n (2 band)^2; a 100 x 100 cloth: 3e9, about
+// a second) warns that CG is made for it.
+constexpr double kLdltWarnFlops = 1e9;
 constexpr Eigen::Index kMaxNewtonParticles = 100'000;
 
 // Every force of the scene, with the spring network visible to the implicit
@@ -89,6 +93,10 @@ class ImplicitDynamics : public Dynamics {
   ImplicitDynamics(const ForceList& forces, const Scene& scene);
   const SpringNetwork& network() const { return net_; }
   const NewtonOptions& options() const { return opt_; }
+  // The network's workspace for the lab's Newton steps (backward_euler.h): its
+  // pattern and LDLT analysis are made by the first step and kept for every
+  // run on this network; its warm start is cleared when a run starts.
+  NewtonWorkspace& workspace() const { return ws_; }
   // The provided fast path (fast_backward_euler.h), made on its first use:
   // its pattern analysis is paid once per run, by the runs that use it.
   FastBackwardEuler& fast() const;
@@ -108,6 +116,7 @@ class ImplicitDynamics : public Dynamics {
   NewtonOptions opt_;
   FastSolverOptions fast_opt_;
   mutable std::unique_ptr<FastBackwardEuler> fast_;
+  mutable NewtonWorkspace ws_;
   std::string file_;
   Eigen::Array<double, 1, Eigen::Dynamic> inv_m_;
   mutable bool external_only_ = false;
@@ -120,6 +129,9 @@ class ImplicitWorld : public World {
   explicit ImplicitWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const override {
+    return wb::checked_energy(forces_, x, v, m_, finite);
+  }
 
  private:
   VecX m_;
