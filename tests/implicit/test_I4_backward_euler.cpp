@@ -133,13 +133,13 @@ TEST_CASE("I4 backward Euler: energy factor 1/(1 + (h w)^2) per step on linear s
   SpringNetwork net =
       imtest::anchored_network({1.0, 4.0}, {9.0, 36.0}, {Vec2(0.5, 0.5), Vec2(-0.4, 0.1)});
   const double w = 3.0;
-  NewtonWorkspace ws;  // the pattern does not depend on h: one workspace for every step size
+  imtest::CarriedWorkspace ws;  // the pattern does not depend on h: one for every step size
   for (double hw : {0.1, 1.0, 10.0, 1000.0}) {
     Mat2X x(2, 2), v(2, 2);
     x << 1.0, -1.2, 0.3, 0.6;
     v << 0.5, 0.4, -1.0, 0.9;
     const double E0 = imtest::energy(net, x, v);
-    backward_euler_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v, ws);
+    backward_euler_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v, ws.next());
     wbtest::require_near(imtest::energy(net, x, v) / E0, 1.0 / (1.0 + hw * hw), 0.0,
                          "energy ratio of one step at h w = " + std::to_string(hw), 1e-9);
   }
@@ -226,10 +226,10 @@ TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][2p
   Mat2X f(2, 4);
   f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
   Mat2X x = x0, v = v0;
-  NewtonWorkspace ws;  // one per network, kept from step to step
+  imtest::CarriedWorkspace ws;  // one per network, kept from step to step
   for (int step = 0; step < 5; ++step) {
     const Mat2X xs = x, vs = v;
-    backward_euler_step(net, f, 0.1, options(), x, v, ws);
+    backward_euler_step(net, f, 0.1, options(), x, v, ws.next());
     INFO("step " << step << ": pinned particle 2 at " << x.col(2).transpose() << ", velocity "
                  << v.col(2).transpose());
     REQUIRE(x.col(2) == x0.col(2));
@@ -301,8 +301,9 @@ TEST_CASE("I4 backward Euler: a stiff hanging chain at h = 1/60 comes to rest in
     f.col(q) = Vec2(0.0, -m * g);
     if (q > 0) net.springs.push_back(imtest::spring(q - 1, q, k, rest));
   }
-  NewtonWorkspace ws;  // one per network, kept from step to step
-  for (int step = 0; step < 600; ++step) backward_euler_step(net, f, h, options(), x, v, ws);
+  imtest::CarriedWorkspace ws;  // one per network, kept from step to step
+  for (int step = 0; step < 600; ++step)
+    backward_euler_step(net, f, h, options(), x, v, ws.next());
   Mat2X xe(2, N);
   xe.col(0) = top;
   for (int q = 1; q < N; ++q) {
@@ -470,9 +471,10 @@ TEST_CASE("I4 backward Euler: a failed solve is reported and never returned as N
 TEST_CASE("I4 backward Euler: one workspace carries a run step for step as an empty one would",
           "[implicit][I4][2pts]") {
   // 15 steps of a damped network under gravity with particle 2 pinned, each taken
-  // twice: with the run's workspace (its pattern, slots and LDLT analysis from the
-  // first step, CG's warm start) and with an empty one. The same equations: the
-  // same steps (LDLT: to rounding; CG: both within cg_tol * scale of the solution).
+  // twice: with the run's workspace (its system's pattern and slots from the first
+  // step, CG's warm start; its LDLT fresh, as through the grader) and with an
+  // empty one. The same equations: the same steps (LDLT: to rounding; CG: both
+  // within cg_tol * scale of the solution).
   for (auto solver : {NewtonOptions::kLDLT, NewtonOptions::kCG}) {
     for (bool one : {false, true}) {
       SpringNetwork net;
@@ -483,13 +485,13 @@ TEST_CASE("I4 backward Euler: one workspace carries a run step for step as an em
       f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
       NewtonOptions o = options(solver);
       o.one_iteration = one;
-      NewtonWorkspace ws;
+      imtest::CarriedWorkspace ws;
       const std::string what = std::string(solver == NewtonOptions::kCG ? "CG" : "LDLT") +
                                (one ? ", one_iteration" : ", Newton");
       for (int k = 0; k < 15; ++k) {
         Mat2X xf = x, vf = v;
         const NewtonReport rf = step(net, f, 0.1, o, xf, vf);
-        const NewtonReport r = backward_euler_step(net, f, 0.1, o, x, v, ws);
+        const NewtonReport r = backward_euler_step(net, f, 0.1, o, x, v, ws.next());
         INFO(what << ", step " << k + 1 << ": report with the run's workspace {iterations "
                   << r.iterations << ", converged " << r.converged << ", solver_failed "
                   << r.solver_failed << "}, with an empty one {" << rf.iterations << ", "

@@ -36,9 +36,9 @@ TEST_CASE("I5 implicit trapezoid: energy kept exactly on linear springs at any h
     v << 0.5, 0.4, -1.0, 0.9;
     const double E0 = imtest::energy(net, x, v);
     const Mat2X x0 = x;
-    NewtonWorkspace ws;  // one per network and run
+    imtest::CarriedWorkspace ws;  // one per network and run
     for (int step = 0; step < 10; ++step)
-      implicit_trapezoid_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v, ws);
+      implicit_trapezoid_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v, ws.next());
     INFO("the particles must move (h w = " << hw << ")");
     REQUIRE((x - x0).norm() > 1e-6);
     wbtest::require_near(imtest::energy(net, x, v) / E0, 1.0, 0.0,
@@ -87,9 +87,9 @@ TEST_CASE("I5 implicit trapezoid: second order in h against the exact oscillator
   const Vec2 x0(1.0, 0.0), v0(0.0, 3.0);
   auto error = [&](int N) {
     Mat2X x = x0, v = v0;
-    NewtonWorkspace ws;
+    imtest::CarriedWorkspace ws;
     for (int s = 0; s < N; ++s)
-      implicit_trapezoid_step(net, Mat2X::Zero(2, 1), T / N, options(), x, v, ws);
+      implicit_trapezoid_step(net, Mat2X::Zero(2, 1), T / N, options(), x, v, ws.next());
     const Vec2 xe = x0 * std::cos(w * T) + v0 / w * std::sin(w * T);
     return (Vec2(x.col(0)) - xe).norm();
   };
@@ -114,10 +114,10 @@ TEST_CASE("I5 implicit trapezoid: a pinned particle never moves even one that ar
   Mat2X f(2, 4);
   f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
   Mat2X x = x0, v = v0;
-  NewtonWorkspace ws;
+  imtest::CarriedWorkspace ws;
   for (int step = 0; step < 5; ++step) {
     const Mat2X xs = x, vs = v;
-    implicit_trapezoid_step(net, f, 0.1, options(), x, v, ws);
+    implicit_trapezoid_step(net, f, 0.1, options(), x, v, ws.next());
     INFO("step " << step << ": pinned particle 2 at " << x.col(2).transpose() << ", velocity "
                  << v.col(2).transpose());
     REQUIRE(x.col(2) == x0.col(2));
