@@ -14,6 +14,13 @@
 //                                 is the cost of the machinery and nothing else
 //   hand_fused/<integrator>/<n>   one pass per step, everything in registers
 //                                 (a = g - (b/m) v): the best one can do
+// A scene's whole run and what its loop adds (docs/benchmarks.md, "The run loop"):
+//   run/<integrator>/<n>          wb::simulate: the run contract's loop, timed by the
+//                                 run's own step-loop clock (counter step_loop_cpu_s)
+//   loop_check[_separate]/<n>     the loop's per-step bookkeeping alone (one pass, or
+//                                 as before issue 34)
+//   odeint_fused/rk4/<n>          a plain Boost.Odeint runge_kutta4_classic program
+//                                 with a fused right-hand side
 // and two bandwidth measurements (a[i] = b[i] + s c[i]):
 //   triad_dram/<len>   arrays far larger than the caches: the bound's bandwidth
 //   triad_fit/<len>    arrays of 3n doubles, the footprint of one step at n
@@ -680,6 +687,33 @@ void bm_odeint_fused(benchmark::State& st) {
 // loop adds to the bare step.
 constexpr double kRunParticleSteps = 2e7;  // per simulate() call: 20 steps at n = 10^6
 
+// The loop's bookkeeping alone, on a state of the run: loop_check/<n> is what
+// the loop asks after every step (World::checked_energy: the state's
+// finiteness and its energy, one pass); loop_check_separate/<n> the same
+// answers as the loop asked them before issue 34 (x.allFinite(),
+// v.allFinite(), then World::energy: four passes).
+void bm_loop_check(benchmark::State& st, bool separate) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceWorld world(scene);
+  const wb::Mat2X x = scene.x, v = scene.v;
+  double sum = 0;
+  for (auto _ : st) {
+    bool finite = false;
+    double e = 0;
+    if (separate) {
+      finite = x.allFinite() && v.allFinite();
+      e = finite ? world.energy(x, v).total() : NAN;
+    } else {
+      e = world.checked_energy(x, v, finite);
+    }
+    sum += finite ? e : 0.0;
+    benchmark::DoNotOptimize(sum);
+  }
+  st.counters["n"] = double(n);
+  st.SetLabel(separate ? "allFinite x2, World::energy" : "World::checked_energy");
+}
+
 void bm_run(benchmark::State& st, const Method& method) {
   const long n = long(st.range(0));
   const wb::Scene scene = make_scene(n);
@@ -830,12 +864,34 @@ bool check_odeint() {
     for (int c = 0; c < 2; ++c)
       worst = std::max(worst, std::abs(p[c][k] - q[c][k]) / std::max(1.0, std::abs(q[c][k])));
   }
-  if (worst <= kOdeintTol) return true;
-  std::fprintf(stderr,
-               "FAIL: odeint/rk4 differs from scene/rk4 by %.3g (relative) after %d steps; "
-               "expected at most %.3g: the two do not compute the same trajectory\n",
-               worst, kCheckSteps, kOdeintTol);
-  return false;
+  bool ok = worst <= kOdeintTol;
+  if (!ok) {
+    std::fprintf(stderr,
+                 "FAIL: odeint/rk4 differs from scene/rk4 by %.3g (relative) after %d steps; "
+                 "expected at most %.3g: the two do not compute the same trajectory\n",
+                 worst, kCheckSteps, kOdeintTol);
+  }
+  // The plain program: its right-hand side computes a = g - (b/m) v, not (m g - b v)/m,
+  // and odeint sums the stages in its order: roundings only, as for the fused loop.
+  const std::vector<double> rate = fused_rates(scene);
+  std::vector<double> fs = fused_state(scene);
+  FusedStepper fused;
+  for (int k = 0; k < kCheckSteps; ++k) fused.do_step(FusedSystem{&rate}, fs, 0.0, kH);
+  double fworst = 0;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    const double q[2] = {fs[std::size_t(k)], fs[std::size_t(x.size() + k)]};
+    const double p[2] = {x.data()[k], v.data()[k]};
+    for (int c = 0; c < 2; ++c)
+      fworst = std::max(fworst, std::abs(p[c] - q[c]) / std::max(1.0, std::abs(q[c])));
+  }
+  if (fworst > kFusedTol) {
+    std::fprintf(stderr,
+                 "FAIL: odeint_fused/rk4 differs from scene/rk4 by %.3g (relative) after %d "
+                 "steps; expected at most %.3g: the plain program is another integrator\n",
+                 fworst, kCheckSteps, kFusedTol);
+    ok = false;
+  }
+  return ok;
 }
 #endif
 
@@ -860,6 +916,8 @@ void register_all(const std::vector<Method>& all) {
           ->Arg(n)
           ->Iterations(2);
     }
+    benchmark::RegisterBenchmark("loop_check", bm_loop_check, false)->Arg(n);
+    benchmark::RegisterBenchmark("loop_check_separate", bm_loop_check, true)->Arg(n);
     benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
   }
 }

@@ -3,7 +3,6 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <cmath>
 
-
 namespace {
 
 // Solves A dv = b (ws.sys) with the chosen solver: the workspace's LDLT,
