@@ -159,7 +159,7 @@ def main():
         rows = plug.cost_sweep(args.exe, tmp, beads=args.rope, kms=[1e3, 1e4, 1e5, 1e6, 1e7],
                                t_end=args.t_end, repeats=3,
                                methods=["symplectic-euler", "baraff-witkin-fast",
-                                        "backward-euler-fast"])
+                                        "backward-euler-fast", "baraff-witkin"])
         result["sweep"] = rows
         for r in rows:
             if r["km"] == "crossover":
