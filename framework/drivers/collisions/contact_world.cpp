@@ -35,6 +35,26 @@ constexpr double kSkin = 1e-9;
 constexpr double kSlopFraction = 0.01;
 constexpr double kPushBeta = 0.2;
 constexpr int kAccumulatedIterations = 10;  // default "iterations" of the accumulated solver
+// The cost model's rates of the collision phase (docs/scenes.md, "Cost"), measured
+// with the solution's functions on the default scenes (the pile: 10^4 discs, 10.5
+// ms per step): the phase's fixed work per step, the broad phase per particle
+// (grid_pairs: 65 ns at 10^4 spread discs), per estimated candidate pair (the
+// estimate counts cells 4 radii wide: grid_pairs reports about 2/5 of them, the
+// narrow phase keeps most of those) its narrow test, the accumulated solver's
+// bookkeeping (prepare, warm start, the kept totals' table), and its impulse in
+// one pass or iteration; one particle against one plane in one pass.
+constexpr double kSecondsPerContactStep = 0.3e-6;
+constexpr double kSecondsPerBroadParticle = 40e-9;
+constexpr double kSecondsPerCandidate = 10e-9;
+constexpr double kSecondsPerKeptContact = 55e-9;
+constexpr double kSecondsPerContactPass = 7e-9;
+constexpr double kSecondsPerPlaneTest = 4e-9;
+// Memory: the pair lists (grid_pairs reports about 2/5 of the estimate: 8 bytes
+// each in the candidates and the contacts) up to the running check's limit, and a
+// solved contact of the accumulated solver (its Contact, key and kept totals).
+constexpr double kBytesPerEstimatedPair = 0.4 * 2 * 8;
+constexpr double kBytesPerSolvedContact = 120;
+
 // The stub warning compares grid_pairs (C3) with the brute force only up to this many
 // particles: 4000^2 / 2 = 8e6 pair tests, a few milliseconds once per run.
 constexpr Eigen::Index kWarnBruteForceMax = 4000;
@@ -116,13 +136,12 @@ std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings)
   return planes;
 }
 
-double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
+namespace {
+
+// The estimate on cells given as doubles (any finite positions): sorted, grouped,
+// each group's neighbours found by binary search. O(n log n).
+double pairs_on_sorted_cells(const Mat2X& x, double size) {
   const Eigen::Index n = x.cols();
-  if (n < 2 || !(radius.maxCoeff() > 0)) return 0;
-  // Cells as wide as the largest grown diameter (a radius plus a margin of at
-  // most the largest radius), as grid_pairs may use. Cell coordinates stay
-  // doubles: no conversion of a huge or infinite quotient to an integer.
-  const double size = 4 * radius.maxCoeff();
   std::vector<std::pair<double, double>> cells(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
     cells[std::size_t(i)] = {std::floor(x(1, i) / size), std::floor(x(0, i) / size)};
@@ -153,37 +172,94 @@ double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
   return total;
 }
 
+// The same on integer cells (|cell| < 2^30 in each coordinate), counted in a
+// hash table: O(n), what the broad phase's running check can afford every step.
+double pairs_on_hashed_cells(const Mat2X& x, double size) {
+  const Eigen::Index n = x.cols();
+  constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  std::size_t slots = 16;
+  while (slots < 2 * std::size_t(n)) slots *= 2;
+  std::vector<std::uint64_t> keys(slots, kEmpty);
+  std::vector<double> counts(slots, 0.0);
+  const auto key = [](std::int64_t row, std::int64_t col) {
+    return (std::uint64_t(row + (std::int64_t(1) << 31)) << 32) |
+           std::uint64_t(col + (std::int64_t(1) << 31));
+  };
+  const auto slot = [&](std::uint64_t k) {
+    std::size_t s = std::size_t((k * 0x9e3779b97f4a7c15ULL) >> 20) & (slots - 1);
+    while (keys[s] != kEmpty && keys[s] != k) s = (s + 1) & (slots - 1);
+    return s;
+  };
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::uint64_t k =
+        key(std::int64_t(std::floor(x(1, i) / size)), std::int64_t(std::floor(x(0, i) / size)));
+    const std::size_t s = slot(k);
+    keys[s] = k;
+    counts[s] += 1.0;
+  }
+  const auto count = [&](std::int64_t row, std::int64_t col) {
+    const std::size_t s = slot(key(row, col));
+    return keys[s] == kEmpty ? 0.0 : counts[s];
+  };
+  double total = 0;
+  for (std::size_t s = 0; s < slots; ++s) {
+    if (keys[s] == kEmpty) continue;
+    const double c = counts[s];
+    const auto row = std::int64_t(keys[s] >> 32) - (std::int64_t(1) << 31);
+    const auto col = std::int64_t(keys[s] & 0xffffffffULL) - (std::int64_t(1) << 31);
+    total += c * (c - 1) / 2;
+    total += c * (count(row, col + 1) + count(row + 1, col - 1) + count(row + 1, col) +
+                  count(row + 1, col + 1));
+  }
+  return total;
+}
+
+}  // namespace
+
+double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
+  const Eigen::Index n = x.cols();
+  if (n < 2 || !(radius.maxCoeff() > 0)) return 0;
+  // Cells as wide as the largest grown diameter (a radius plus a margin of at
+  // most the largest radius), as grid_pairs may use. Positions whose cells are
+  // beyond 2^30 (discs near 1e308) are counted on cells kept as doubles: no
+  // conversion of a huge quotient to an integer.
+  const double size = 4 * radius.maxCoeff();
+  const double reach = std::max(std::abs(x.minCoeff()), std::abs(x.maxCoeff())) / size;
+  if (reach < 0x1p30 - 2) return pairs_on_hashed_cells(x, size);
+  return pairs_on_sorted_cells(x, size);
+}
+
+double pairs_per_step(const Scene& scene) {
+  if (scene.n() < 2 || !(scene.radius.maxCoeff() > 0)) return 0;
+  return candidate_pairs_estimate(scene.x, scene.radius);
+}
+
+void check_radii(const Scene& scene) {
+  // The collision phase forms 4 max(radius) (its cells), r_i + r_j and (r_i + r_j)^2
+  // (the narrow phase), and moves particles by overlaps: all finite and resolvable
+  // below kMaxRadius.
+  for (Eigen::Index i = 0; i < scene.n(); ++i) {
+    if (scene.radius[i] <= kMaxRadius) continue;
+    throw InputError(scene.file + ": " + particle_key(scene, i) + ".radius: got " +
+                     num(scene.radius[i]) +
+                     ", expected a radius of at most 1e150 m (the collision phase squares sums "
+                     "of radii: 4 max(radius) and (r_i + r_j)^2 must stay finite)");
+  }
+}
+
 ContactWorld::ContactWorld(const Scene& scene)
     : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
-  cost_warnings = forces_.cost_warnings;
+  check_radii(scene);
   planes_ = read_planes(scene, settings_);
   w_ = m_.cwiseInverse();
   any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
-  // The work of one step, estimated before the first: every particle against
-  // every plane in every pass, and the broad phase's candidate pairs.
-  const double passes =
-      settings_.iterations + (settings_.shock ? 2 : 0) + (settings_.ccd ? 1 : 0);
-  const double plane_tests = double(scene.n()) * double(planes_.size()) * passes;
-  if (plane_tests > kMaxPlaneTests) {
-    throw InputError(scene.file + ": planes: " + std::to_string(scene.n()) + " particles x " +
-                     std::to_string(planes_.size()) + " planes x " + num(passes) +
-                     " passes (contact.iterations, + 2 with shock_propagation, + 1 with ccd) = " +
-                     num(plane_tests) + " particle-plane tests per step, expected at most " +
-                     num(kMaxPlaneTests) + " (minutes per step)");
-  }
-  const double pairs = any_radius_ ? candidate_pairs_estimate(scene.x, r_) : 0.0;
-  if (pairs > kMaxCandidatePairs) {
-    throw InputError(scene.file + ": particles: their initial positions and radii give about " +
-                     num(pairs) +
-                     " candidate pairs for the broad phase (particles in neighbouring cells of "
-                     "4 largest radii), expected at most " +
-                     num(kMaxCandidatePairs) + " (spread them out or use fewer)");
-  }
-  if (plane_tests + pairs * settings_.iterations > kSlowContactWork) {
-    cost_warnings.push_back(scene.file + ": about " + num(plane_tests) +
-                            " particle-plane tests and " + num(pairs * settings_.iterations) +
-                            " pair tests per step: expect seconds per step");
-  }
+  // The running check of the broad phase's work (docs/scenes.md, "Cost").
+  pairs_ = WorkMeter(scene.file, "candidate pairs (estimated)",
+                     std::max(pairs_per_step(scene), kPilePairs * double(scene.n())),
+                     "the particles crowd together far more than in their initial state "
+                     "(a pile of equal discs has about " +
+                         num(kPilePairs) +
+                         " per particle); spread them out, use fewer, or smaller radii");
   // "Up" for the stacking pass: against the sum of the uniform gravity terms
   // (each already checked by ForceWorld), summed scaled by 2^-30 so that the
   // sum of large ones does not overflow, and normalised after dividing by its
@@ -230,11 +306,16 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   // is the distance two particles close in one step (2 h max |v|), at most
   // the largest radius.
   contacts_.clear();
+  pairs_.next_step();
   if (any_radius_ && x.cols() >= 2) {
     if (timing) t0 = Clock::now();
     const double margin =
         std::min(2 * h * std::sqrt(v.colwise().squaredNorm().maxCoeff()), r_.maxCoeff());
     r_grown_ = r_.array() + margin;
+    // The work the broad phase may do, counted before it is done (and so before
+    // its pairs are allocated) when all pairs together could pass the limit.
+    const double n = double(x.cols());
+    if (pairs_.over(n * (n - 1) / 2)) pairs_.count(candidate_pairs_estimate(x, r_grown_));
     // grid_pairs is handed positions whose span, plus the largest diameter,
     // is finite in each coordinate. Positions near +-1e308 (or radii near it)
     // are scaled by 1/8 first (span / 8 + 4 radii / 8 < 1.8e308): an exact
@@ -502,8 +583,42 @@ std::vector<std::string> ContactWorld::warnings(const Mat2X& x, const Mat2X& v) 
   return out;
 }
 
+void contact_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
+  forces_step_cost(scene, it, c);
+  if (!scene.doc.contains("planes") && !scene.doc.contains("contact")) return;
+  ContactSettings settings;
+  const std::vector<PlaneDef> planes = read_planes(scene, settings);
+  const double n = double(scene.n()), np = double(planes.size());
+  const double pairs = pairs_per_step(scene);
+  const bool accumulated = settings.solver == Solver::kAccumulated;
+  const double passes = settings.iterations + (settings.shock ? 2 : 0) + (settings.ccd ? 1 : 0);
+  const std::string iters =
+      " x " + std::to_string(settings.iterations) + (accumulated ? " iterations" : " passes");
+  c.step.add("collision phase: its fixed work", "", 1, kSecondsPerContactStep);
+  c.step.add("broad phase: " + std::to_string(scene.n()) + " particles", "particles", n,
+             kSecondsPerBroadParticle);
+  if (pairs > 0) {
+    c.step.add("candidate pairs: about " + num(std::round(pairs)) + " per step", "particles",
+               pairs, kSecondsPerCandidate,
+               kOverrunFactor * std::max(pairs, kPilePairs * n) * kBytesPerEstimatedPair +
+                   (accumulated ? pairs * kBytesPerSolvedContact : 0.0));
+    c.step.add("contact impulses: " + num(std::round(pairs)) + " candidate pairs" + iters,
+               "contact.iterations", pairs * settings.iterations, kSecondsPerContactPass);
+    if (accumulated) {
+      c.step.add("contact bookkeeping: " + num(std::round(pairs)) + " candidate pairs",
+                 "particles", pairs, kSecondsPerKeptContact);
+    }
+  }
+  if (np > 0) {
+    c.step.add("plane tests: " + std::to_string(scene.n()) + " particles x " + num(np) +
+                   " planes x " + num(accumulated ? 1 : passes) + " passes",
+               "planes", n * np * (accumulated ? 1 : passes), kSecondsPerPlaneTest);
+  }
+}
+
 void use_collisions(LabInfo& info) {
   use_forces(info);
+  info.step_cost = contact_step_cost;
   info.scene_keys.push_back("planes");
   info.scene_keys.push_back("contact");
   info.make_world = [](const Scene& scene) -> std::unique_ptr<World> {

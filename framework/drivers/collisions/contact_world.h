@@ -60,20 +60,28 @@ struct ContactSettings {
   bool shock = false;     // "shock_propagation": a last, bottom-up pass for stacks
 };
 
-// Limits of one collision step, checked on the initial state before the first
-// step (docs/scenes.md, "collisions"): particle-plane tests per step
-// (particles x planes x passes), the broad phase's candidate pairs (estimated
-// by candidate_pairs_estimate: 8 bytes each, twice, and a test per pass), and
-// the work above which a run warns that its steps are slow. Measured with the
-// solution: 10^7 candidate pairs take 2.6 s of CPU and 212 MB for one step.
-constexpr double kMaxPlaneTests = 1e9;
-constexpr double kMaxCandidatePairs = 1e7;
-constexpr double kSlowContactWork = 1e7;
+// The collision phase's part of the cost model (docs/scenes.md, "Cost"): the
+// candidate pairs it expects per step are the initial state's estimate, and at
+// least kPilePairs per particle (discs of one radius piled up: a cell of 4 radii
+// holds about 4.6 of them, so a particle meets about 21 in its own and the
+// neighbouring cells). A step whose broad phase would pass kOverrunFactor times
+// that stops the run (WorkMeter), before its pairs are made.
+constexpr double kPilePairs = 24;
+// A radius above this is refused: the phase forms 4 max(radius) and
+// (r_i + r_j)^2, finite below 1e153 with room.
+constexpr double kMaxRadius = 1e150;
 
 // An upper bound of the pairs a uniform grid of cells 4 max(radius) wide
 // tests (each particle against its own and the neighbouring cells), in
 // O(n log n) time and O(n) memory, defined for any finite positions.
 double candidate_pairs_estimate(const Mat2X& x, const VecX& radius);
+
+// The candidate pairs per step the cost model expects of a scene (above).
+double pairs_per_step(const Scene& scene);
+
+// The cost model's terms of a collisions scene for one integrator: its forces
+// (forces_step_cost) and the collision phase after every step.
+void contact_step_cost(const Scene& scene, const Integrator& it, StepCost& c);
 
 // Reads "planes" and "contact" (throws InputError naming the key).
 std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings);
@@ -89,6 +97,7 @@ class ContactWorld : public World {
   explicit ContactWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return forces_.dynamics(); }
   Energy energy(const Mat2X& x, const Mat2X& v) const override { return forces_.energy(x, v); }
+  std::vector<const Force*> terms() const override { return forces_.terms(); }
   void after_step(double h, Mat2X& x, Mat2X& v) const override;
   // A stub's signature: contacts that approached and got no impulse from C1,
   // C2 or C4 in the whole run, a broad phase (C3) that misses pairs.
@@ -118,7 +127,8 @@ class ContactWorld : public World {
   Vec2 up_ = Vec2::Zero();  // against the scene's uniform gravity (0 without one)
   bool timing_ = false;
   mutable PhaseTimes times_;
-  mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
+  mutable WorkMeter pairs_;  // the broad phase's candidate pairs, step by step
+  mutable Mat2X x_prev_;     // positions after the previous step (continuous check)
   mutable Pairs candidates_, contacts_, sorted_;
   mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
   // The accumulated solver: this step's contacts, and every contact's totals (Pn, Pt)

@@ -89,6 +89,9 @@ constexpr double kMaxBodyQuantity = 1e300;
 // The limits as the messages write them (wb::num writes 1e-290 with 17 digits).
 constexpr const char* kInertiaScaleText = "from 1e-290 to 1e+290";
 constexpr const char* kMaxBodyQuantityText = "1e+300";
+// A hinge's anchor and its body's centre at most this many body sizes from the
+// origin (check_hinge).
+constexpr double kMaxHingeReach = 0x1p42;
 
 bool inertia_scale_ok(double m, double d) {
   const double s = m * (d * d);
@@ -218,29 +221,48 @@ void check_initial_totals(const Scene& s) {
                        "or size is so large that they overflow)");
 }
 
-// The contact work of one step (every contact point of every body against
-// every plane), checked before the planes are read: refused above
-// kMaxContactTests, a warning above kSlowContactTests.
-void check_contact_work(const JsonObject& top, Scene& s, std::size_t planes) {
-  double points = 0;  // contact candidates per plane (contact_points)
-  for (const BodyDef& d : s.bodies) {
-    points += d.shape == BodyDef::kSphere ? 1 : d.shape == BodyDef::kBox ? 8 : 32;
+// A body's smallest and largest dimension (box edges; radius; radius and length).
+double smallest_dimension(const BodyDef& d) {
+  if (d.shape == BodyDef::kBox) return d.size.minCoeff();
+  if (d.shape == BodyDef::kCylinder) return std::min(d.radius, d.length);
+  return d.radius;
+}
+double largest_dimension(const BodyDef& d) {
+  if (d.shape == BodyDef::kBox) return d.size.maxCoeff();
+  if (d.shape == BodyDef::kCylinder) return std::max(d.radius, d.length);
+  return d.radius;
+}
+
+// A point force's lever arm: its torque |point| |F| and the angular acceleration
+// it gives, |point| |F| / I_min (I_min >= m d_min^2 / 6, the scene's numbers), at
+// most kMaxBodyQuantity (largest components).
+void check_lever(const JsonObject& o, const char* key, const BodyDef& d, double arm, double F) {
+  const double I_min = d.body.m * (smallest_dimension(d) * smallest_dimension(d)) / 6;
+  const double torque = arm * F;
+  if (within_body_limit(torque) && within_body_limit(torque / I_min)) return;
+  o.fail(key, value_at(o, key),
+         "a point and a force F whose torque |point| |F| (" + wb::num(torque) +
+             " N m) and angular acceleration |point| |F| / I (I >= m d_min^2 / 6 = " +
+             wb::num(I_min) + ") are at most " + std::string(kMaxBodyQuantityText));
+}
+
+// A hinge's numbers, resolvable: its anchor and the body's centre within
+// kMaxHingeReach body sizes of the origin (the drift |x + R r - anchor| is a
+// difference of numbers of that size: rounded to 2^-52 of them, it stays 2^-10 of
+// the body), and the hinge's effective inverse mass 1/m + |r|^2 / I_min finite.
+void check_hinge(const JsonObject& o, const BodyDef& d, const Hinge& hg) {
+  const double size = largest_dimension(d);
+  const double reach = std::max(hg.anchor.cwiseAbs().maxCoeff(), d.body.x.cwiseAbs().maxCoeff());
+  const double I_min = d.body.m * (smallest_dimension(d) * smallest_dimension(d)) / 6;
+  const double r = hg.r_body.cwiseAbs().maxCoeff();
+  if (reach <= kMaxHingeReach * size && within_body_limit(1 / d.body.m + 3 * (r * r) / I_min)) {
+    return;
   }
-  const double tests = points * double(planes);
-  const std::string what = std::to_string(s.bodies.size()) + " bodies (" + wb::num(points) +
-                           " contact points: 8 per box, 1 per sphere, 32 per cylinder) x " +
-                           std::to_string(planes) + " planes = " + wb::num(tests) +
-                           " point-plane tests per step";
-  if (tests > kMaxContactTests) {
-    top.fail("planes", &top.raw().at("planes"),
-             "at most " + wb::num(kMaxContactTests) +
-                 " point-plane tests per step (minutes per "
-                 "step); the scene has " +
-                 what);
-  }
-  if (tests > kSlowContactTests) {
-    s.cost_warnings.push_back(s.file + ": " + what + ": expect seconds per step");
-  }
+  o.fail("anchor", &o.raw().at("anchor"),
+         "an anchor and a body centre within 2^42 body sizes (" + wb::num(kMaxHingeReach * size) +
+             " m) of the origin, so that the hinge's drift is resolvable at the body's scale "
+             "(this one reaches " +
+             wb::num(reach) + " m)");
 }
 
 }  // namespace
@@ -285,6 +307,8 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
       pf.body = body_index(f, s);
       pf.point_body = vec3_or(f, "point", Vec3::Zero());
       pf.F = vec3(f, "F");
+      check_lever(f, "point", s.bodies[pf.body], pf.point_body.cwiseAbs().maxCoeff(),
+                  pf.F.cwiseAbs().maxCoeff());
       s.point_forces.push_back(pf);
     } else {
       f.fail("type", &f.raw().at("type"), "one of: gravity, force");
@@ -295,7 +319,6 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
   }
   check_initial_totals(s);
   const wb::json& planes = top.array_or_empty("planes");
-  check_contact_work(top, s, planes.size());
   double heaviest = 0;
   for (const BodyDef& d : s.bodies) heaviest = std::max(heaviest, d.body.m);
   for (std::size_t i = 0; i < planes.size(); ++i) {
@@ -346,6 +369,7 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
       o.fail("anchor", &o.raw().at("anchor"),
              "a point whose offset from body " + std::to_string(hg.body) + "'s centre is finite");
     }
+    check_hinge(o, s.bodies[hg.body], hg);
     s.hinges.push_back(hg);
   }
   return s;
