@@ -239,6 +239,15 @@ TEST_CASE("I3 assembly: a later assembly writes its values into the first one's 
   s.xl.col(1) = s.x0.col(1);
   SparseSystem sys;
   assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, sys);
+  // Slots outside A's values would make the second assembly write past them: checked first.
+  for (int k : sys.slot) {
+    INFO("after the first assembly, a slot " << k << " outside A's " << sys.A.nonZeros()
+                                             << " stored values (a slot is where a value went "
+                                                "in A.valuePtr(): &A.coeffRef(row, col) - "
+                                                "A.valuePtr())");
+    REQUIRE(k >= 0);
+    REQUIRE(k < sys.A.nonZeros());
+  }
   const std::vector<int> outer(sys.A.outerIndexPtr(), sys.A.outerIndexPtr() + sys.A.cols() + 1);
   const std::vector<int> inner(sys.A.innerIndexPtr(),
                                sys.A.innerIndexPtr() + sys.A.nonZeros());
