@@ -7,7 +7,7 @@
 // TODO(I3) assembly of one Newton step's sparse system (see assemble_system.h).
 // Plan: 1. first = sys.slot.empty(); if first, a std::vector<Eigen::Triplet<double>>,
 //          else A.coeffs().setZero(); one function add(row, col, value) that makes a
-//          triplet (first) or adds value at A.valuePtr()[sys.slot[k++]] (later);
+//          triplet (first) or adds value at A.coeffs()[sys.slot[k++]] (later);
 //       2. for each particle p, the diagonal m_p + h drag (m_p alone if pinned) at
 //          rows 2p, 2p+1; b starts as M (v0 - vl) + h (f_ext - drag vl);
 //       3. for each spring: spring_derivatives at (xl, vl) gives f, K, D;

