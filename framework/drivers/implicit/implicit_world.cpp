@@ -550,7 +550,9 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
       held = 2.0 * n * 2.0 * band;
       how = "LDLT in the particles' order, a band of " + num(band) +
             " (newton.solver \"cg\" is made for 2D networks)";
-      solver_key = "newton.solver";
+      // The key to change: the solver, unless the scene raised the cap on the solves
+      // (then the worst case, every step at its cap, is what that key bought).
+      if (opt.max_iterations <= NewtonOptions{}.max_iterations) solver_key = "newton.solver";
     }
     c.step.add(it.name + ": linear solves (I3 assembly, " + how + "): " + size + per, solver_key,
                solves, t + kSecondsPerSolveSpring * springs,
