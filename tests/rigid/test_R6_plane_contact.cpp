@@ -85,6 +85,13 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
       if ((p - b.x).dot(n) < 0) kept[std::size_t(j++)].p = p;  // the four lower corners
     }
     total = solve_plane_contacts(b, kept, n, 0.0, 0.05, mu, iterations);
+    {  // the vector comes back from the lab's code: its size is checked before it is indexed
+      INFO("solve_plane_contacts returned "
+           << kept.size()
+           << " contacts, it was given 4 (it "
+              "updates their totals, it never adds or drops one)");
+      REQUIRE(kept.size() == 4);
+    }
     ref_position(b, h);
   }
   return total;
@@ -93,7 +100,7 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
 }  // namespace
 
 TEST_CASE("R6 prepare: effective mass along n and the restitution target above the threshold",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   Vec3 p;
   const Body b0 = tilted_box(p);
   const double vn = point_velocity(b0, p).dot(kUp);  // -2.4: approaching
@@ -148,7 +155,7 @@ TEST_CASE("R6 warm start: the stored totals are applied at the point with their 
 }
 
 TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be taken back",
-          "[rigid][R6][4pts]") {
+          "[rigid][R6][3pts]") {
   // A point moving INTO the plane with nothing stored: the iteration adds the impulse
   // that makes u.n = bias, and returns it.
   Vec3 p;
@@ -200,7 +207,7 @@ TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be t
 }
 
 TEST_CASE("R6 friction: the bound is mu times the accumulated normal total and opposes the slip",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   // A sphere (r along -n: no turning from the normal impulse) sliding along x.
   const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
   const Vec3 p(0, 0, 0);
@@ -307,6 +314,144 @@ TEST_CASE("R6 slope: static friction holds when mu > tan theta and else a = g (s
                  "mu = 0.3 < tan 30: speed along the fall line a T, a = g (sin - mu cos)", 1e-6);
     require_near((b.v - b.v.dot(down) * down).norm(), 0.0, 1e-9,
                  "it slides straight down the fall line (friction opposes the slip)");
+  }
+}
+
+namespace heldout_R6 {
+// The header's contact solver, written by the test (plane_contact.h).
+struct Ref {
+  Vec3 p, r;
+  Mat3 K;
+  double mass_n = 0, bias = 0, Pn = 0;
+  Vec3 Pt = Vec3::Zero();
+};
+Mat3 contact_K(const Body& b, const Vec3& r) {
+  const Mat3 R = rot(b);
+  const Mat3 Iinv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  return Mat3::Identity() / b.m - rigid::skew(r) * Iinv * rigid::skew(r);
+}
+void apply(Body& b, const Vec3& r, const Vec3& J) {
+  const Mat3 R = rot(b);
+  const Mat3 Iinv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  b.v += J / b.m;
+  b.omega += Iinv * r.cross(J);
+}
+void prepare(const Body& b, const Vec3& n, double e, double threshold, Ref& c) {
+  c.r = c.p - b.x;
+  c.K = contact_K(b, c.r);
+  c.mass_n = 1 / n.dot(c.K * n);
+  const double un = (b.v + b.omega.cross(c.r)).dot(n);
+  c.bias = -un > threshold ? -e * un : 0.0;
+}
+double solve(Body& b, Ref& c, const Vec3& n, double mu) {
+  const double un = (b.v + b.omega.cross(c.r)).dot(n);
+  const double Pn1 = std::max(c.Pn + c.mass_n * (c.bias - un), 0.0), added = Pn1 - c.Pn;
+  apply(b, c.r, added * n);
+  c.Pn = Pn1;
+  const Vec3 u = b.v + b.omega.cross(c.r), ut = u - u.dot(n) * n;
+  if (ut.norm() > 0) {
+    const Vec3 d = ut / ut.norm();
+    Vec3 Pt1 = c.Pt - ut.norm() / d.dot(c.K * d) * d;
+    if (Pt1.norm() > mu * c.Pn) Pt1 *= mu * c.Pn / Pt1.norm();
+    apply(b, c.r, Pt1 - c.Pt);
+    c.Pt = Pt1;
+  }
+  return added;
+}
+}  // namespace heldout_R6
+
+TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says",
+          "[rigid][R6][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("R6")) {
+    INFO(g.replay());
+    for (int s = 0; s < 4; ++s) {
+      Body b0 = rigidtest::random_body(g);
+      const Vec3 n = g.unit3();
+      const double e = g.uniform(0.0, 1.0), threshold = g.uniform(0.0, 1.0),
+                   mu = g.uniform(0.0, 1.2);
+      // The body moving into the plane (or slowly along it), 1 to 4 contact points.
+      b0.v -= (b0.v.dot(n) + g.uniform(-0.5, 3.0)) * n;
+      if (s == 0) {  // every point closing slower than the threshold: resting, no bounce
+        b0.omega.setZero();
+        b0.v += (-threshold * g.uniform(0.1, 0.9) - b0.v.dot(n)) * n;
+      }
+      const int k = int(g.integer(1, 4));
+      std::vector<Contact> cs(static_cast<std::size_t>(k));
+      std::vector<heldout_R6::Ref> refs(static_cast<std::size_t>(k));
+      for (int i = 0; i < k; ++i) {
+        cs[std::size_t(i)].p = b0.x + g.vec3(-1, 1);
+        // Totals from the last step: none, or some (Pt in the plane within the cone).
+        if (g.coin()) {
+          cs[std::size_t(i)].Pn = g.uniform(0.0, 2.0);
+          Vec3 t = g.vec3(-1, 1);
+          t -= t.dot(n) * n;
+          if (t.norm() > 0)
+            cs[std::size_t(i)].Pt =
+                t / t.norm() * g.uniform(0.0, 1.0) * mu * cs[std::size_t(i)].Pn;
+        }
+        refs[std::size_t(i)].p = cs[std::size_t(i)].p;
+        refs[std::size_t(i)].Pn = cs[std::size_t(i)].Pn;
+        refs[std::size_t(i)].Pt = cs[std::size_t(i)].Pt;
+      }
+      const int iterations = int(g.integer(1, 6));
+      INFO(k << " contacts, n = " << rigidtest::str(n) << ", e = " << e
+             << ", threshold = " << threshold << ", mu = " << mu << ", " << iterations
+             << " iterations; body m = " << b0.m << ", v = " << rigidtest::str(b0.v)
+             << ", omega = " << rigidtest::str(b0.omega));
+      // One contact step by step: prepare, warm start, two iterations.
+      {
+        Body b = b0, e_b = b0;
+        Contact c = cs[0];
+        heldout_R6::Ref ref = refs[0];
+        prepare_contact(b, n, e, threshold, c);
+        heldout_R6::prepare(e_b, n, e, threshold, ref);
+        rigidtest::require_near(c.r, ref.r, 1e-13, "prepare: r = p - x", 1e-13);
+        rigidtest::require_near(c.K, ref.K, 1e-12 * (1 + wbtest::max_abs(ref.K)),
+                                "prepare: K = E/m - [r]x I^-1 [r]x");
+        wbtest::require_near(c.mass_n, ref.mass_n, 0.0, "prepare: mass_n = 1 / (n^T K n)", 1e-12);
+        wbtest::require_near(c.bias, ref.bias, 1e-12,
+                             "prepare: bias = -e u.n above the threshold, else 0", 1e-12);
+        warm_start_contact(b, c, n);
+        heldout_R6::apply(e_b, ref.r, ref.Pn * n + ref.Pt);
+        rigidtest::require_body(b, e_b, 1e-12, "warm start: J = Pn n + Pt applied at p");
+        for (int it = 0; it < 2; ++it) {
+          const double got = solve_contact(b, c, n, mu);
+          const double want = heldout_R6::solve(e_b, ref, n, mu);
+          INFO("solve_contact, iteration " << it + 1);
+          wbtest::require_near(got, want, 1e-12, "returns Pn' - Pn", 1e-11);
+          wbtest::require_near(c.Pn, ref.Pn, 1e-12, "Pn' = max(Pn + mass_n (bias - u.n), 0)",
+                               1e-11);
+          rigidtest::require_near(c.Pt, ref.Pt, 1e-12,
+                                  "Pt' = Pt - |ut| / (d^T K d) d, scaled to mu Pn at most",
+                                  1e-11);
+          rigidtest::require_body(b, e_b, 1e-11, "the body after the iteration's two impulses");
+        }
+      }
+      // All of them together.
+      Body b = b0, e_b = b0;
+      std::vector<Contact> got = cs;
+      const double total = solve_plane_contacts(b, got, n, e, threshold, mu, iterations);
+      for (auto& r : refs) heldout_R6::prepare(e_b, n, e, threshold, r);
+      for (auto& r : refs) heldout_R6::apply(e_b, r.p - e_b.x, r.Pn * n + r.Pt);
+      for (int it = 0; it < iterations; ++it)
+        for (auto& r : refs) heldout_R6::solve(e_b, r, n, mu);
+      double want = 0;
+      for (const auto& r : refs) want += r.Pn;
+      {
+        INFO("solve_plane_contacts returned " << got.size() << " contacts, expected " << k);
+        REQUIRE(got.size() == std::size_t(k));
+      }
+      wbtest::require_near(total, want, 1e-11, "solve_plane_contacts returns the sum of the Pn",
+                           1e-10);
+      for (int i = 0; i < k; ++i) {
+        INFO("contact " << i);
+        wbtest::require_near(got[std::size_t(i)].Pn, refs[std::size_t(i)].Pn, 1e-11,
+                             "its Pn total", 1e-10);
+        rigidtest::require_near(got[std::size_t(i)].Pt, refs[std::size_t(i)].Pt, 1e-11,
+                                "its Pt total", 1e-10);
+      }
+      rigidtest::require_body(b, e_b, 1e-10, "the body after prepare, warm start and the passes");
+    }
   }
 }
 

@@ -31,6 +31,7 @@ from .stubs import lab_headers
 from .stubs import parse as parse_header
 from .symbols import check_objects
 from .worker import WORKER_DIR, run_test, worker_files
+from . import heldout
 
 # ------------------------------------------------------------- scratch build
 
@@ -63,6 +64,8 @@ def check_list(lab, tests, problems=None):
             problems.append(f"'{n}': {t.points} points, but tagged {pts[0]}")
     if not tests:
         problems.append("no test cases")
+    if not problems:
+        problems += heldout.list_problems(lab, tests)
     total = sum(t.points for t in tests if isinstance(t.points, int))
     if not problems and total != 100:
         problems.append(f"the points add up to {total}, expected 100")
@@ -74,8 +77,10 @@ class Grader:
     """A scratch copy of the project and its build, reusable across runs."""
 
     def __init__(self, repo, build_root=None, jobs=2, timeout=60.0, verbose=True, screen=True,
-                 lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET):
+                 lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET, seed=None):
         self.repo, self.jobs, self.timeout, self.verbose = repo, max(1, jobs), timeout, verbose
+        # The held-out inputs' seed (heldout.py): given to every test process.
+        self.seed = heldout.random_seed() if seed is None else seed
         self.lab_budget, self.submission_budget = lab_budget, submission_budget
         self._deadline = None
         self.build_isolation = "nothing built in this run (the build folder was up to date)"
@@ -445,6 +450,14 @@ class Grader:
                         staged[os.path.join("labs", lab, name)] = data
         self.sync(staged)
         self.configure(labs)
+        # Nothing an earlier build left may differ between the screening and the build: the
+        # binaries build_lab removes are removed now, before the screening preprocesses.
+        for lab in labs:
+            for old in (self.binary(lab), self.worker(lab)):
+                try:
+                    os.remove(old)
+                except FileNotFoundError:
+                    pass
         commands = self.compile_commands() if self.screen else {}
         for lab in labs:
             allowed = set(student_files(self.repo, lab))
@@ -487,17 +500,15 @@ class Grader:
             if (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
                 raise Defect(f"the test binary or the worker of {lab} changed while grading")
             with budget_lock:
-                left = min(self.lab_budget - used[lab], submission_end - time.monotonic())
-            if left <= 0:
-                which = ("the lab's" if self.lab_budget - used[lab] <= 0 else "the submission's")
-                why = (f"not run: {which} time budget ({self.lab_budget:g} s for a lab, "
-                       f"{self.submission_budget:g} s for a submission) is used up")
+                left, why = time_left(self.lab_budget, used[lab], self.submission_budget,
+                                      submission_end, time.monotonic())
+            if why:
                 return TestResult(t, 0, "failed", why, why + ": earlier tests took that long "
                                   "(timeouts, or a slow or sleeping lab)")
             began = time.monotonic()
             try:
                 return run_test(self.sandbox, runnable[lab], workers[lab], t,
-                                min(self.timeout, left), self.src + "/", self.cwd)
+                                min(self.timeout, left), self.src + "/", self.cwd, self.seed)
             finally:
                 with budget_lock:
                     used[lab] += time.monotonic() - began
@@ -528,7 +539,22 @@ class Grader:
                                                   "The lab does not compile:\n" + rep.compile_error))
                 else:
                     rep.results.append(futures[(lab, t.name)].result())
+            if rep.gradable:
+                heldout.gate(rep.results)  # public points need the task's held-out check
         return reports
+
+
+def time_left(lab_budget, used, submission_budget, submission_end, now):
+    """(seconds the next test of a lab may run, why it may not run): the least of what is
+    left of the lab's budget (lab_budget less the `used` seconds its tests took so far) and
+    of the submission's (until submission_end, on the clock of `now`); why is "" while both
+    are left, else the reason a test is not run, naming the budget used up."""
+    left = min(lab_budget - used, submission_end - now)
+    if left > 0:
+        return left, ""
+    which = "the lab's" if lab_budget - used <= 0 else "the submission's"
+    return left, (f"not run: {which} time budget ({lab_budget:g} s for a lab, "
+                  f"{submission_budget:g} s for a submission) is used up")
 
 
 def _world_traversable(path):

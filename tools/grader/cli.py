@@ -10,6 +10,7 @@ import sys
 from . import common
 from .build import Grader
 from .common import BadInput, Defect, log
+from . import heldout
 from .procs import kill_all
 from .project import repo_root
 from .results import layers_data, layers_text, print_table, results_json, write_atomic
@@ -60,6 +61,12 @@ def parse_args(argv):
                    help="exit 1 unless every graded lab scores exactly N")
     p.add_argument("--jobs", type=int, default=2, metavar="J",
                    help="test cases run at once, and build jobs (default 2)")
+    p.add_argument("--seed", metavar="N",
+                   help="the seed of the held-out inputs (decimal or 0x hex): replays a grading's "
+                        "held-out checks (default: a random one, printed)")
+    p.add_argument("--seed-key", metavar="FILE",
+                   help="derive the seed from this secret and the submission's files (the "
+                        "autograder's: the student cannot know it in advance)")
     p.add_argument("--no-screen", action="store_true",
                    help="skip the screening of student files (only to test the sandbox alone; "
                         "the output and results.json say so)")
@@ -87,8 +94,14 @@ def main(argv):
     for flag, value in (("--lab-budget", args.lab_budget), ("--budget", args.budget)):
         if value <= 0:
             raise BadInput(f"{flag} {value:g}: expected a positive number of seconds")
+    if args.seed is not None and args.seed_key:
+        raise BadInput("--seed and --seed-key: give one of them")
+    seed = (heldout.parse_seed(args.seed) if args.seed is not None else
+            heldout.seed_from_key(args.seed_key, overlays) if args.seed_key else
+            heldout.random_seed())
+    log(f"grade: held-out inputs from seed {seed:#x} (--seed {seed:#x} replays them)")
     grader = Grader(repo, args.build_dir, args.jobs, args.timeout, screen=not args.no_screen,
-                    lab_budget=args.lab_budget, submission_budget=args.budget)
+                    lab_budget=args.lab_budget, submission_budget=args.budget, seed=seed)
     try:
         layers = layers_text(grader)
         log("grade: " + layers.replace("\n", "\ngrade: "))

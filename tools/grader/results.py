@@ -36,7 +36,9 @@ def layers_text(grader):
     lines = ["screening: " + ("active (allow-listed headers, denied identifiers, regular files)"
                               if grader.screen else "OFF (--no-screen: for testing the sandbox)"),
              "sandbox of each test process:", grader.sandbox.describe(),
-             "build (compiler, assembler, linker): " + grader.build_isolation]
+             "build (compiler, assembler, linker): " + grader.build_isolation,
+             f"held-out inputs: seed {grader.seed:#x} (tools/grade --seed {grader.seed:#x} "
+             "replays them)"]
     return "\n".join(lines)
 
 

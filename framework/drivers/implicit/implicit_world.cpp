@@ -506,9 +506,14 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
   // The implicit executable links the sparse solvers (CHOLMOD, BLAS): its start
   // takes about twice a particle lab's.
   c.once.add("start: the sparse solvers' libraries", "", 1, kStartSeconds);
-  double written = 0;  // springs written in "forces"
-  for (const json& f : scene.doc.value("forces", json::array())) {
-    written += f.is_object() && f.value("type", "") == "spring";
+  // Springs written in "forces". The cost is estimated before the forces are
+  // read (and refused if malformed), so every entry's shape is checked here.
+  double written = 0;
+  const json* list = scene.doc.contains("forces") ? &scene.doc.at("forces") : nullptr;
+  for (std::size_t k = 0; list && list->is_array() && k < list->size(); ++k) {
+    const json& f = (*list)[k];
+    written += f.is_object() && f.contains("type") && f.at("type").is_string() &&
+               f.at("type").get<std::string>() == "spring";
   }
   const double springs = generated + written;
   c.once.add("the spring network: " + num(springs) + " springs", "forces", springs,

@@ -9,7 +9,9 @@
 #include "body_inertia.h"
 #include "hinge.h"
 #include "integrate_position.h"
+#include "plane_contact.h"
 #include "wb/run.h"
+#include "world_inertia.h"
 
 namespace rigid {
 
@@ -407,30 +409,15 @@ std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane&
 
 double resolve_plane_passes(Body& b, const std::vector<Vec3>& points, const Vec3& point,
                             const Vec3& n, double e, double mu) {
-  // One impulse at one point, with restitution and friction: the sliding left
-  // after the normal impulse is stopped, or takes at most mu jn (Coulomb).
+  // One impulse at one point, with restitution and friction: the lab's own contact (R6),
+  // prepared afresh (no totals kept, restitution at every closing speed) and solved once:
+  // the normal impulse stops the approach and bounces, the friction stops the sliding
+  // left after it or takes at most mu times the normal impulse (Coulomb).
   const auto impulse = [&](const Vec3& p) {
-    const Vec3 r = p - b.x;
-    const double vn = (b.v + b.omega.cross(r)).dot(n);
-    if (vn >= 0.0) return 0.0;  // separating or resting: no impulse
-    const Mat3 R = b.q.toRotationMatrix();
-    const Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
-    const auto inv_mass = [&](const Vec3& u) {
-      return 1.0 / b.m + u.dot((I_inv * r.cross(u)).cross(r));
-    };
-    const double jn = -(1.0 + e) * vn / inv_mass(n);
-    b.v += jn * n / b.m;
-    b.omega += I_inv * r.cross(jn * n);
-    const Vec3 u = b.v + b.omega.cross(r);
-    const Vec3 vt = u - u.dot(n) * n;
-    const double speed = vt.norm();
-    if (speed > 0.0) {
-      const Vec3 t = vt / speed;
-      const double jt = std::min(speed / inv_mass(t), mu * jn);
-      b.v -= jt * t / b.m;
-      b.omega -= I_inv * r.cross(jt * t);
-    }
-    return jn;
+    Contact c;
+    c.p = p;
+    prepare_contact(b, n, e, 0.0, c);
+    return solve_contact(b, c, n, mu);
   };
   double total = 0.0;
   for (int pass = 0; pass < kContactPasses; ++pass) {
@@ -458,14 +445,15 @@ namespace {
 void push_out(const Body& b, const std::vector<Contact>& contacts,
               const std::vector<double>& depth, const Vec3& n, double h, int iterations, Vec3& vp,
               Vec3& wp) {
-  const Mat3 R = b.q.toRotationMatrix();
-  const Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  // The lab's own world inverse inertia (R2), and each contact's effective mass along n as
+  // the lab's prepare_contact (R6) left it in the contact.
+  const Mat3 I_inv = world_inverse_inertia(b.q.toRotationMatrix(), b.I_body);
   std::vector<double> total(contacts.size(), 0.0);
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       if (!(depth[k] > 0)) continue;
       const Vec3& r = contacts[k].r;
-      const double inv_mass = 1.0 / b.m + n.dot((I_inv * r.cross(n)).cross(r));
+      const double inv_mass = 1.0 / contacts[k].mass_n;
       const double un = (vp + wp.cross(r)).dot(n);
       const double next = std::max(total[k] + (kPushBeta / h * depth[k] - un) / inv_mass, 0.0);
       const Vec3 J = (next - total[k]) * n;

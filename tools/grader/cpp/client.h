@@ -16,12 +16,22 @@
 
 namespace wbrpc {
 
+// A callback of a call under way, with the number of particles of that call (the columns of
+// its first 2 x n argument, -1 without one): the worker never chooses a size the trusted side
+// indexes with, so a callback's x, v, m, a, f must have exactly that many.
+template <class T>
+struct Registered {
+  const T* what;
+  std::int64_t n;
+};
+
 struct Session {
   Channel ch;
-  std::vector<const wb::Dynamics*> dyn;                                // callbacks of the calls
-  std::vector<const std::vector<std::unique_ptr<wb::Force>>*> forces;  // under way
-  std::vector<const PointFunction*> points;                            // (wb::Potential)
-  std::exception_ptr callback_error;  // the first exception a callback threw in this call
+  std::vector<Registered<wb::Dynamics>> dyn;                                // callbacks of
+  std::vector<Registered<std::vector<std::unique_ptr<wb::Force>>>> forces;  // the calls
+  std::vector<const PointFunction*> points;                                 // under way
+  std::vector<std::int64_t> particles;  // of each call under way (innermost last)
+  std::exception_ptr callback_error;    // the first exception a callback threw in this call
   int depth = 0;
 };
 
@@ -33,13 +43,26 @@ void run_callback(Session& s, In& in);
 inline void put(Out& o, const wb::Dynamics& d) {
   Session& s = session();
   put(o, std::int32_t(s.dyn.size()));
-  s.dyn.push_back(&d);
+  s.dyn.push_back({&d, s.particles.empty() ? -1 : s.particles.back()});
 }
 inline void put(Out& o, const std::vector<std::unique_ptr<wb::Force>>& f) {
   Session& s = session();
   put(o, std::int32_t(s.forces.size()));
   put(o, std::int64_t(f.size()));
-  s.forces.push_back(&f);
+  s.forces.push_back({&f, s.particles.empty() ? -1 : s.particles.back()});
+}
+
+// The particles of a call: the columns of its first wb::Mat2X argument (-1 when it has none).
+template <class... A>
+std::int64_t particles_of(const A&... a) {
+  std::int64_t n = -1;
+  (
+      [&](const auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, wb::Mat2X>)
+          if (n < 0) n = x.cols();
+      }(a),
+      ...);
+  return n;
 }
 
 template <class Sig>
@@ -51,11 +74,13 @@ struct Caller<R(A...)> {
     Session& s = session();
     const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size(), points0 = s.points.size();
     if (s.depth++ == 0) s.callback_error = nullptr;
+    s.particles.push_back(particles_of(a...));
     struct Restore {
       Session& s;
       std::size_t d, f, p;
       ~Restore() {
-        s.dyn.resize(d), s.forces.resize(f), s.points.resize(p);
+        s.dyn.resize(d, {nullptr, -1}), s.forces.resize(f, {nullptr, -1}), s.points.resize(p);
+        s.particles.pop_back();
         --s.depth;
       }
     } restore{s, dyn0, forces0, points0};
