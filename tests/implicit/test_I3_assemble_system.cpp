@@ -98,8 +98,7 @@ void require_dense(const SparseSystem& sys, const Eigen::MatrixXd& Ae, const Eig
   const Eigen::MatrixXd Ad = full(A);
   (Ad - Ae).cwiseAbs().maxCoeff(&r, &c);  // where, for the message (the check is NaN-safe)
   INFO(what << ": largest difference from the dense reference at A(" << r << ", " << c
-            << ") (A's upper triangle, mirrored): got " << Ad(r, c) << ", expected "
-            << Ae(r, c));
+            << ") (A's upper triangle, mirrored): got " << Ad(r, c) << ", expected " << Ae(r, c));
   REQUIRE(wbtest::max_abs_diff(Ad, Ae) <= kRelTol * wbtest::max_abs(Ae));  // NaN fails
   Eigen::Index i;
   (b - be).cwiseAbs().maxCoeff(&i);
@@ -133,8 +132,9 @@ TEST_CASE("I3 assembly: A is 2n x 2n and stores its upper triangle with the netw
         REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
       }
       {
-        INFO("it is below the diagonal: A is symmetric, only its upper triangle (row <= "
-             "column) is stored (assemble_system.h)");
+        INFO(
+            "it is below the diagonal: A is symmetric, only its upper triangle (row <= "
+            "column) is stored (assemble_system.h)");
         REQUIRE(it.row() <= it.col());
       }
     }
@@ -249,8 +249,7 @@ TEST_CASE("I3 assembly: a later assembly writes its values into the first one's 
     REQUIRE(k < sys.A.nonZeros());
   }
   const std::vector<int> outer(sys.A.outerIndexPtr(), sys.A.outerIndexPtr() + sys.A.cols() + 1);
-  const std::vector<int> inner(sys.A.innerIndexPtr(),
-                               sys.A.innerIndexPtr() + sys.A.nonZeros());
+  const std::vector<int> inner(sys.A.innerIndexPtr(), sys.A.innerIndexPtr() + sys.A.nonZeros());
   const std::vector<int> slot = sys.slot;
   sys.A.coeffs().setConstant(std::nan(""));
   sys.b.setConstant(std::nan(""));

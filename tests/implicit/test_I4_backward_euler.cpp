@@ -501,9 +501,10 @@ TEST_CASE("I4 backward Euler: one workspace carries a run step for step as an em
         REQUIRE(r.iterations >= 1);
         REQUIRE(r.converged);
         REQUIRE(rf.converged);
-        wbtest::require_near(v, vf, 1e-9, what + ", step " + std::to_string(k + 1) +
-                                              ": v' with the run's workspace against an empty "
-                                              "one's (is a later assembly or solve stale?)");
+        wbtest::require_near(v, vf, 1e-9,
+                             what + ", step " + std::to_string(k + 1) +
+                                 ": v' with the run's workspace against an empty "
+                                 "one's (is a later assembly or solve stale?)");
         wbtest::require_near(x, xf, 1e-9, what + ": x' likewise");
       }
     }

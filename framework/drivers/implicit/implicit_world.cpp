@@ -541,9 +541,9 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
     // The lab's step (backward_euler.h): CG, or LDLT in the particles' order, whose
     // factor on a 2D network fills the band (a cloth's: its row, twice with bend springs;
     // hand-written springs: about sqrt(n)).
-    const double band =
-        gen && gen->cloth ? double(gen->cloth->C) * (gen->cloth->kb > 0 ? 2.0 : 1.0)
-                          : std::sqrt(n);
+    const double band = gen && gen->cloth
+                            ? double(gen->cloth->C) * (gen->cloth->kb > 0 ? 2.0 : 1.0)
+                            : std::sqrt(n);
     double t = kSecondsPerSolveChain * n, held = kFactorEntriesChain * n;
     std::string how = "LDLT", solver_key = key;
     if (opt.solver == NewtonOptions::kCG) {
