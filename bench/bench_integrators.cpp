@@ -14,6 +14,13 @@
 //                                 is the cost of the machinery and nothing else
 //   hand_fused/<integrator>/<n>   one pass per step, everything in registers
 //                                 (a = g - (b/m) v): the best one can do
+// A scene's whole run and what its loop adds (docs/benchmarks.md, "The run loop"):
+//   run/<integrator>/<n>          wb::simulate: the run contract's loop, timed by the
+//                                 run's own step-loop clock (counter step_loop_cpu_s)
+//   loop_check[_separate]/<n>     the loop's per-step bookkeeping alone (one pass, or
+//                                 as before issue 34)
+//   odeint_fused/rk4/<n>          a plain Boost.Odeint runge_kutta4_classic program
+//                                 with a fused right-hand side
 // and two bandwidth measurements (a[i] = b[i] + s c[i]):
 //   triad_dram/<len>   arrays far larger than the caches: the bound's bandwidth
 //   triad_fit/<len>    arrays of 3n doubles, the footprint of one step at n
@@ -42,6 +49,7 @@
 
 #include "forces_world.h"
 #include "wb/dynamics.h"
+#include "wb/run.h"
 #include "wb/scene.h"
 #include "wb/semi_implicit.h"
 #ifdef WB_BENCH_HAS_EULER
@@ -55,6 +63,7 @@
 #ifdef WB_BENCH_HAS_RK4
 #include <boost/numeric/odeint/algebra/default_operations.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta4_classic.hpp>
 #include <boost/numeric/odeint/util/is_resizeable.hpp>
 #include <boost/numeric/odeint/util/resize.hpp>
 #include <boost/numeric/odeint/util/same_size.hpp>
@@ -612,7 +621,127 @@ void bm_odeint(benchmark::State& st) {
   report(st, "odeint/rk4", n, allocations() - before, dyn.evals());
   st.SetLabel("boost::numeric::odeint::runge_kutta4");
 }
+
+// A plain Boost.Odeint program (odeint_fused/rk4/<n>): runge_kutta4_classic on
+// one std::vector<double> (positions as Eigen lays them out, then velocities)
+// with odeint's default range algebra, and a fused right-hand side, one loop
+// over the particles: dx/dt = v, dv/dt = g - (b/m) v. What a scene's rk4 run
+// (run/rk4/<n>) is held against (issue 34): the same particles, the same build
+// flags.
+struct FusedSystem {
+  const std::vector<double>* rate;  // b / m_i per particle (1/s)
+  void operator()(const std::vector<double>& s, std::vector<double>& dsdt, double) const {
+    const std::size_t n = rate->size(), v0 = 2 * n;
+    const double* c = rate->data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double vx = s[v0 + 2 * i], vy = s[v0 + 2 * i + 1];
+      dsdt[2 * i] = vx;
+      dsdt[2 * i + 1] = vy;
+      dsdt[v0 + 2 * i] = kGx - c[i] * vx;
+      dsdt[v0 + 2 * i + 1] = kGy - c[i] * vy;
+    }
+  }
+};
+using FusedStepper = boost::numeric::odeint::runge_kutta4_classic<std::vector<double>>;
+
+std::vector<double> fused_state(const wb::Scene& scene) {
+  const Eigen::Index n = scene.n();
+  std::vector<double> s(std::size_t(4 * n));
+  std::copy(scene.x.data(), scene.x.data() + 2 * n, s.begin());
+  std::copy(scene.v.data(), scene.v.data() + 2 * n, s.begin() + 2 * n);
+  return s;
+}
+
+std::vector<double> fused_rates(const wb::Scene& scene) {
+  std::vector<double> c(std::size_t(scene.n()));
+  for (Eigen::Index i = 0; i < scene.n(); ++i) c[std::size_t(i)] = kB / scene.m[i];
+  return c;
+}
+
+void bm_odeint_fused(benchmark::State& st) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const std::vector<double> rate = fused_rates(scene);
+  std::vector<double> state = fused_state(scene);
+  FusedStepper stepper;
+  const FusedSystem system{&rate};
+  stepper.do_step(system, state, 0.0, kH);  // warm-up: odeint sizes its stage arrays
+  const long before = allocations();
+  for (auto _ : st) {
+    stepper.do_step(system, state, 0.0, kH);
+    benchmark::DoNotOptimize(state.data());
+    benchmark::ClobberMemory();
+  }
+  report(st, "odeint_fused/rk4", n, allocations() - before, -1);
+  st.SetLabel("boost::numeric::odeint::runge_kutta4_classic, fused right-hand side");
+}
 #endif
+
+// A scene's whole run (run/<integrator>/<n>): wb::simulate, the run contract's
+// loop (docs/run-contract.md) with its bookkeeping after every step (is the
+// state finite, its energy for the divergence rule, the records; no output
+// file), on a ForceWorld built from the scene as the executables build it.
+// Timed by the run's own clock (the summary's cpu_s: the step loop's CPU time,
+// without loading and setting up), per step: the counter step_loop_cpu_s,
+// which bench/summarize.py reads for these rows. run/ over scene/ is what the
+// loop adds to the bare step.
+constexpr double kRunParticleSteps = 2e7;  // per simulate() call: 20 steps at n = 10^6
+
+// The loop's bookkeeping alone, on a state of the run: loop_check/<n> is what
+// the loop asks after every step (World::checked_energy: the state's
+// finiteness and its energy, one pass); loop_check_separate/<n> the same
+// answers as the loop asked them before issue 34 (x.allFinite(),
+// v.allFinite(), then World::energy: four passes).
+void bm_loop_check(benchmark::State& st, bool separate) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceWorld world(scene);
+  const wb::Mat2X x = scene.x, v = scene.v;
+  double sum = 0;
+  for (auto _ : st) {
+    bool finite = false;
+    double e = 0;
+    if (separate) {
+      finite = x.allFinite() && v.allFinite();
+      e = finite ? world.energy(x, v).total() : NAN;
+    } else {
+      e = world.checked_energy(x, v, finite);
+    }
+    sum += finite ? e : 0.0;
+    benchmark::DoNotOptimize(sum);
+  }
+  st.counters["n"] = double(n);
+  st.SetLabel(separate ? "allFinite x2, World::energy" : "World::checked_energy");
+}
+
+void bm_run(benchmark::State& st, const Method& method) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceWorld world(scene);
+  const wb::Integrator integ{method.name, method.step, 1, 1, ""};
+  wb::RunOptions opt;
+  opt.integrator = &integ;
+  opt.dt = kH;
+  opt.steps = std::max(20L, long(kRunParticleSteps / double(n)));
+  double cpu = 0, wall = 0;
+  long steps = 0;
+  for (auto _ : st) {
+    const wb::RunResult r = wb::simulate(scene, world, opt);
+    if (r.steps != opt.steps || !r.diverged.empty()) {
+      st.SkipWithError("the run stopped early (diverged)");
+      break;
+    }
+    cpu += r.cpu_s;
+    wall += r.wall_s;
+    steps += r.steps;
+    benchmark::DoNotOptimize(r.x.data());
+  }
+  st.counters["step_loop_cpu_s"] = steps > 0 ? cpu / double(steps) : 0.0;
+  st.counters["step_loop_wall_s"] = steps > 0 ? wall / double(steps) : 0.0;
+  st.counters["steps_per_run"] = double(opt.steps);
+  st.counters["n"] = double(n);
+  st.SetLabel("wb::simulate");
+}
 
 void bm_hand(benchmark::State& st, const Method& method, bool fused) {
   const HandFn fn = fused ? method.fused : method.passes;
@@ -735,12 +864,34 @@ bool check_odeint() {
     for (int c = 0; c < 2; ++c)
       worst = std::max(worst, std::abs(p[c][k] - q[c][k]) / std::max(1.0, std::abs(q[c][k])));
   }
-  if (worst <= kOdeintTol) return true;
-  std::fprintf(stderr,
-               "FAIL: odeint/rk4 differs from scene/rk4 by %.3g (relative) after %d steps; "
-               "expected at most %.3g: the two do not compute the same trajectory\n",
-               worst, kCheckSteps, kOdeintTol);
-  return false;
+  bool ok = worst <= kOdeintTol;
+  if (!ok) {
+    std::fprintf(stderr,
+                 "FAIL: odeint/rk4 differs from scene/rk4 by %.3g (relative) after %d steps; "
+                 "expected at most %.3g: the two do not compute the same trajectory\n",
+                 worst, kCheckSteps, kOdeintTol);
+  }
+  // The plain program: its right-hand side computes a = g - (b/m) v, not (m g - b v)/m,
+  // and odeint sums the stages in its order: roundings only, as for the fused loop.
+  const std::vector<double> rate = fused_rates(scene);
+  std::vector<double> fs = fused_state(scene);
+  FusedStepper fused;
+  for (int k = 0; k < kCheckSteps; ++k) fused.do_step(FusedSystem{&rate}, fs, 0.0, kH);
+  double fworst = 0;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    const double q[2] = {fs[std::size_t(k)], fs[std::size_t(x.size() + k)]};
+    const double p[2] = {x.data()[k], v.data()[k]};
+    for (int c = 0; c < 2; ++c)
+      fworst = std::max(fworst, std::abs(p[c] - q[c]) / std::max(1.0, std::abs(q[c])));
+  }
+  if (fworst > kFusedTol) {
+    std::fprintf(stderr,
+                 "FAIL: odeint_fused/rk4 differs from scene/rk4 by %.3g (relative) after %d "
+                 "steps; expected at most %.3g: the plain program is another integrator\n",
+                 fworst, kCheckSteps, kFusedTol);
+    ok = false;
+  }
+  return ok;
 }
 #endif
 
@@ -758,7 +909,15 @@ void register_all(const std::vector<Method>& all) {
     }
 #ifdef WB_BENCH_HAS_RK4
     benchmark::RegisterBenchmark("odeint/rk4", bm_odeint)->Arg(n);
+    benchmark::RegisterBenchmark("odeint_fused/rk4", bm_odeint_fused)->Arg(n);
 #endif
+    for (const Method& method : all) {
+      benchmark::RegisterBenchmark(("run/" + std::string(method.name)).c_str(), bm_run, method)
+          ->Arg(n)
+          ->Iterations(2);
+    }
+    benchmark::RegisterBenchmark("loop_check", bm_loop_check, false)->Arg(n);
+    benchmark::RegisterBenchmark("loop_check_separate", bm_loop_check, true)->Arg(n);
     benchmark::RegisterBenchmark("triad_fit", bm_triad)->Arg(3 * n);
   }
 }

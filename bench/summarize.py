@@ -9,7 +9,12 @@ import sys
 import tempfile
 
 TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
-KINDS = ("scene", "hand_passes", "hand_fused", "odeint")  # odeint: Boost.Odeint's runge_kutta4
+# odeint: Boost.Odeint's runge_kutta4 on the machinery's dynamics; odeint_fused: a plain
+# runge_kutta4_classic program with a fused right-hand side; run: a whole wb::simulate,
+# timed per step by its own step-loop clock (counters step_loop_cpu_s, step_loop_wall_s)
+KINDS = ("scene", "hand_passes", "hand_fused", "odeint", "odeint_fused", "run")
+SINGLE = ("triad_dram", "triad_fit", "loop_check", "loop_check_separate")  # <kind>/<n>
+BOOKKEEPING_TARGET = 0.05  # issue 34: the loop's bookkeeping at most 5 % of the step loop
 TARGET_RATIO = 1.1  # issue target for scene / hand_passes at 10^6 particles
 
 COLUMNS = [
@@ -74,15 +79,14 @@ def split_name(path, i, name):
     """'scene/rk4/1000' -> ('scene', 'rk4', 1000); 'triad_dram/33554432' -> ('triad_dram', None, len)."""
     parts = [p for p in name.split("/") if ":" not in p]  # drop min_time:, repeats:, ...
     try:
-        if parts[0] in ("triad_dram", "triad_fit") and len(parts) == 2:
+        if parts[0] in SINGLE and len(parts) == 2:
             return parts[0], None, int(parts[1])
         if parts[0] in KINDS and len(parts) == 3:
             return parts[0], parts[1], int(parts[2])
     except ValueError:
         pass
     raise BadInput(f"{path}: benchmarks[{i}].run_name is {name!r}; expected "
-                   "<scene|hand_passes|hand_fused|odeint>/<integrator>/<n> or "
-                   "triad_<dram|fit>/<length>")
+                   f"<{'|'.join(KINDS)}>/<integrator>/<n> or <{'|'.join(SINGLE)}>/<n>")
 
 
 def collect(doc, path, time_key):
@@ -109,6 +113,9 @@ def collect(doc, path, time_key):
             continue
         t = b.get(time_key)
         unit = b.get("time_unit", "ns")
+        if key[0] == "run":  # its own clock, per step, in seconds
+            t = b.get("step_loop_cpu_s" if time_key == "cpu_time" else "step_loop_wall_s")
+            unit = "s"
         if not isinstance(t, (int, float)) or unit not in TIME_UNITS or not t > 0:
             raise BadInput(f"{path}: benchmarks[{i}] ({name}): {time_key}={t!r}, "
                            f"time_unit={unit!r}; expected a positive time in ns, us, ms or s")
@@ -258,6 +265,41 @@ def main():
             lo, hi = ratio_range(times[k], times[scene])
             print(f"  {k[1]:<6} n={k[2]:<8} {times[k][0] / times[scene][0]:.3f} "
                   f"({lo:.3f} {hi:.3f})")
+    runs = sorted((k for k in times if k[0] == "run" and ("scene",) + k[1:] in times),
+                  key=lambda k: (order.get(k[1], 0), k[2]))
+    if runs:
+        print()
+        print("the run loop (run/<integrator>/<n>: wb::simulate per step, by its own clock): "
+              "bookkeeping = (run - scene) / run, the loop's share beside the bare step")
+        for k in runs:
+            run, scene = times[k][0], times[("scene",) + k[1:]][0]
+            line = f"  {k[1]:<16} n={k[2]:<8} {(run - scene) / run:+.3f}"
+            fused = times.get(("odeint_fused",) + k[1:])
+            if fused:
+                lo, hi = ratio_range(fused, times[k])
+                line += (f"   odeint_fused / run {fused[0] / run:.3f} ({lo:.3f} {hi:.3f}) "
+                         "(above 1: the scene's run is faster)")
+            print(line)
+    checks = sorted(k for k in times if k[0] == "loop_check")
+    if checks:
+        print()
+        print("the loop's bookkeeping alone (loop_check/<n>: World::checked_energy; "
+              "loop_check_separate: allFinite twice and World::energy, as before issue 34), "
+              f"as a share of step + bookkeeping (target <= {BOOKKEEPING_TARGET:g})")
+        for k in checks:
+            n = k[2]
+            sep = times.get(("loop_check_separate", None, n))
+            parts = []
+            for integ in sorted({q[1] for q in times if q[0] == "scene" and q[2] == n},
+                                key=lambda i: order.get(i, 0)):
+                step = times[("scene", integ, n)][0]
+                share = times[k][0] / (step + times[k][0])
+                text = f"{integ} {share:.3f}"
+                if sep:
+                    text += f" (before {sep[0] / (step + sep[0]):.3f})"
+                parts.append(text)
+            print(f"  n={n:<8} {times[k][0] / n * 1e9:.2f} ns/particle"
+                  + (f" (before {sep[0] / n * 1e9:.2f})" if sep else "") + ": " + ", ".join(parts))
     big = [r for r in rows if r["n"] == 1000000]
     for r in big:
         if r["vs_hand_passes"] > TARGET_RATIO:

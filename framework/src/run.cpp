@@ -164,20 +164,32 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
   CsvFile no_trace, no_stats;
   CsvFile& trace = opt.trace ? *opt.trace : no_trace;
   CsvFile& stats = opt.stats ? *opt.stats : no_stats;
-  bool moved = false;  // did any step change the state?
+  // Did any step change the state? Compared with the state before the step,
+  // which is the scene's own until a step moves it (or the collision phase
+  // does: then a copy), so that the check copies nothing on a normal run.
+  bool moved = false;
+  const Mat2X *x_before = &scene.x, *v_before = &scene.v;
+  Mat2X x_phase, v_phase;
   StepHooks hooks;
   hooks.step = [&] {
-    if (!moved) {
-      const Mat2X x_before = x, v_before = v;
-      opt.integrator->step(dyn, opt.dt, x, v, scratch);
-      moved = x != x_before || v != v_before;
-    } else {
-      opt.integrator->step(dyn, opt.dt, x, v, scratch);
-    }
+    opt.integrator->step(dyn, opt.dt, x, v, scratch);
+    if (!moved) moved = x != *x_before || v != *v_before;
     world.after_step(opt.dt, x, v);
+    if (!moved && (x != *x_before || v != *v_before)) {
+      x_phase = x;
+      v_phase = v;
+      x_before = &x_phase;
+      v_before = &v_phase;
+    }
   };
-  hooks.finite = [&] { return x.allFinite() && v.allFinite(); };
-  hooks.energy = [&] { return world.energy(x, v).total(); };
+  // The divergence rule's bookkeeping: one pass where the world can (World::checked_energy).
+  double checked = 0;
+  hooks.finite = [&] {
+    bool finite = false;
+    checked = world.checked_energy(x, v, finite);
+    return finite;
+  };
+  hooks.energy = [&] { return checked; };
   hooks.record = [&](long step, double t) {
     if (trace) {
       append_trace_rows(trace.rows(), t, x, v);

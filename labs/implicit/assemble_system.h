@@ -2,6 +2,7 @@
 // handouts/implicit.md#i3. Tests: [I3].
 #pragma once
 #include <Eigen/SparseCore>
+#include <vector>
 
 #include "spring_network.h"
 
@@ -30,6 +31,35 @@
 // act on their other ends, in f and in those ends' diagonal blocks.) The
 // caller gives pinned particles vl = 0, xl = x0.
 //
+// A is symmetric: only its UPPER triangle (row <= column) is stored, half the
+// memory and half the work of every product; Eigen's solvers read that
+// triangle when told so (Eigen::Upper, as in backward_euler.h). A 2 x 2
+// block (p, q) with p < q is stored whole, block (q, p) not at all (it is its
+// transpose), and a diagonal block keeps its entries (0,0), (0,1), (1,1).
+//
+// The springs, and so A's pattern (where its entries are), never change
+// during a run: only the values do. The first assembly of a system builds the
+// pattern; every later one writes the values into it:
+//   - first (sys.slot empty): collect Eigen::Triplet's, A.setFromTriplets
+//     (it sorts them and sums duplicates), then record for each triplet, in
+//     the order they were made, where its value went:
+//       slot.push_back(&A.coeffRef(row, col) - A.valuePtr());
+//   - later (sys.slot not empty): A.coeffs().setZero(), then make the same
+//     values in the same order and add each at its slot:
+//       A.coeffs()[slot[k++]] += value;
+//     no triplets, no sort, no allocation: A keeps its arrays and pattern.
+//     (A.coeffs()[i] is A.valuePtr()[i] with Eigen's index check: a wrong
+//     slot stops with an error in a checked build, as the grader's is, instead
+//     of writing past A's values.)
+// So the values an assembly makes, and their order, must depend on the
+// network only (its springs and pinned particles), never on the state.
+struct SparseSystem {
+  Eigen::SparseMatrix<double> A;  // 2n x 2n, its upper triangle
+  Eigen::VectorXd b;              // 2n right-hand side (kg m/s)
+  std::vector<int> slot;          // for each value an assembly adds, in order, its index in
+                                  // A.valuePtr(); empty: no pattern yet
+};
+
 // Inputs:
 //   net       masses, springs, drag, pinned flags (n particles)
 //   x0, v0    the state at the start of the step (2 x n; m, m/s)
@@ -37,11 +67,12 @@
 //   f_ext     the other forces (2 x n, N)
 //   h         step size (s), > 0
 //   definite  passed to spring_derivatives (I2)
-// Outputs:
-//   A  2n x 2n sparse, symmetric, built from triplets (setFromTriplets): for
-//      each particle its 2 x 2 diagonal block, for each spring between two free
-//      particles its two 2 x 2 off-diagonal blocks; nothing else is stored
-//   b  2n right-hand side (kg m/s)
+// Input and output:
+//   sys       the system of this network: empty before the first call, then
+//             kept between calls (one per network). On return: A (2n x 2n,
+//             upper triangle: for each particle its diagonal block, for each
+//             spring between two free particles its off-diagonal block;
+//             nothing else is stored), b (2n), and slot.
 void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Mat2X& v0,
                      const wb::Mat2X& xl, const wb::Mat2X& vl, const wb::Mat2X& f_ext, double h,
-                     bool definite, Eigen::SparseMatrix<double>& A, Eigen::VectorXd& b);
+                     bool definite, SparseSystem& sys);

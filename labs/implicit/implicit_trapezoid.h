@@ -14,7 +14,8 @@
 //   x~ = x + h/2 v,   v~ = v + h/(2M) ( f(x, v) + f_ext )     (explicit, known)
 //   x' = x~ + h/2 v', v' = v~ + h/(2M) ( f(x', v') + f_ext )  (backward Euler, h/2)
 //
-// so the second half is backward_euler_step (I4) from (x~, v~) with step h/2.
+// so the second half is backward_euler_step (I4) from (x~, v~) with step h/2,
+// with this network's workspace (the pattern does not depend on the step size).
 // On a linear spring the step keeps the energy exactly, for every h.
 // Second order in h. Pinned particles never move.
 //
@@ -25,6 +26,8 @@
 //   opt    passed to the backward Euler half step
 // Outputs:
 //   x, v   2 x n positions (m) and velocities (m/s): advanced in place
+//   ws     this network's workspace (backward_euler.h), passed to the half step
 //   returns the Newton report of the backward Euler half step
 NewtonReport implicit_trapezoid_step(const SpringNetwork& net, const wb::Mat2X& f_ext, double h,
-                                     const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v);
+                                     const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v,
+                                     NewtonWorkspace& ws);

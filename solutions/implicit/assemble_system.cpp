@@ -1,5 +1,6 @@
 #include "assemble_system.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "spring_derivatives.h"
@@ -7,25 +8,45 @@
 // TODO(I3) assembly of one Newton step's sparse system (see assemble_system.h).
 void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Mat2X& v0,
                      const wb::Mat2X& xl, const wb::Mat2X& vl, const wb::Mat2X& f_ext, double h,
-                     bool definite, Eigen::SparseMatrix<double>& A, Eigen::VectorXd& b) {
+                     bool definite, SparseSystem& sys) {
   const Eigen::Index n = net.n();
+  Eigen::SparseMatrix<double>& A = sys.A;
+  // The first assembly makes triplets; every later one adds the same values,
+  // in the same order, where the first one found they go.
+  const bool first = sys.slot.empty();
   std::vector<Eigen::Triplet<double>> t;
-  t.reserve(std::size_t(4 * n + 16 * net.springs.size()));
-  // Adds the 2 x 2 block B at particles (p, q), if neither is pinned.
+  if (first) {
+    t.reserve(std::size_t(3 * n + 10 * net.springs.size()));
+  } else {
+    A.coeffs().setZero();
+  }
+  std::size_t k = 0;
+  auto add = [&](Eigen::Index row, Eigen::Index col, double value) {
+    if (first) {
+      t.emplace_back(row, col, value);
+    } else {
+      A.coeffs()[sys.slot[k++]] += value;  // index-checked in a checked build
+    }
+  };
+  // Adds the 2 x 2 block B at particles (p, q), p <= q, if neither is pinned:
+  // its entries in the upper triangle.
   auto block = [&](Eigen::Index p, Eigen::Index q, const wb::Mat2& B) {
     if (net.is_pinned(p) || net.is_pinned(q)) return;
-    for (int r = 0; r < 2; ++r)
-      for (int c = 0; c < 2; ++c) t.emplace_back(2 * p + r, 2 * q + c, B(r, c));
+    add(2 * p, 2 * q, B(0, 0));
+    add(2 * p, 2 * q + 1, B(0, 1));
+    if (p != q) add(2 * p + 1, 2 * q, B(1, 0));
+    add(2 * p + 1, 2 * q + 1, B(1, 1));
   };
 
   // Mass, drag, and the parts of the right-hand side that need no spring.
-  const wb::Mat2X w = x0 + h * vl - xl;  // where the positions are, minus where K was taken
-  wb::Mat2X rhs = (v0 - vl) * net.m.asDiagonal();
+  sys.b.resize(2 * n);
+  Eigen::Map<wb::Mat2X> rhs(sys.b.data(), 2, n);
+  rhs = (v0 - vl) * net.m.asDiagonal();
   rhs += h * (f_ext - net.drag * vl);
   for (Eigen::Index p = 0; p < n; ++p) {
     const double diag = net.is_pinned(p) ? net.m[p] : net.m[p] + h * net.drag;
-    t.emplace_back(2 * p, 2 * p, diag);
-    t.emplace_back(2 * p + 1, 2 * p + 1, diag);
+    add(2 * p, 2 * p, diag);
+    add(2 * p + 1, 2 * p + 1, diag);
   }
 
   // Springs: force and the blocks of -h D - h^2 K.
@@ -37,15 +58,16 @@ void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Ma
     const wb::Vec2 vj = anchored ? wb::Vec2::Zero() : wb::Vec2(vl.col(s.j));
     spring_derivatives(xl.col(s.i), xj, vl.col(s.i), vj, s.k, s.rest, s.kd, definite, f, K, D);
     const wb::Mat2 B = -h * D - h * h * K;
-    const wb::Vec2 dw = anchored ? wb::Vec2(w.col(s.i)) : wb::Vec2(w.col(s.i) - w.col(s.j));
+    // w = x0 + h vl - xl: where the positions are, minus where K was taken.
+    wb::Vec2 dw = x0.col(s.i) + h * vl.col(s.i) - xl.col(s.i);
+    if (!anchored) dw -= x0.col(s.j) + h * vl.col(s.j) - xl.col(s.j);
     const wb::Vec2 fi = f + K * dw;  // force, plus the correction of the K term
     rhs.col(s.i) += h * fi;
     block(s.i, s.i, B);
     if (!anchored) {
       rhs.col(s.j) -= h * fi;
       block(s.j, s.j, B);
-      block(s.i, s.j, -B);
-      block(s.j, s.i, -B);
+      block(std::min(s.i, s.j), std::max(s.i, s.j), -B);  // B is symmetric
     }
   }
 
@@ -53,7 +75,11 @@ void assemble_system(const SpringNetwork& net, const wb::Mat2X& x0, const wb::Ma
   for (Eigen::Index p = 0; p < n; ++p)
     if (net.is_pinned(p)) rhs.col(p).setZero();
 
-  A.resize(2 * n, 2 * n);
-  A.setFromTriplets(t.begin(), t.end());
-  b = Eigen::Map<const Eigen::VectorXd>(rhs.data(), 2 * n);
+  if (first) {
+    A.resize(2 * n, 2 * n);
+    A.setFromTriplets(t.begin(), t.end());
+    sys.slot.reserve(t.size());
+    for (const Eigen::Triplet<double>& e : t)
+      sys.slot.push_back(int(&A.coeffRef(e.row(), e.col()) - A.valuePtr()));
+  }
 }

@@ -1,28 +1,31 @@
 #include "backward_euler.h"
 
 #include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
 #include <cmath>
-
-#include "assemble_system.h"
 
 namespace {
 
-// Solves A dv = b with the chosen solver; false when the solver fails.
-bool solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-           const NewtonOptions& opt, Eigen::VectorXd& dv) {
+// Solves A dv = b (ws.sys) with the chosen solver: the workspace's LDLT,
+// analysed once; or CG from `guess`, until |A dv - b| <= cg_tol * scale.
+// False when the solver fails.
+bool solve(NewtonWorkspace& ws, const NewtonOptions& opt, double scale,
+           const Eigen::VectorXd& guess, Eigen::VectorXd& dv) {
+  const Eigen::SparseMatrix<double>& A = ws.sys.A;
+  const Eigen::VectorXd& b = ws.sys.b;
   if (opt.solver == NewtonOptions::kCG) {
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
-    cg.setTolerance(opt.cg_tol);
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper> cg;  // the stored triangle
+    const double bn = b.norm();
+    if (bn > 0) cg.setTolerance(opt.cg_tol * scale / bn);
     cg.compute(A);
     if (cg.info() != Eigen::Success) return false;
-    dv = cg.solve(b);
+    dv = cg.solveWithGuess(b, guess);
     if (cg.info() != Eigen::Success) return false;
   } else {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-    if (ldlt.info() != Eigen::Success) return false;
-    dv = ldlt.solve(b);
-    if (ldlt.info() != Eigen::Success) return false;
+    if (ws.ldlt.rows() != A.rows() || A.rows() == 0) ws.ldlt.analyzePattern(A);
+    ws.ldlt.factorize(A);
+    if (ws.ldlt.info() != Eigen::Success) return false;
+    dv = ws.ldlt.solve(b);
+    if (ws.ldlt.info() != Eigen::Success) return false;
   }
   return dv.allFinite();
 }
@@ -31,40 +34,46 @@ bool solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
 
 // TODO(I4) backward Euler step of a spring network by Newton's method (see backward_euler.h).
 NewtonReport backward_euler_step(const SpringNetwork& net, const wb::Mat2X& f_ext, double h,
-                                 const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v) {
+                                 const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v,
+                                 NewtonWorkspace& ws) {
   NewtonReport rep;
   const Eigen::Index n = net.n();
   // Pinned particles never move.
   for (Eigen::Index p = 0; p < n; ++p)
     if (net.is_pinned(p)) v.col(p).setZero();
 
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b, dv;
+  Eigen::VectorXd dv;
   wb::Mat2X y = v;
   Eigen::Map<Eigen::VectorXd> yv(y.data(), 2 * n);
 
-  // First solve, linearised at the start (Baraff and Witkin).
-  assemble_system(net, x, v, x, v, f_ext, h, opt.definite, A, b);
-  rep.scale = (v * net.m.asDiagonal()).norm() + b.norm() + h * f_ext.norm();
-  if (!solve(A, b, opt, dv)) {
+  // First solve, linearised at the start (Baraff and Witkin), from the last
+  // step's first dv.
+  assemble_system(net, x, v, x, v, f_ext, h, opt.definite, ws.sys);
+  rep.scale = (v * net.m.asDiagonal()).norm() + ws.sys.b.norm() + h * f_ext.norm();
+  if (ws.dv.size() != 2 * n) ws.dv = Eigen::VectorXd::Zero(2 * n);
+  if (!solve(ws, opt, rep.scale, ws.dv, dv)) {
     rep.solver_failed = true;
   } else {
     yv += dv;
+    ws.dv = dv;
     rep.iterations = 1;
   }
 
-  // Newton iterations on the residual G(y) = -b at (x + h y, y).
-  while (!rep.solver_failed) {
+  // Baraff and Witkin stop here, without measuring the residual (a second
+  // assembly, or a force evaluation, that a game stopping at one solve skips).
+  if (opt.one_iteration && !rep.solver_failed) {
+    rep.residual = std::nan("");
+    rep.converged = true;
+  }
+  // Newton iterations on the residual G(y) = -b at (x + h y, y); each solve
+  // corrects y, from dv = 0.
+  while (!opt.one_iteration && !rep.solver_failed) {
     const wb::Mat2X xl = x + h * y;
-    assemble_system(net, x, v, xl, y, f_ext, h, opt.definite, A, b);
-    rep.residual = b.norm();
+    assemble_system(net, x, v, xl, y, f_ext, h, opt.definite, ws.sys);
+    rep.residual = ws.sys.b.norm();
     rep.converged = rep.residual <= opt.tol * rep.scale;
-    if (opt.one_iteration) {
-      rep.converged = true;
-      break;
-    }
     if (rep.converged || rep.iterations >= opt.max_iterations) break;
-    if (!solve(A, b, opt, dv)) {
+    if (!solve(ws, opt, rep.scale, Eigen::VectorXd::Zero(2 * n), dv)) {
       rep.solver_failed = true;
       break;
     }

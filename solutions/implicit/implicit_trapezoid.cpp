@@ -4,7 +4,8 @@
 
 // TODO(I5) implicit trapezoid step of a spring network (see implicit_trapezoid.h).
 NewtonReport implicit_trapezoid_step(const SpringNetwork& net, const wb::Mat2X& f_ext, double h,
-                                     const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v) {
+                                     const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v,
+                                     NewtonWorkspace& ws) {
   // Pinned particles never move.
   for (Eigen::Index p = 0; p < net.n(); ++p)
     if (net.is_pinned(p)) v.col(p).setZero();
@@ -15,5 +16,5 @@ NewtonReport implicit_trapezoid_step(const SpringNetwork& net, const wb::Mat2X& 
   x += (0.5 * h) * v;
   v += (0.5 * h) * a;  // (pinned particles: backward_euler_step zeroes v again)
   // Half a backward Euler step from there (it pins the pinned particles again).
-  return backward_euler_step(net, f_ext, 0.5 * h, opt, x, v);
+  return backward_euler_step(net, f_ext, 0.5 * h, opt, x, v, ws);
 }

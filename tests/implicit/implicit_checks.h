@@ -3,10 +3,12 @@
 // backward Euler and trapezoid residuals, and small networks.
 #pragma once
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "backward_euler.h"
 #include "heldout.h"
 #include "spring_network.h"
 #include "test_helpers.h"
@@ -207,6 +209,26 @@ inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.
   v << 0.3, -0.5, 0.8, -0.2,  //
       -0.7, 0.4, -0.1, 0.6;
 }
+
+// A network's workspace carried from step to step the way the grader carries it
+// (backward_euler.h, NewtonWorkspace): its data (the system, the warm start) kept,
+// its LDLT fresh at every step, so that a test reads the same here and through the
+// grader. next() gives the workspace for the next step.
+class CarriedWorkspace {
+ public:
+  NewtonWorkspace& next() {
+    auto w = std::make_unique<NewtonWorkspace>();
+    if (ws_) {
+      w->sys = ws_->sys;
+      w->dv = ws_->dv;
+    }
+    ws_ = std::move(w);
+    return *ws_;
+  }
+
+ private:
+  std::unique_ptr<NewtonWorkspace> ws_;
+};
 
 // ---------------------------------------------------------------- held-out networks
 // (tests/common/heldout.h) A random network the student has never seen: 3 to 6 particles at

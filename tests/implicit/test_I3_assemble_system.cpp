@@ -58,20 +58,47 @@ void dense_reference(const Setup& s, Eigen::MatrixXd& A, Eigen::VectorXd& b,
   }
 }
 
-void require_dense(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                   const Eigen::MatrixXd& Ae, const Eigen::VectorXd& be,
+// The symmetric matrix A stands for, from its stored upper triangle.
+Eigen::MatrixXd full(const Eigen::SparseMatrix<double>& A) {
+  const Eigen::SparseMatrix<double> both = A.selfadjointView<Eigen::Upper>();
+  return Eigen::MatrixXd(both);
+}
+
+// The first stored entry below the diagonal (row > column), if any.
+bool entry_below(const Eigen::SparseMatrix<double>& A, Eigen::Index& row, Eigen::Index& col) {
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      if (it.row() > it.col()) {
+        row = it.row();
+        col = it.col();
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void require_dense(const SparseSystem& sys, const Eigen::MatrixXd& Ae, const Eigen::VectorXd& be,
                    const std::string& what) {
+  const Eigen::SparseMatrix<double>& A = sys.A;
+  const Eigen::VectorXd& b = sys.b;
   INFO(what << ": A is " << A.rows() << " x " << A.cols() << " and b has " << b.size()
             << " entries, expected " << Ae.rows() << " x " << Ae.cols() << " and " << be.size()
             << " (2n: two velocity unknowns per particle, pinned ones included)");
   REQUIRE(A.rows() == Ae.rows());
   REQUIRE(A.cols() == Ae.cols());
   REQUIRE(b.size() == be.size());
-  const Eigen::MatrixXd Ad = A;
-  Eigen::Index r, c;
+  Eigen::Index r = 0, c = 0;
+  {
+    const bool below = entry_below(A, r, c);
+    INFO(what << ": A stores an entry below the diagonal, A(" << r << ", " << c
+              << "): only the upper triangle (row <= column) is stored (assemble_system.h)");
+    REQUIRE_FALSE(below);
+  }
+  const Eigen::MatrixXd Ad = full(A);
   (Ad - Ae).cwiseAbs().maxCoeff(&r, &c);  // where, for the message (the check is NaN-safe)
   INFO(what << ": largest difference from the dense reference at A(" << r << ", " << c
-            << "): got " << Ad(r, c) << ", expected " << Ae(r, c));
+            << ") (A's upper triangle, mirrored): got " << Ad(r, c) << ", expected " << Ae(r, c));
   REQUIRE(wbtest::max_abs_diff(Ad, Ae) <= kRelTol * wbtest::max_abs(Ae));  // NaN fails
   Eigen::Index i;
   (b - be).cwiseAbs().maxCoeff(&i);
@@ -81,33 +108,39 @@ void require_dense(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& 
 }
 }  // namespace
 
-TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
+TEST_CASE("I3 assembly: A is 2n x 2n and stores its upper triangle with the network's sparsity",
           "[implicit][I3][3pts]") {
   const Setup s = setup();
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, A, b);
+  SparseSystem sys;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, sys);
+  const Eigen::SparseMatrix<double>& A = sys.A;
   INFO("A is " << A.rows() << " x " << A.cols()
                << ", expected 8 x 8 (2n for the 4 particles, pinned ones included)");
   REQUIRE(A.rows() == 8);
   REQUIRE(A.cols() == 8);
-  const Eigen::MatrixXd Ad = A;
-  INFO("A - A^T: largest entry " << (Ad - Ad.transpose()).cwiseAbs().maxCoeff());
-  REQUIRE(wbtest::max_abs_diff(Ad, Ad.transpose()) <=
-          kRelTol * wbtest::max_abs(Ad));  // NaN fails
-  // Blocks that may hold entries: diagonal, and the pairs joined by a spring.
+  // Blocks that may hold entries: diagonal, and the pairs joined by a spring;
+  // entries on or above the diagonal only.
   Eigen::Matrix4i allowed = Eigen::Matrix4i::Identity();
   for (const NetworkSpring& sp : s.net.springs)
     if (sp.j >= 0) allowed(sp.i, sp.j) = allowed(sp.j, sp.i) = 1;
   for (int k = 0; k < A.outerSize(); ++k) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
       INFO("stored entry A(" << it.row() << ", " << it.col() << ") between particles "
-                             << it.row() / 2 << " and " << it.col() / 2
-                             << ", which no spring joins");
-      REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
+                             << it.row() / 2 << " and " << it.col() / 2);
+      {
+        INFO("no spring joins them");
+        REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
+      }
+      {
+        INFO(
+            "it is below the diagonal: A is symmetric, only its upper triangle (row <= "
+            "column) is stored (assemble_system.h)");
+        REQUIRE(it.row() <= it.col());
+      }
     }
   }
   // M - h D - h^2 K with -D, -K positive semi-definite (definite = true): diagonal >= m.
+  const Eigen::MatrixXd Ad = full(A);
   for (Eigen::Index p = 0; p < 4; ++p) {
     INFO("diagonal of particle " << p << ": " << Ad(2 * p, 2 * p) << ", "
                                  << Ad(2 * p + 1, 2 * p + 1) << ", expected at least its mass "
@@ -115,27 +148,36 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
     REQUIRE(Ad(2 * p, 2 * p) >= s.net.m[p]);
     REQUIRE(Ad(2 * p + 1, 2 * p + 1) >= s.net.m[p]);
   }
+  // The first assembly records where each of its values went (assemble_system.h).
+  INFO("sys.slot has " << sys.slot.size() << " entries for " << A.nonZeros()
+                       << " stored ones: the first assembly records, for each value it adds, "
+                          "its index in A.valuePtr() (at least one per stored entry)");
+  REQUIRE(sys.slot.size() >= std::size_t(A.nonZeros()));
+  for (int k : sys.slot) {
+    INFO("a slot " << k << " outside A's " << A.nonZeros() << " stored values");
+    REQUIRE(k >= 0);
+    REQUIRE(k < A.nonZeros());
+  }
 }
 
 TEST_CASE("I3 assembly: A and b equal a dense reference on a small network",
-          "[implicit][I3][5pts]") {
+          "[implicit][I3][4pts]") {
   const Setup s = setup();
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, A, b);
+  SparseSystem sys;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, sys);
   Eigen::MatrixXd Ae;
   Eigen::VectorXd be;
   dense_reference(s, Ae, be);
-  require_dense(A, b, Ae, be, "A = M - h D - h^2 K, b = M (v0 - vl) + h (f + f_ext) + h K w");
+  require_dense(sys, Ae, be, "A = M - h D - h^2 K, b = M (v0 - vl) + h (f + f_ext) + h K w");
 }
 
 TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3][3pts]") {
   Setup s = setup();
   s.xl = s.x0;
   s.vl = s.v0;
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, A, b);
+  SparseSystem sys;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, sys);
+  const Eigen::VectorXd& b = sys.b;
   Eigen::MatrixXd K, D;
   imtest::dense_jacobians(s.net, s.x0, s.v0, K, D);
   const Eigen::VectorXd be = kH * (imtest::flat(imtest::forces(s.net, s.x0, s.v0) + s.f_ext) +
@@ -150,18 +192,17 @@ TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3
 }
 
 TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
-          "[implicit][I3][4pts]") {
+          "[implicit][I3][3pts]") {
   Setup s = setup();
   s.net.pinned = {0, 1, 0, 0};  // particle 1: springs to 0 and 2 act on them only
   s.vl.col(1).setZero();
   s.xl.col(1) = s.x0.col(1);
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, A, b);
+  SparseSystem sys;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, sys);
   Eigen::MatrixXd Ae;
   Eigen::VectorXd be;
   dense_reference(s, Ae, be);
-  require_dense(A, b, Ae, be, "particle 1 pinned");
+  require_dense(sys, Ae, be, "particle 1 pinned");
 }
 
 TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks",
@@ -173,17 +214,82 @@ TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks"
   s.net.springs[0].rest = 1.5;
   s.net.springs[2].rest = 1.5;
   for (bool definite : {true, false}) {
-    Eigen::SparseMatrix<double> A;
-    Eigen::VectorXd b;
-    assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, definite, A, b);
+    SparseSystem sys;
+    assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, definite, sys);
     Eigen::MatrixXd Ae;
     Eigen::VectorXd be;
     dense_reference(s, Ae, be, definite);
-    require_dense(A, b, Ae, be,
+    require_dense(sys, Ae, be,
                   std::string("two compressed springs, definite = ") +
                       (definite ? "true: -K = k u u^T on them (spring_derivatives' clamp)"
                                 : "false: the exact blocks"));
   }
+}
+
+TEST_CASE("I3 assembly: a later assembly writes its values into the first one's pattern",
+          "[implicit][I3][2pts]") {
+  // One system, assembled at one state, then again at another (other velocities,
+  // another linearisation point, another step size, definite switched, particle 1
+  // pinned in both): the second A and b are the dense reference's at the second
+  // state, in the first one's pattern. Its values are overwritten beforehand with
+  // NaN: a later assembly zeroes them before adding (assemble_system.h).
+  Setup s = setup();
+  s.net.pinned = {0, 1, 0, 0};
+  s.vl.col(1).setZero();
+  s.xl.col(1) = s.x0.col(1);
+  SparseSystem sys;
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, sys);
+  // Slots outside A's values would make the second assembly write past them: checked first.
+  for (int k : sys.slot) {
+    INFO("after the first assembly, a slot " << k << " outside A's " << sys.A.nonZeros()
+                                             << " stored values (a slot is where a value went "
+                                                "in A.valuePtr(): &A.coeffRef(row, col) - "
+                                                "A.valuePtr())");
+    REQUIRE(k >= 0);
+    REQUIRE(k < sys.A.nonZeros());
+  }
+  const std::vector<int> outer(sys.A.outerIndexPtr(), sys.A.outerIndexPtr() + sys.A.cols() + 1);
+  const std::vector<int> inner(sys.A.innerIndexPtr(), sys.A.innerIndexPtr() + sys.A.nonZeros());
+  const std::vector<int> slot = sys.slot;
+  sys.A.coeffs().setConstant(std::nan(""));
+  sys.b.setConstant(std::nan(""));
+  Setup t = s;
+  t.v0 = s.v0.reverse().eval();
+  t.vl = t.v0 + Mat2X::Constant(2, 4, -0.1);
+  t.vl.col(1).setZero();
+  t.xl = t.x0 + 0.5 * kH * t.vl;
+  t.xl(1, 2) += 0.04;
+  const double h2 = 0.5 * kH;
+  assemble_system(t.net, t.x0, t.v0, t.xl, t.vl, t.f_ext, h2, false, sys);
+  {
+    const std::vector<int> outer2(sys.A.outerIndexPtr(),
+                                  sys.A.outerIndexPtr() + sys.A.cols() + 1);
+    const std::vector<int> inner2(sys.A.innerIndexPtr(),
+                                  sys.A.innerIndexPtr() + sys.A.nonZeros());
+    INFO("the second assembly changed A's pattern (" << inner.size() << " stored entries, then "
+                                                     << inner2.size()
+                                                     << ") or sys.slot: the springs are the "
+                                                        "same, so is the pattern");
+    REQUIRE(outer2 == outer);
+    REQUIRE(inner2 == inner);
+    REQUIRE(sys.slot == slot);
+  }
+  // The reference at the second state, with its own h.
+  Eigen::MatrixXd K, D;
+  imtest::dense_jacobians(t.net, t.xl, t.vl, K, D);
+  const Eigen::Index n = t.net.n();
+  Eigen::VectorXd M(2 * n);
+  for (Eigen::Index p = 0; p < n; ++p) M.segment<2>(2 * p).setConstant(t.net.m[p]);
+  Eigen::MatrixXd Ae = Eigen::MatrixXd(M.asDiagonal()) - h2 * D - h2 * h2 * K;
+  Eigen::VectorXd be = M.asDiagonal() * imtest::flat(t.v0 - t.vl) +
+                       h2 * imtest::flat(imtest::forces(t.net, t.xl, t.vl) + t.f_ext) +
+                       h2 * K * imtest::flat(t.x0 + h2 * t.vl - t.xl);
+  Ae.middleRows(2, 2).setZero();
+  Ae.middleCols(2, 2).setZero();
+  Ae.block<2, 2>(2, 2) = t.net.m[1] * Eigen::Matrix2d::Identity();
+  be.segment<2>(2).setZero();
+  require_dense(sys, Ae, be,
+                "the second assembly (its values first set to NaN; h = 0.05, definite false)");
 }
 
 TEST_CASE(
@@ -202,9 +308,10 @@ TEST_CASE(
         if (w.net.is_pinned(p))
           vl.col(p).setZero(), xl.col(p) = w.x.col(p);  // as the caller does
       }
-      Eigen::SparseMatrix<double> A;
-      Eigen::VectorXd b;
-      assemble_system(w.net, w.x, w.v, xl, vl, w.f_ext, h, definite, A, b);
+      SparseSystem sys;
+      assemble_system(w.net, w.x, w.v, xl, vl, w.f_ext, h, definite, sys);
+      const Eigen::SparseMatrix<double>& A = sys.A;
+      const Eigen::VectorXd& b = sys.b;
       Eigen::MatrixXd Ae;
       Eigen::VectorXd be;
       imtest::dense_system(w.net, w.x, w.v, xl, vl, w.f_ext, h, definite, Ae, be);
@@ -228,12 +335,14 @@ TEST_CASE(
           INFO("stored entry A(" << it.row() << ", " << it.col() << ") between particles "
                                  << it.row() / 2 << " and " << it.col() / 2
                                  << ": only a particle's own block and the blocks of a spring "
-                                    "between two free particles may be stored");
+                                    "between two free particles may be stored, on or above the "
+                                    "diagonal (the upper triangle)");
           REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
+          REQUIRE(it.row() <= it.col());
         }
       }
-      const Eigen::MatrixXd Ad = A;
-      INFO("A =\n"
+      const Eigen::MatrixXd Ad = full(A);
+      INFO("A (its upper triangle, mirrored) =\n"
            << Ad << "\nexpected\n"
            << Ae << "\nb = " << b.transpose() << "\nexpected " << be.transpose());
       REQUIRE(wbtest::max_abs_diff(Ad, Ae) <= kRelTol * wbtest::max_abs(Ae));

@@ -36,8 +36,9 @@ TEST_CASE("I5 implicit trapezoid: energy kept exactly on linear springs at any h
     v << 0.5, 0.4, -1.0, 0.9;
     const double E0 = imtest::energy(net, x, v);
     const Mat2X x0 = x;
+    imtest::CarriedWorkspace ws;  // one per network and run
     for (int step = 0; step < 10; ++step)
-      implicit_trapezoid_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v);
+      implicit_trapezoid_step(net, Mat2X::Zero(2, 2), hw / w, options(), x, v, ws.next());
     INFO("the particles must move (h w = " << hw << ")");
     REQUIRE((x - x0).norm() > 1e-6);
     wbtest::require_near(imtest::energy(net, x, v) / E0, 1.0, 0.0,
@@ -71,7 +72,8 @@ TEST_CASE("I5 implicit trapezoid: one step on a damped linear spring is the Cayl
       ve(d, p) = X1[1];
     }
   }
-  implicit_trapezoid_step(net, f, h, options(), x, v);
+  NewtonWorkspace ws;
+  implicit_trapezoid_step(net, f, h, options(), x, v, ws);
   wbtest::require_near(x, xe, 0.0, "x' of the trapezoid rule on a linear spring", 1e-9);
   wbtest::require_near(v, ve, 0.0, "v' of the trapezoid rule on a linear spring", 1e-9);
 }
@@ -85,8 +87,9 @@ TEST_CASE("I5 implicit trapezoid: second order in h against the exact oscillator
   const Vec2 x0(1.0, 0.0), v0(0.0, 3.0);
   auto error = [&](int N) {
     Mat2X x = x0, v = v0;
+    imtest::CarriedWorkspace ws;
     for (int s = 0; s < N; ++s)
-      implicit_trapezoid_step(net, Mat2X::Zero(2, 1), T / N, options(), x, v);
+      implicit_trapezoid_step(net, Mat2X::Zero(2, 1), T / N, options(), x, v, ws.next());
     const Vec2 xe = x0 * std::cos(w * T) + v0 / w * std::sin(w * T);
     return (Vec2(x.col(0)) - xe).norm();
   };
@@ -111,9 +114,10 @@ TEST_CASE("I5 implicit trapezoid: a pinned particle never moves even one that ar
   Mat2X f(2, 4);
   f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
   Mat2X x = x0, v = v0;
+  imtest::CarriedWorkspace ws;
   for (int step = 0; step < 5; ++step) {
     const Mat2X xs = x, vs = v;
-    implicit_trapezoid_step(net, f, 0.1, options(), x, v);
+    implicit_trapezoid_step(net, f, 0.1, options(), x, v, ws.next());
     INFO("step " << step << ": pinned particle 2 at " << x.col(2).transpose() << ", velocity "
                  << v.col(2).transpose());
     REQUIRE(x.col(2) == x0.col(2));
@@ -141,7 +145,8 @@ TEST_CASE("I5 implicit trapezoid: returns the Newton report of its backward Eule
     NewtonOptions o = options();
     o.max_iterations = cap;
     Mat2X x = x0, v = v0;
-    const NewtonReport r = implicit_trapezoid_step(net, f, h, o, x, v);
+    NewtonWorkspace ws;
+    const NewtonReport r = implicit_trapezoid_step(net, f, h, o, x, v, ws);
     Mat2X G = (v - v0) * net.m.asDiagonal() -
               0.5 * h * (imtest::forces(net, x0, v0) + imtest::forces(net, x, v)) - h * f;
     const double s = imtest::momentum_scale(net, x0, v0, f, h);
@@ -165,7 +170,8 @@ TEST_CASE("I5 implicit trapezoid: returns the Newton report of its backward Eule
   x << 1.0, 0.0;
   NewtonOptions o = options();
   o.definite = false;
-  const NewtonReport r = implicit_trapezoid_step(bad, Mat2X::Zero(2, 1), 2.0, o, x, v);
+  NewtonWorkspace ws;
+  const NewtonReport r = implicit_trapezoid_step(bad, Mat2X::Zero(2, 1), 2.0, o, x, v, ws);
   INFO("report {iterations " << r.iterations << ", converged " << r.converged
                              << ", solver_failed " << r.solver_failed
                              << "}: the backward half's factorisation fails, expected "
@@ -191,7 +197,8 @@ TEST_CASE("I5 held-out: random networks step by the trapezoid rule and return th
       o.tol = 1e-12;
       o.max_iterations = 50;
       Mat2X x = w.x, v = w.v;
-      const NewtonReport r = implicit_trapezoid_step(w.net, w.f_ext, h, o, x, v);
+      NewtonWorkspace ws;
+      const NewtonReport r = implicit_trapezoid_step(w.net, w.f_ext, h, o, x, v, ws);
       // The explicit half, written here: pinned particles' v = 0 first.
       Mat2X vs = w.v;
       for (Eigen::Index p = 0; p < n; ++p)

@@ -61,6 +61,7 @@ class UniformGravity : public Force {
     return -(g_.transpose() * x).dot(m);  // -sum m_i g . x_i
   }
   std::string type() const override { return "gravity"; }
+  const Vec2& g() const { return g_; }
   void bound(const Mat2X&, const Mat2X&, const VecX& m, VecX& b) const override {
     b += g_.cwiseAbs().maxCoeff() * m;
   }
@@ -459,6 +460,41 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
   Energy e;
   e.kinetic = 0.5 * v.colwise().squaredNorm().dot(m);
   for (const auto& term : forces) e.potential += term->potential(x, m);
+  return e;
+}
+
+double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
+                      bool& finite) {
+  Vec2 g = Vec2::Zero();  // every uniform gravity term's field, summed
+  for (const auto& term : forces)
+    if (const auto* u = dynamic_cast<const UniformGravity*>(term.get())) g += u->g();
+  // One pass, two particles at a time (independent sums keep the adders busy):
+  // k = sum m v.*v (twice the kinetic energy, per axis) and w = sum m x, from
+  // which V_g = -g . w. A coordinate that is not finite makes k or w not
+  // finite (m > 0; each term of k is >= 0); the converse fails only when the
+  // finite sums overflow, and then the exact questions below decide.
+  Eigen::Array2d k0 = Eigen::Array2d::Zero(), k1 = k0, w0 = k0, w1 = k0;
+  const Eigen::Index n = x.cols() == m.size() && v.cols() == m.size() ? m.size() : 0;
+  Eigen::Index i = 0;
+  for (; i + 1 < n; i += 2) {
+    k0 += m[i] * v.col(i).array().square();
+    w0 += m[i] * x.col(i).array();
+    k1 += m[i + 1] * v.col(i + 1).array().square();
+    w1 += m[i + 1] * x.col(i + 1).array();
+  }
+  if (i < n) {
+    k0 += m[i] * v.col(i).array().square();
+    w0 += m[i] * x.col(i).array();
+  }
+  const Eigen::Array2d k = k0 + k1, w = w0 + w1;
+  if (n != m.size() || !k.allFinite() || !w.allFinite()) {  // rare: the run stops here
+    finite = all_finite(x, v);
+    return finite ? energy(forces, x, v, m).total() : NAN;
+  }
+  finite = true;
+  double e = 0.5 * k.sum() - (g.array() * w).sum();
+  for (const auto& term : forces)
+    if (!dynamic_cast<const UniformGravity*>(term.get())) e += term->potential(x, m);
   return e;
 }
 

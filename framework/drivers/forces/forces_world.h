@@ -78,12 +78,21 @@ class ParticleDynamics : public Dynamics {
 
 Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m);
 
+// World::checked_energy of a world with these forces: the finiteness of x and
+// v, the kinetic energy and the uniform gravity's potential in one pass over
+// the particles, then the other terms' potentials.
+double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
+                      bool& finite);
+
 // A particle scene's World: its forces, summed by accumulate_forces.
 class ForceWorld : public World {
  public:
   explicit ForceWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const override {
+    return wb::checked_energy(forces_, x, v, m_, finite);
+  }
   std::vector<const Force*> terms() const override;
   // A scene with forces whose every evaluation gave zero: the forces' stubs.
   std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;

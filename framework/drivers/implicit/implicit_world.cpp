@@ -2,6 +2,7 @@
 // adapters that call the student's implicit steps (labs/implicit/).
 #include "implicit_world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -225,19 +226,28 @@ FastSolverOptions read_fast(const Scene& s) {
 }
 
 // The cost model's rates of the implicit integrators (docs/scenes.md, "Cost"),
-// measured with the solution (docs/benchmarks.md has more): one linear solve of
-// the lab's Newton step (assembly through I2, Eigen's SimplicialLDLT: ordering
-// and factorisation) takes about 1 us per particle of a chain (a rope: 1.5 us at
-// 10^4 to 3 * 10^5 beads, 0.5 us at 30), and kSecondsPerSolveGrid n^1.5
-// sqrt(1 + n / kGridCacheParticles) on a 2D grid (a cloth: 10.8 ms at 32 x 32,
-// 0.33 s at 100 x 100; the provided fast path's factorisation 33 s at 316 x 316:
-// past 10^4 particles the factor leaves the cache and the work grows as n^2). The
+// measured with the solution (docs/benchmarks.md has more). One linear solve of
+// the lab's Newton step as the handout asks since issue 34 (backward_euler.h:
+// the pattern assembled in place, Eigen's SimplicialLDLT in the particles' own
+// order, analysed once, refactorised in place) takes about 0.1 us per particle of
+// a chain (a rope: 0.06 us at 10^4 beads; 0.3 us at 10^5, where the solves meet
+// subnormal numbers); on a 2D grid, whose factor fills the band the particles'
+// order leaves (a spring joins particles up to `band` apart), 2 n (2 band)^2
+// flops at kSecondsPerBandFlop (a 100 x 100 cloth with bend springs: 0.93 s);
+// by CG (newton.solver "cg") about kTypicalCgIterations products with the upper
+// triangle, kSecondsPerLabCgParticle each (a 100 x 100 cloth at cg_tol 1e-2: 48
+// iterations of 0.28 ms). The provided fast path's factorisation takes
+// kSecondsPerSolveGrid n^1.5 sqrt(1 + n / kGridCacheParticles) on a 2D grid
+// (0.33 s at 100 x 100, 33 s at 316 x 316: past 10^4 particles the factor
+// leaves the cache and the work grows as n^2). The
 // fast path's factorisation of a chain, its CG iteration per particle (19 to 24
 // ns), its assembly per spring, its analysis per particle. The factor's entries
 // (16 bytes each) per particle of a chain, per particle log2(particles) of a grid
 // (20 at 100 x 100, 24 at 316 x 316); the network's and the fast path's copies of a
 // spring.
-constexpr double kSecondsPerSolveChain = 1.0e-6;
+constexpr double kSecondsPerSolveChain = 0.1e-6;
+constexpr double kSecondsPerBandFlop = 0.3e-9;
+constexpr double kSecondsPerLabCgParticle = 28e-9;
 constexpr double kSecondsPerSolveGrid = 3.3e-7;
 constexpr double kGridCacheParticles = 1e4;
 constexpr double kSecondsPerSolveSpring = 20e-9;
@@ -528,10 +538,30 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
   const std::string per =
       one ? " x 1 solve" : " x " + num(solves) + " to " + num(cap) + " solves";
   if (kind == SolveKind::kNewton || kind == SolveKind::kOneSolve) {
-    const double t = (grid ? grid_solve_seconds(n) : kSecondsPerSolveChain * n) +
-                     kSecondsPerSolveSpring * springs;
-    c.step.add(it.name + ": linear solves (I3 assembly, LDLT): " + size + per, key, solves, t,
-               entries * kBytesPerFactorEntry + springs * kBytesPerSystemSpring,
+    // The lab's step (backward_euler.h): CG, or LDLT in the particles' order, whose
+    // factor on a 2D network fills the band (a cloth's: its row, twice with bend springs;
+    // hand-written springs: about sqrt(n)).
+    const double band = gen && gen->cloth
+                            ? double(gen->cloth->C) * (gen->cloth->kb > 0 ? 2.0 : 1.0)
+                            : std::sqrt(n);
+    double t = kSecondsPerSolveChain * n, held = kFactorEntriesChain * n;
+    std::string how = "LDLT", solver_key = key;
+    if (opt.solver == NewtonOptions::kCG) {
+      t = kTypicalCgIterations * kSecondsPerLabCgParticle * n;
+      held = 0;
+      how = "CG, about " + num(kTypicalCgIterations) + " iterations";
+    } else if (grid) {
+      t = kSecondsPerBandFlop * 2.0 * n * std::pow(2.0 * band, 2.0);
+      held = 2.0 * n * 2.0 * band;
+      how = "LDLT in the particles' order, a band of " + num(band) +
+            " (newton.solver \"cg\" is made for 2D networks)";
+      // The key to change: the solver, unless the scene raised the cap on the solves
+      // (then the worst case, every step at its cap, is what that key bought).
+      if (opt.max_iterations <= NewtonOptions{}.max_iterations) solver_key = "newton.solver";
+    }
+    c.step.add(it.name + ": linear solves (I3 assembly, " + how + "): " + size + per, solver_key,
+               solves, t + kSecondsPerSolveSpring * springs,
+               held * kBytesPerFactorEntry + springs * kBytesPerSystemSpring,
                one ? 1 : double(opt.max_iterations));
     return;
   }
@@ -574,11 +604,16 @@ namespace {
 void newton_adapter(const char* name, bool trapezoid, bool one_iteration, const Dynamics& dyn,
                     double h, Mat2X& x, Mat2X& v, Scratch& s) {
   const ImplicitDynamics& d = implicit_dynamics(dyn);
+  NewtonWorkspace& ws = d.workspace();
+  // A run's first step (no evaluation counted yet: every run resets the count)
+  // starts CG from 0, not from another run's last step: the same run, alone or
+  // in a sweep, takes the same steps.
+  if (d.evals() == 0) ws.dv.resize(0);
   d.external_forces(x, v, s.a0);
   NewtonOptions opt = d.options();
   opt.one_iteration = one_iteration;
-  const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v)
-                                   : backward_euler_step(d.network(), s.a0, h, opt, x, v);
+  const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v, ws)
+                                   : backward_euler_step(d.network(), s.a0, h, opt, x, v, ws);
   d.record(name, r);
 }
 void fast_adapter(const char* name, bool one_iteration, const Dynamics& dyn, double h, Mat2X& x,

@@ -103,6 +103,10 @@ class ImplicitDynamics : public Dynamics {
   ImplicitDynamics(const ForceList& forces, const Scene& scene);
   const SpringNetwork& network() const { return net_; }
   const NewtonOptions& options() const { return opt_; }
+  // The network's workspace for the lab's Newton steps (backward_euler.h): its
+  // pattern and LDLT analysis are made by the first step and kept for every
+  // run on this network; its warm start is cleared when a run starts.
+  NewtonWorkspace& workspace() const { return ws_; }
   // The provided fast path (fast_backward_euler.h), made on its first use:
   // its pattern analysis is paid once per run, by the runs that use it.
   FastBackwardEuler& fast() const;
@@ -126,6 +130,7 @@ class ImplicitDynamics : public Dynamics {
   NewtonOptions opt_;
   FastSolverOptions fast_opt_;
   mutable std::unique_ptr<FastBackwardEuler> fast_;
+  mutable NewtonWorkspace ws_;
   std::string file_;
   Eigen::Array<double, 1, Eigen::Dynamic> inv_m_;
   mutable bool external_only_ = false;
@@ -142,6 +147,9 @@ class ImplicitWorld : public World {
   explicit ImplicitWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const override {
+    return wb::checked_energy(forces_, x, v, m_, finite);
+  }
   std::vector<const Force*> terms() const override;
   // Steps whose Newton solve did not converge, said once at the end: a warning
   // (the summary's) when the steps did no linear solve (the lab's stubs), else a note.

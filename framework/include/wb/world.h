@@ -3,6 +3,7 @@
 // optional phase after every step (collisions). The core knows no lab: each
 // lab's glue (framework/drivers/<lab>/) makes its own World.
 #pragma once
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -22,6 +23,13 @@ struct Energy {
 // Total linear momentum sum m_i v_i (kg m/s).
 inline Vec2 momentum(const Mat2X& v, const VecX& m) { return v * m; }
 
+// Are every position and velocity finite? One pass over both, without a branch
+// per coefficient: q - q is 0 for a finite q and NaN for an infinite or NaN one,
+// so the sum is 0 exactly when all are finite.
+inline bool all_finite(const Mat2X& x, const Mat2X& v) {
+  return (x - x).sum() + (v - v).sum() == 0.0;
+}
+
 class World {
  public:
   virtual ~World() = default;
@@ -29,6 +37,15 @@ class World {
   virtual const Dynamics& dynamics() const = 0;
   // Kinetic and potential energy at (x, v).
   virtual Energy energy(const Mat2X& x, const Mat2X& v) const = 0;
+  // The divergence rule's questions after every step (docs/run-contract.md):
+  // are x and v finite (`finite`), and, when they are, the total energy. A
+  // world answers both in one pass over the particles where it can (the step
+  // loop's bookkeeping, docs/benchmarks.md); the default asks all_finite, then
+  // energy(). Equal to energy().total() up to the order of the sums.
+  virtual double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const {
+    finite = all_finite(x, v);
+    return finite ? energy(x, v).total() : NAN;
+  }
   // The scene's force terms, each with its key and bound (check_initial_state
   // checks the initial forces and potentials term by term). Default: none.
   virtual std::vector<const Force*> terms() const { return {}; }

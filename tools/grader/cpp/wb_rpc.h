@@ -12,6 +12,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <cstring>
@@ -198,6 +199,15 @@ inline void get(In& in, Eigen::SparseMatrix<double>& a) {
   a = Eigen::Map<const Eigen::SparseMatrix<double>>(r, c, nnz, outer.data(), inner.data(),
                                                     values.data());
 }
+
+// ---- a sparse factorisation kept in a lab's struct (the implicit lab's NewtonWorkspace::ldlt,
+// its pattern's analysis): a cache of what the struct's data determine, not data. Nothing of it
+// crosses: each side keeps its own, and the worker's starts empty on every call (the lab's
+// code sees an unanalysed solver and analyses again).
+template <class M, int UpLo, class Ord>
+void put(Out&, const Eigen::SimplicialLDLT<M, UpLo, Ord>&) {}
+template <class M, int UpLo, class Ord>
+void get(In&, Eigen::SimplicialLDLT<M, UpLo, Ord>&) {}
 
 // ---- strings, vectors, pairs
 inline void put(Out& o, const std::string& s) {

@@ -1,5 +1,4 @@
 #include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
 #include <cmath>
 
 #include "assemble_system.h"
@@ -7,8 +6,10 @@
 #include "network_forces.h"
 
 // Alternative I4: the residual G(y) = M (y - v) - h (f(x + h y, y) + f_ext) is
-// computed from the network's forces (network_forces.h), not read off b; the
-// scale's norms are summed particle by particle; one loop for every solve.
+// computed from the network's forces (network_forces.h), not read off b, and
+// measured after every solve, one_iteration's included; the system is assembled
+// again only when another solve is needed; the scale's norms are summed particle
+// by particle; one loop for every solve.
 namespace {
 
 double residual(const SpringNetwork& net, const wb::Mat2X& f_ext, double h, const wb::Mat2X& x,
@@ -24,17 +25,25 @@ double residual(const SpringNetwork& net, const wb::Mat2X& f_ext, double h, cons
   return std::sqrt(sum);
 }
 
-bool solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-           const NewtonOptions& opt, Eigen::VectorXd& dv) {
+bool solve(NewtonWorkspace& ws, const NewtonOptions& opt, double scale, bool first,
+           Eigen::VectorXd& dv) {
+  const Eigen::SparseMatrix<double>& A = ws.sys.A;
+  const Eigen::VectorXd& b = ws.sys.b;
   if (opt.solver == NewtonOptions::kCG) {
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg(A);
-    cg.setTolerance(opt.cg_tol);
-    dv = cg.solve(b);
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper> cg(A);
+    if (b.norm() > 0) cg.setTolerance(opt.cg_tol * scale / b.norm());
+    if (first && ws.dv.size() == b.size()) {
+      dv = cg.solveWithGuess(b, ws.dv);
+    } else {
+      dv = cg.solve(b);
+    }
     if (cg.info() != Eigen::Success) return false;
+    if (first) ws.dv = dv;
   } else {
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-    if (ldlt.info() != Eigen::Success) return false;
-    dv = ldlt.solve(b);
+    if (ws.ldlt.rows() != A.rows() || A.rows() == 0) ws.ldlt.analyzePattern(A);
+    ws.ldlt.factorize(A);
+    if (ws.ldlt.info() != Eigen::Success) return false;
+    dv = ws.ldlt.solve(b);
   }
   return dv.allFinite();
 }
@@ -42,7 +51,8 @@ bool solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
 }  // namespace
 
 NewtonReport backward_euler_step(const SpringNetwork& net, const wb::Mat2X& f_ext, double h,
-                                 const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v) {
+                                 const NewtonOptions& opt, wb::Mat2X& x, wb::Mat2X& v,
+                                 NewtonWorkspace& ws) {
   NewtonReport rep;
   const Eigen::Index n = net.n();
   for (Eigen::Index p = 0; p < n; ++p)
@@ -53,15 +63,14 @@ NewtonReport backward_euler_step(const SpringNetwork& net, const wb::Mat2X& f_ex
     f2 += f_ext.col(p).squaredNorm();
   }
   wb::Mat2X y = v;
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b, dv;
+  Eigen::VectorXd dv;
   rep.residual = std::nan("");
   for (int k = 0;; ++k) {
     // The first system at the start, then at each Newton iterate.
-    assemble_system(net, x, v, k == 0 ? x : wb::Mat2X(x + h * y), y, f_ext, h, opt.definite, A,
-                    b);
-    if (k == 0) rep.scale = std::sqrt(mv2) + b.norm() + h * std::sqrt(f2);
-    if (!solve(A, b, opt, dv)) {
+    assemble_system(net, x, v, k == 0 ? x : wb::Mat2X(x + h * y), y, f_ext, h, opt.definite,
+                    ws.sys);
+    if (k == 0) rep.scale = std::sqrt(mv2) + ws.sys.b.norm() + h * std::sqrt(f2);
+    if (!solve(ws, opt, rep.scale, k == 0, dv)) {
       rep.solver_failed = true;
       break;
     }
