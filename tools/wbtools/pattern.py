@@ -544,6 +544,32 @@ def test_name_findings(lab, files, tasks, read):
     return findings
 
 
+POINTS_TAG = re.compile(r"\[(\d+)pts\]")
+HANDOUT_TASK = re.compile(r"^##\s+([A-Z][0-9]+)\b.*\((\d+) points\)\s*$", re.MULTILINE)
+
+
+def points_findings(lab, points, handout):
+    """The points of a lab's tests ({task: sum of its tests' [Npts] tags}) against the lab's
+    handout ("## F5 ... (16 points)" headings) and the grader's total of 100: two branches that
+    each keep 100 can merge into 102, which only a grading would find (a CI run later)."""
+    findings = []
+    total = sum(points.values())
+    if total != 100:
+        findings.append(f"tests/{lab}/: the tests' points add up to {total}, expected 100 "
+                        "(the grader refuses the list): " +
+                        ", ".join(f"{t} {n}" for t, n in points.items()))
+    if handout is None:
+        return findings
+    stated = {t: int(n) for t, n in HANDOUT_TASK.findall(handout)}
+    for task, n in points.items():
+        if task not in stated:
+            findings.append(f"handouts/{lab}.md: no heading '## {task} ... ({n} points)'")
+        elif stated[task] != n:
+            findings.append(f"handouts/{lab}.md: '## {task}' says {stated[task]} points, its "
+                            f"tests in tests/{lab}/ carry {n}: make them agree")
+    return findings
+
+
 def stage_testnames(build, out, verbose):
     findings = []
     for lab in labs():
@@ -558,6 +584,16 @@ def stage_testnames(build, out, verbose):
         files = sorted(n for n in os.listdir(d) if n.endswith(".cpp")
                        and os.path.isfile(os.path.join(d, n)))
         findings += test_name_findings(lab, files, lab_tasks(lab), read)
+        points = {}
+        for name in files:
+            m = TEST_FILE.match(name)
+            if m:
+                points[m.group(1)] = points.get(m.group(1), 0) + sum(
+                    sum(int(n) for n in POINTS_TAG.findall(tags))
+                    for _, tags in test_cases(read(name))[0])
+        handout = os.path.join(ROOT, "handouts", f"{lab}.md")
+        text = open(handout, encoding="utf-8").read() if os.path.isfile(handout) else None
+        findings += points_findings(lab, points, text)
     return findings
 
 

@@ -153,3 +153,16 @@ def test_every_unit_test_names_the_defect_it_guards():
                     if isinstance(node, ast.FunctionDef) and node.name.startswith("test_")
                     and not (ast.get_docstring(node) or "").strip()]
     assert missing == []
+
+
+def test_points_that_do_not_add_up_or_disagree_with_the_handout_are_found():
+    """Defect: two branches that each keep 100 points merge into 102 (issue 29's held-out tests
+    and issue 36's new ones did), found only when a CI run grades; or a handout heading keeps a
+    task's old points."""
+    handout = "## F1 Gravity (60 points)\n\n## F2 Springs (40 points)\n"
+    assert pattern.points_findings("forces", {"F1": 60, "F2": 40}, handout) == []
+    merged = pattern.points_findings("forces", {"F1": 60, "F2": 42}, handout)
+    assert any("add up to 102, expected 100" in f for f in merged)
+    assert any("'## F2' says 40 points" in f and "carry 42" in f for f in merged)
+    missing = pattern.points_findings("forces", {"F1": 60, "F2": 40}, "## F1 Gravity (60 points)")
+    assert missing == ["handouts/forces.md: no heading '## F2 ... (40 points)'"]
