@@ -1,0 +1,53 @@
+// Diagnosis probes of C1 (tests/common/wb_probe.h): an impact on a tilted plane, then one
+// situation at a time: receding, just touching, the centre below the plane, a resting contact,
+// an approach at exactly rest_speed, clear of the plane.
+#include "collide_plane.h"
+#include "wb_probe.h"
+
+namespace {
+using wb::Vec2;
+void run(wbprobe::Probe& P, const Vec2& p, const Vec2& n, double r, double m, double e,
+         double rest_speed, Vec2 x, Vec2 v) {
+  P.call("collide_plane");
+  P.in("p", p), P.in("n", n), P.in("r", r), P.in("m", m), P.in("restitution", e);
+  P.in("rest_speed", rest_speed), P.in("x", x), P.in("v", v);
+  const double j = collide_plane(p, n, r, m, e, rest_speed, x, v);
+  P.out("returned", j), P.out("x", x), P.out("v", v);
+}
+const Vec2 kP(1, -0.5);
+const Vec2 kN(0.6, 0.8);  // a tilted plane
+}  // namespace
+
+WB_PROBE("C1", "floor", "a ball of mass 1 sinking 0.05 into a floor at 2 m/s, e = 0.5") {
+  P.simple();
+  run(P, Vec2(0, 0), Vec2(0, 1), 0.1, 1, 0.5, 0.01, Vec2(0, 0.05), Vec2(0, -2));
+}
+// The impact: impulse and push-out.
+WB_PROBE("C1", "impact", "mass 2 sinking 0.05 into a tilted plane, approaching fast and sliding, e = 0.6") {
+  run(P, kP, kN, 0.25, 2, 0.6, 0.1, kP + 0.2 * kN + 1.5 * Vec2(-0.8, 0.6),
+      -3 * kN + 1.25 * Vec2(-0.8, 0.6));
+}
+// Receding: pushed out, no impulse.
+WB_PROBE("C1", "receding", "sinking 0.05 into the tilted plane but moving away from it") {
+  run(P, kP, kN, 0.25, 2, 0.6, 0.1, kP + 0.2 * kN, 1.5 * kN + Vec2(-0.8, 0.6));
+}
+// Just touching (gap 0), approaching: a contact.
+WB_PROBE("C1", "touching", "just touching a floor (gap 0) and approaching at 2 m/s") {
+  run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.25), Vec2(0.5, -2));
+}
+// The centre below the plane, deeper than the radius.
+WB_PROBE("C1", "deep", "the centre 0.35 below a floor (radius 0.1), approaching") {
+  run(P, Vec2(0, 0), Vec2(0, 1), 0.1, 2, 0.6, 0.1, Vec2(0.5, -0.35), Vec2(0.5, -2));
+}
+// Resting: the approach is slower than rest_speed, the sliding is not.
+WB_PROBE("C1", "resting", "sinking into a floor, approaching at 0.05 m/s (rest_speed 0.1), sliding at 2 m/s") {
+  run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.2), Vec2(2, -0.05));
+}
+// The approach at exactly rest_speed bounces.
+WB_PROBE("C1", "threshold", "approaching a floor at exactly rest_speed = 0.25: it bounces") {
+  run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.5, 0.25, Vec2(0.5, 0.2), Vec2(0, -0.25));
+}
+// Clear of the plane: nothing.
+WB_PROBE("C1", "clear", "0.3 above a floor, approaching: nothing happens yet") {
+  run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.55), Vec2(0.5, -2));
+}

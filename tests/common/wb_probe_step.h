@@ -1,0 +1,115 @@
+// Probes of one integrator step (tests/common/wb_probe.h), for the labs whose tasks are step
+// functions (euler, midpoint): the step is taken once from a given state with accelerations
+// written here, and the probe records the new state, how many times the forces were evaluated
+// and at which states (the first four evaluations), so that a wrong evaluation point shows
+// apart from a wrong update.
+#pragma once
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "wb/dynamics.h"
+#include "wb_probe.h"
+
+namespace wbprobe {
+
+using Accel = std::function<void(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a)>;
+
+// A step of `name` (the step function `fn`) of size h from (x, v) under a(x, v) = `accel`,
+// described in words by `words`. The scratch holds NaN on entry (its contents are undefined).
+inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& words,
+                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h) {
+  std::vector<wb::Mat2X> seen_x, seen_v;
+  wb::LambdaDynamics dyn([&](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
+    seen_x.push_back(xx), seen_v.push_back(vv);
+    accel(xx, vv, a);
+  });
+  wb::Scratch s;
+  s.resize(x.cols());
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  for (wb::Mat2X* m : {&s.a0, &s.a1, &s.a2, &s.a3, &s.x1, &s.v1, &s.xs, &s.vs}) m->setConstant(nan);
+  P.call(name);
+  P.note("dyn: a(x, v) = " + words);
+  P.in("h", h), P.in("x", x), P.in("v", v);
+  fn(dyn, h, x, v, s);
+  P.out("x", x), P.out("v", v);
+  P.out("force evaluations", long(seen_x.size()));
+  // The states of the first evaluations, side by side (2 x n per evaluation).
+  const Eigen::Index n = x.cols(), k = std::min<Eigen::Index>(4, Eigen::Index(seen_x.size()));
+  wb::Mat2X at_x(2, n * k), at_v(2, n * k);
+  for (Eigen::Index e = 0; e < k; ++e) {
+    const wb::Mat2X& sx = seen_x[std::size_t(e)];
+    const wb::Mat2X& sv = seen_v[std::size_t(e)];
+    if (sx.cols() != n || sv.cols() != n) {
+      at_x.resize(2, 0), at_v.resize(2, 0);  // an evaluation of another size: shown as empty
+      break;
+    }
+    at_x.middleCols(e * n, n) = sx, at_v.middleCols(e * n, n) = sv;
+  }
+  P.out("x of each evaluation", at_x), P.out("v of each evaluation", at_v);
+}
+
+// Accelerations used by the step probes: none; constant per particle; a spring to the origin
+// (depends on x only); a drag (depends on v only); all of them.
+inline Accel no_force() {
+  return [](const wb::Mat2X& x, const wb::Mat2X&, wb::Mat2X& a) { a.setZero(2, x.cols()); };
+}
+inline Accel constant(const wb::Mat2X& g) {
+  return [g](const wb::Mat2X& x, const wb::Mat2X&, wb::Mat2X& a) {
+    a = g.leftCols(std::min(g.cols(), x.cols()));
+  };
+}
+inline Accel spring(double w2) {
+  return [w2](const wb::Mat2X& x, const wb::Mat2X&, wb::Mat2X& a) { a = -w2 * x; };
+}
+inline Accel drag(double c) {
+  return [c](const wb::Mat2X&, const wb::Mat2X& v, wb::Mat2X& a) { a = -c * v; };
+}
+inline Accel mixed(double w2, double c, const wb::Vec2& g) {
+  return [w2, c, g](const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a) {
+    a = -w2 * x - c * v;
+    a.colwise() += g;
+  };
+}
+
+// The step probes of one integrator task, the same for every step function: the simple cases
+// first (one particle, no force; one particle falling from rest), then one particle state
+// dependence at a time, then everything.
+#define WB_STEP_PROBES(task, fn, name)                                                           \
+  WB_PROBE(task, "free", "one particle, no force: h = 0.1") {                                    \
+    P.simple();                                                                                  \
+    wbprobe::step(P, &fn, name, "0", wbprobe::no_force(), wbprobe::cols({{1, 2}}),               \
+                  wbprobe::cols({{3, -1}}), 0.1);                                                \
+  }                                                                                              \
+  WB_PROBE(task, "falling", "one particle falling from rest, a = (0, -10), h = 0.1") {           \
+    P.simple();                                                                                  \
+    wbprobe::step(P, &fn, name, "(0, -10)", wbprobe::constant(wbprobe::cols({{0, -10}})),        \
+                  wbprobe::cols({{1, 2}}), wbprobe::cols({{0, 0}}), 0.1);                        \
+  }                                                                                              \
+  WB_PROBE(task, "drift", "three particles moving with no force, h = 0.25") {                   \
+    wbprobe::step(P, &fn, name, "0", wbprobe::no_force(),                                        \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+  }                                                                                              \
+  WB_PROBE(task, "kick", "three particles at rest under constant forces, h = 0.25") {           \
+    const wb::Mat2X g = wbprobe::cols({{0, -10}, {2, 1}, {-3, 0.5}});                            \
+    wbprobe::step(P, &fn, name, "a constant per particle: (0, -10), (2, 1), (-3, 0.5)",          \
+                  wbprobe::constant(g), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),             \
+                  wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}), 0.25);                                \
+  }                                                                                              \
+  WB_PROBE(task, "spring", "three moving particles on springs to the origin, a = -4 x, h = 0.25") { \
+    wbprobe::step(P, &fn, name, "-4 x", wbprobe::spring(4), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}), \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+  }                                                                                              \
+  WB_PROBE(task, "drag", "three moving particles under a drag, a = -3 v, h = 0.25") {           \
+    wbprobe::step(P, &fn, name, "-3 v", wbprobe::drag(3), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}), \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+  }                                                                                              \
+  WB_PROBE(task, "general", "three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") {     \
+    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)",                                         \
+                  wbprobe::mixed(4, 3, wb::Vec2(0, -10)),                                        \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+  }
+}  // namespace wbprobe

@@ -1,0 +1,55 @@
+// Diagnosis probes of I5 (tests/common/wb_probe.h): a linear spring, external forces, a pinned
+// particle, a nonlinear network; the new state and the report recorded apart.
+#include "implicit_probes.h"
+#include "implicit_trapezoid.h"
+
+namespace {
+using improbe::Mat2X;
+using improbe::Vec2;
+using improbe::spring;
+
+void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double h, Mat2X x,
+         Mat2X v) {
+  P.call("implicit_trapezoid_step");
+  improbe::network_in(P, net);
+  NewtonOptions o;
+  o.tol = 1e-9;
+  P.in("f_ext", f_ext), P.in("h", h), P.in("x", x), P.in("v", v);
+  P.tol(1e-6, 1e-8);
+  const NewtonReport r = implicit_trapezoid_step(net, f_ext, h, o, x, v);
+  P.out("x", x), P.out("v", v);
+  improbe::report_out(P, r, false);
+}
+}  // namespace
+
+WB_PROBE("I5", "linear", "one particle on a zero-rest-length spring to the origin, moving, h = 0.1") {
+  P.simple();
+  SpringNetwork net;
+  net.m = Eigen::VectorXd::Constant(1, 2.0);
+  net.springs = {spring(0, -1, 50, 0)};
+  run(P, net, Mat2X::Zero(2, 1), 0.1, wbprobe::cols({{1, 0.5}}), wbprobe::cols({{0.3, -0.8}}));
+}
+// External forces alone.
+WB_PROBE("I5", "external", "two free particles under external forces only, no spring") {
+  SpringNetwork net;
+  net.m = Eigen::Vector2d(1.5, 0.5);
+  run(P, net, wbprobe::cols({{0, -14.7}, {2, -4.9}}), 0.1, wbprobe::cols({{0, 0}, {3, 4}}),
+      wbprobe::cols({{0.5, -1}, {-0.5, 0.25}}));
+}
+// A pinned particle that arrives moving.
+WB_PROBE("I5", "pinned", "a chain of three, the middle one pinned and arriving with a velocity") {
+  SpringNetwork net;
+  net.m = Eigen::Vector3d(1.5, 2, 0.5);
+  net.drag = 0.5;
+  net.pinned = {0, 1, 0};
+  net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
+  run(P, net, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1,
+      wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}), wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}));
+}
+// The half steps on a nonlinear network.
+WB_PROBE("I5", "network", "a small nonlinear network with drag and gravity, h = 0.05") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.05, x, v);
+}
