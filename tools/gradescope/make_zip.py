@@ -45,7 +45,10 @@ def labs_with_tests(root):
 
 
 def wanted(rel, lab):
-    # The lab's tests, and its mistakes' failure signatures (the grader's hints), never the mutants.
+    # The lab's tests, and its mistakes' failure signatures (the grader's hints), never the mutants
+    # nor the tools' own unit tests (tools/grader/tests/).
+    if rel.startswith("tools/") and "/tests/" in rel:
+        return False
     for e in ENTRIES + [f"tests/{lab}", f"tests/mutants/{lab}/signatures.json"]:
         if rel == e or rel.startswith(e + "/"):
             return True

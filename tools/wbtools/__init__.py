@@ -1,0 +1,17 @@
+"""The workbook's tools, one module per command: tools/<name> is a thin entry that imports
+tools/wbtools/<name>.py and calls its run() (main() with the command line, then exit with its
+status). The grader's layers (tools/grader/), the figures (tools/wbplot/) and the hint matcher
+(tools/wbgrade_hints.py) are packages and modules of their own.
+
+  claims.py         tools/claims              handout claims against the runs
+  fresh_machine.py  tools/fresh-machine       the README's commands on brand-new Debian roots
+  goals.py          tools/goals               the constraint scenes' measured goals
+  hostile.py        tools/gradescope/hostile  hostile submissions against the autograder zip
+  mutants.py        tools/mutants             known-wrong code must lose points
+  pack.py           tools/pack                the student pack (and the Gradescope zip)
+  pattern.py        tools/pattern             the pattern every lab keeps
+  report.py         tools/report              the main job: runs, figures, the report
+
+Each package's unit tests are in its tests/ folder (python3 -m pytest tools; tools/check
+runs them first); neither the student pack nor the Gradescope zip ships them.
+"""

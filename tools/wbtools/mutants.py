@@ -1,0 +1,696 @@
+"""tools/mutants: checks that the graded tests catch known-wrong code and accept correct variants."""
+# For each lab with tests/mutants/<lab>/ (docs/grading.md, "Mutants and
+# alternatives"):
+#   - the solution itself must score 100;
+#   - every *.patch (a unified diff against one file of solutions/<lab>/, with
+#     '# hint: ...' and '# caught-by: ...' in its header) must score < 100, and
+#     each entry of its caught-by list must be caught by at least one of the
+#     tests it names;
+#   - every alternatives/<name>[.<variant>].cpp (a correct <name>.cpp written
+#     differently) must score 100.
+#   - the mutants' failure signatures (which tests each fails, at which
+#     assertion) must equal the stored tests/mutants/<lab>/signatures.json, the
+#     data the grader's hints come from (tools/wbgrade_hints.py); --signatures
+#     rewrites it, --leave-one-out measures the hints from it (no build).
+# Each variant is graded by tools/grade's machinery in one scratch build per
+# lab, so a variant recompiles only the files that differ from the last one
+# (grade_files below is the only call into it).
+# Exit status: 0 all as expected, 1 a mutant survived / an alternative lost
+# points / a mutant file is broken, 2 bad input.
+
+import argparse
+import concurrent.futures
+import threading
+import importlib.machinery
+import json
+import importlib.util
+import os
+import re
+import secrets
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.dont_write_bytecode = True
+TOOLS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # tools/
+
+
+def load_grade():
+    path = os.path.join(TOOLS, "grade")
+    loader = importlib.machinery.SourceFileLoader("wb_grade", path)
+    spec = importlib.util.spec_from_loader("wb_grade", loader)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["wb_grade"] = mod
+    loader.exec_module(mod)
+    return mod
+
+
+grade = load_grade()
+sys.path.insert(0, TOOLS)
+import wbgrade_hints as hints  # noqa: E402
+
+
+def grade_files(grader, lab, files):
+    """Grades one lab with `files` {student file name: bytes} in place of its student files.
+    Returns (compile error or "", score, max score, [(test name, tags, passed?, output)]):
+    the one thing this tool needs from the grader (output: the failure text, whose first
+    paragraph is the reason, untruncated)."""
+    rep = grader.grade({lab: files}, [lab])[lab]
+    return (rep.compile_error, rep.score, rep.max_score,
+            [(r.test.name, list(r.test.tags), r.status == "passed", r.output or r.reason)
+             for r in rep.results])
+
+
+# ------------------------------------------------------------ the direct path
+# The grader runs each test case as two sandboxed processes talking through a pipe (the lab's
+# code never runs in the test process): about 40 ms of launching per test, and seconds per
+# variant where a test calls the lab's code many times. Our own mutants and alternatives are
+# trusted code, so each is first judged from the same tests linked straight with it
+# (<lab>-tests-direct, one unsandboxed process per test case, as in the grader) and the
+# grader's own verdict code (grader.verdict.judge) reads each report. That is taken only when
+# every test ended the plain way: the process exited, its report is complete, and nothing in
+# it could read differently through the worker (no exception, crash, output or time-out):
+# else the variant goes through the grader itself, as each lab's solution always does. The
+# stored signatures, made by the grader (--signatures runs everything through it), are
+# compared with what the direct run found: a mutant the two would judge differently fails
+# the check as stale.
+
+DIRECT_TIMEOUT = 20.0  # s, one test case run directly (the slowest solution test takes < 1 s)
+UNSURE = (b"<Exception", b"<FatalErrorCondition", b"<StdOut", b"<StdErr", b"<Warning")
+
+
+def direct_files(grader, lab, files):
+    """Grades `files` from <lab>-tests-direct; None when the grader itself must judge them
+    (the build failed, or a test did not end the plain way)."""
+    from grader.project import pristine_files
+    from grader.worker import worker_files
+    from grader.verdict import judge as verdict, read_report
+    pristine = pristine_files(grader.repo)
+    pristine.update(worker_files(grader.repo, grade.known_labs(grader.repo)))
+    tests = grader.test_lists([lab], pristine)[lab]
+    staged = dict(pristine)
+    for name, data in files.items():
+        staged[os.path.join("labs", lab, name)] = data
+    grader.direct_tests = True
+    grader.sync(staged)
+    grader.configure([lab])
+    binary = os.path.join(grader.build, "bin", f"{lab}-tests-direct")
+    if os.path.exists(binary):
+        os.remove(binary)
+    t0 = time.monotonic()
+    proc = subprocess.run(["cmake", "--build", grader.build, "--target", f"{lab}-tests-direct",
+                           "-j", str(grader.jobs)], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, timeout=600)
+    if proc.returncode != 0 or not os.path.isfile(binary):
+        return None  # the grader reports the compile error in its own words
+    t1 = time.monotonic()
+
+    def one(t):
+        nonce = "wb-" + secrets.token_hex(8)
+        try:
+            p = subprocess.run([binary, t.name, "-w", "NoTests", "-r", "xml", "-n", nonce],
+                               cwd=grader.cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, timeout=min(grader.timeout, DIRECT_TIMEOUT))
+        except subprocess.TimeoutExpired:
+            return None
+        if p.returncode < 0 or p.stderr.strip() or any(u in p.stdout for u in UNSURE):
+            return None
+        plain, _, _ = read_report(p.stdout, t.name, nonce, grader.src + "/")
+        if plain == "missing" or (plain == "passed") != (p.returncode == 0):
+            return None  # an incomplete report, or one that disagrees with the exit status
+        return verdict(t, ("exit", p.returncode), p.stdout, "", nonce, grader.timeout,
+                       grader.src + "/")
+
+    with concurrent.futures.ThreadPoolExecutor(grader.jobs) as pool:
+        results = list(pool.map(one, tests))
+    grade.log(f"mutants: {lab}: built {lab}-tests-direct in {t1 - t0:.1f} s, "
+              f"ran {len(tests)} test processes in {time.monotonic() - t1:.1f} s")
+    if any(r is None for r in results):
+        return None
+    score = sum(r.score for r in results)
+    return ("", score, sum(t.points for t in tests),
+            [(r.test.name, list(r.test.tags), r.status == "passed", r.output or r.reason)
+             for r in results])
+
+
+class PatchError(Exception):
+    pass
+
+
+# ----------------------------------------------------------------- patches
+
+HUNK = re.compile(r"^@@ -(\d+)(?:,(\d+))? \+(\d+)(?:,(\d+))? @@")
+
+
+def parse_patch(text):
+    """Returns (header comments, [(old file name, [(old start, [(tag, line)])])])."""
+    lines = text.splitlines(keepends=True)
+    comments, i = [], 0
+    while i < len(lines) and not lines[i].startswith("--- "):
+        if lines[i].startswith("#"):
+            comments.append(lines[i][1:].strip())
+        i += 1
+    files = []
+    while i < len(lines):
+        if not lines[i].startswith("--- "):
+            i += 1  # "diff ...", "index ..." lines between files
+            continue
+        old = lines[i][4:].split("\t")[0].strip()
+        if i + 1 >= len(lines) or not lines[i + 1].startswith("+++ "):
+            raise PatchError(f"line {i + 2}: expected '+++ ' after '--- {old}'")
+        i += 2
+        hunks = []
+        while i < len(lines) and lines[i].startswith("@@"):
+            m = HUNK.match(lines[i])
+            if not m:
+                raise PatchError(f"line {i + 1}: malformed hunk header {lines[i].strip()!r}")
+            start = int(m.group(1))
+            old_len = int(m.group(2) if m.group(2) is not None else 1)
+            new_len = int(m.group(4) if m.group(4) is not None else 1)
+            i += 1
+            body, o, n = [], 0, 0
+            while i < len(lines) and (o < old_len or n < new_len or lines[i].startswith("\\")):
+                line = lines[i]
+                if line.startswith("\\"):  # "\ No newline at end of file"
+                    if body:
+                        tag, t = body[-1]
+                        body[-1] = (tag, t.rstrip("\n"))
+                    i += 1
+                    continue
+                tag, t = (line[0], line[1:]) if line not in ("\n", "\r\n") else (" ", line)
+                if tag == " ":
+                    o, n = o + 1, n + 1
+                elif tag == "-":
+                    o += 1
+                elif tag == "+":
+                    n += 1
+                else:
+                    raise PatchError(f"line {i + 1}: a hunk line must start with ' ', '-' or '+'")
+                body.append((tag, t))
+                i += 1
+            if o != old_len or n != new_len:
+                raise PatchError(f"hunk at line {start}: the patch ends before the hunk does")
+            hunks.append((start, body))
+        if not hunks:
+            raise PatchError(f"no hunks for {old}")
+        files.append((old, hunks))
+    if not files:
+        raise PatchError("no '--- <file>' line: not a unified diff")
+    return comments, files
+
+
+def apply_hunks(text, hunks, what):
+    """Applies hunks exactly (no fuzz); a hunk may move, its lines may not differ."""
+    lines = text.splitlines(keepends=True)
+    offset, floor = 0, 0
+    for k, (start, body) in enumerate(hunks, 1):
+        old = [t for tag, t in body if tag in " -"]
+        new = [t for tag, t in body if tag in " +"]
+        want = max(0, start - 1 + offset) if old else start + offset
+        spots = [p for p in range(floor, len(lines) - len(old) + 1) if lines[p:p + len(old)] == old]
+        if not spots:
+            raise PatchError(f"hunk {k} (line {start}) does not match {what}: regenerate the patch")
+        p = min(spots, key=lambda s: (abs(s - want), s))
+        lines[p:p + len(old)] = new
+        offset += len(new) - len(old)
+        floor = p + len(new)
+    return "".join(lines)
+
+
+def header_value(comments, key):
+    """The text of the '# <key>: ...' lines of a header, joined ("" when there is none)."""
+    out = []
+    for c in comments:
+        m = re.match(rf"^{key}:\s*(.*)$", c, re.IGNORECASE)
+        if m and m.group(1).strip():
+            out.append(m.group(1).strip())
+    return " ".join(out)
+
+
+def caught_by(comments):
+    entries = []
+    for c in comments:
+        m = re.match(r"^caught-by:\s*(.*)$", c, re.IGNORECASE)
+        if m:
+            entries += [e.strip() for e in m.group(1).split(",") if e.strip()]
+    return entries
+
+
+def matches(entry, name, tags):
+    if entry.startswith("["):
+        return entry.lower() in (t.lower() for t in tags)
+    return name.startswith(entry)
+
+
+# ---------------------------------------------------------------- variants
+
+class Row:
+    def __init__(self, lab, variant, expected):
+        self.lab, self.variant, self.expected = lab, variant, expected
+        self.got, self.verdict, self.ok, self.details = "", "", False, []
+        self.signature = None  # {failed test: assertion class} of a graded mutant
+        self.comments = []
+        self.how = ""  # "direct" or "grader ..." (see direct_files)
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def variants(repo, lab):
+    """[(name, expected, files {student name: bytes} or an error string, comments)]."""
+    sol_dir = os.path.join(repo, "solutions", lab)
+    names = grade.student_files(repo, lab)
+    solution = {n: read(os.path.join(sol_dir, n)) for n in names}
+    out = [("solution", "100", dict(solution), [])]
+    mdir = os.path.join(repo, "tests", "mutants", lab)
+    if not os.path.isdir(mdir):
+        return out
+    for f in sorted(os.listdir(mdir)):
+        if not f.endswith(".patch"):
+            continue
+        files, comments = dict(solution), []
+        try:
+            with open(os.path.join(mdir, f), encoding="utf-8") as fh:
+                comments, patched = parse_patch(fh.read())
+            for old, hunks in patched:
+                target = os.path.basename(old)
+                if target not in names:
+                    raise PatchError(f"'--- {old}': {target} is not a student file of {lab} "
+                                     f"({', '.join(names)})")
+                text = apply_hunks(files[target].decode("utf-8"), hunks, f"solutions/{lab}/{target}")
+                files[target] = text.encode("utf-8")
+            if files == solution:
+                raise PatchError("the patch changes nothing")
+            if not header_value(comments, "hint"):
+                raise PatchError("no '# hint: ...' line: say for students what the mistake is and "
+                                 "where to look, e.g. '# hint: the position update uses the old "
+                                 "velocity (handout §E2)' (docs/grading.md, Adding a mutant)")
+        except (PatchError, UnicodeDecodeError) as e:
+            files = f"bad patch: {e}"
+        out.append((f, "< 100", files, comments))
+    adir = os.path.join(mdir, "alternatives")
+    for f in sorted(os.listdir(adir)) if os.path.isdir(adir) else []:
+        if not f.endswith(".cpp"):
+            continue
+        target = f.split(".")[0] + ".cpp"
+        files = dict(solution)
+        if target not in names:
+            files = f"bad alternative: {target} is not a student file of {lab} ({', '.join(names)})"
+        else:
+            files[target] = read(os.path.join(adir, f))
+        out.append((os.path.join("alternatives", f), "100", files, []))
+    return out
+
+
+def judge(row, graded, expected, comments):
+    compile_error, score, max_score, results = graded
+    failed = [r for r in results if not r[2]]
+    row.got = f"{score}/{max_score}"
+    if expected == "100":
+        row.ok = score == max_score
+        row.verdict = "ok" if row.ok else "LOST POINTS"
+        if compile_error:
+            row.verdict = "LOST POINTS: does not compile"
+            row.details.append(compile_error)
+        elif not row.ok:
+            row.details += [f"failed: {r[0]}: {r[3].split(chr(10) * 2)[0][:200]}" for r in failed]
+        return
+    entries = caught_by(comments)
+    row.comments = comments
+    row.details += [c for c in comments if not re.match(r"^caught-by:", c, re.IGNORECASE)][:3]
+    if compile_error:
+        row.verdict = "BAD MUTANT: does not compile"
+        row.details.append(compile_error)
+        return
+    row.signature = {r[0]: hints.failure_text(r[3]) for r in failed}
+    if score >= max_score:
+        row.verdict = "SURVIVED"
+        return
+    if not entries:
+        row.verdict = "BAD MUTANT: no '# caught-by:' line"
+        return
+    missed = []  # entries none of whose tests failed
+    for e in entries:
+        named = [r for r in results if matches(e, r[0], r[1])]
+        if not named:
+            row.verdict = f"BAD MUTANT: caught-by {e!r} matches no test"
+            return
+        if not any(not r[2] for r in named):
+            missed.append(e)
+    row.details += [f"failed: {r[0]}" for r in failed]
+    if missed:
+        row.verdict = "caught, but not by " + ", ".join(missed)
+        return
+    row.ok, row.verdict = True, "caught"
+
+
+def print_rows(rows, verbose):
+    wl = max([3] + [len(r.lab) for r in rows])
+    wv = max([7] + [len(r.variant) for r in rows])
+    print(f"{'lab':<{wl}}  {'variant':<{wv}}  {'expected':<8}  {'got':>7}  verdict")
+    for r in rows:
+        print(f"{r.lab:<{wl}}  {r.variant:<{wv}}  {r.expected:<8}  {r.got:>7}  {r.verdict}")
+        if verbose or not r.ok:
+            if verbose and r.how:
+                print(f"    judged: {r.how}")
+            for d in r.details:
+                print("    " + d.replace("\n", "\n    "))
+
+
+def signature_doc(lab, tests, rows):
+    """The signatures file of one lab: generated, compared as a whole."""
+    muts = {}
+    for r in rows:
+        if r.expected == "100" or r.signature is None:
+            continue
+        name = r.variant[:-len(".patch")] if r.variant.endswith(".patch") else r.variant
+        muts[name] = {"task": header_value(r.comments, "task"),
+                      "kind": header_value(r.comments, "kind"),
+                      "hint": header_value(r.comments, "hint"),
+                      "failed": dict(sorted(r.signature.items()))}
+    return {"version": hints.SIGNATURES_VERSION, "lab": lab,
+            "generated_by": "tools/mutants --signatures: do not edit by hand",
+            "tests": tests, "mutants": muts}
+
+
+def write_json_atomic(path, data):
+    tmp = path + f".tmp-{os.getpid()}"
+    try:
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(json.dumps(data, indent=1, ensure_ascii=False, sort_keys=False) + "\n")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def check_signatures(repo, lab, doc, write):
+    """None when the stored signatures equal `doc` (or were just written), else why not."""
+    path = hints.signatures_path(repo, lab)
+    if write:
+        write_json_atomic(path, doc)
+        return None
+    try:
+        with open(path, encoding="utf-8") as f:
+            stored = json.load(f)
+    except FileNotFoundError:
+        return f"{os.path.relpath(path, repo)} is missing"
+    except (OSError, ValueError) as e:
+        return f"{os.path.relpath(path, repo)} cannot be read ({e})"
+    if stored == doc:
+        return None
+    why = []
+    sm, dm = stored.get("mutants", {}) if isinstance(stored, dict) else {}, doc["mutants"]
+    if not isinstance(stored, dict) or stored.get("tests") != doc["tests"]:
+        why.append("the lab's tests changed")
+    why += [f"{m}: new" for m in sorted(set(dm) - set(sm))][:3]
+    why += [f"{m}: removed" for m in sorted(set(sm) - set(dm))][:3]
+    why += [f"{m}: changed" for m in sorted(set(dm) & set(sm)) if dm[m] != sm[m]][:5]
+    return "; ".join(why) or "the file differs from what this run measured"
+
+
+def refresh_hints(repo, labs):
+    """--refresh-hints: the headers' hint, kind and task into the stored signatures."""
+    bad = 0
+    for lab in labs:
+        data = hints.load_signatures(repo, lab)
+        if data is None:
+            print(f"{lab}: no signatures to refresh (tools/mutants --signatures --lab {lab})")
+            bad += 1
+            continue
+        n = 0
+        for name, files, comments in ((v[0], v[2], v[3]) for v in variants(repo, lab)
+                                      if v[1] != "100"):
+            key = name[:-len(".patch")]
+            if isinstance(files, str):
+                print(f"{lab}: {name}: {files}")
+                bad += 1
+            elif key not in data["mutants"]:
+                print(f"{lab}: {name}: not in the stored signatures: run tools/mutants "
+                      f"--signatures --lab {lab}")
+                bad += 1
+            else:
+                m = data["mutants"][key]
+                new = {"task": header_value(comments, "task"), "kind": header_value(comments, "kind"),
+                       "hint": header_value(comments, "hint")}
+                n += any(m.get(k) != v for k, v in new.items())
+                m.update(new)
+        write_json_atomic(hints.signatures_path(repo, lab), data)
+        print(f"{lab}: {n} mutant(s) refreshed")
+    return 1 if bad else 0
+
+
+# ------------------------------------------------------------- leave-one-out
+
+def leave_one_out(data):
+    """Per mutant of one lab's signatures: (name, unique?, outcome, named mutants), where
+    outcome is "right" (a mistake of the same task and kind is named), "wrong" (only others
+    are named), "silent" (nothing named) or "no kind" (the mutant has no '# kind:')."""
+    muts = data.get("mutants", {})
+    tests = data.get("tests", [])
+    out = []
+    for name in sorted(muts):
+        m = muts[name]
+        sig = m.get("failed", {})
+        twins = [o for o in muts if o != name and muts[o].get("failed") == sig]
+        if not m.get("kind"):
+            out.append((name, not twins, "no kind", []))
+            continue
+        chosen = hints.matches(sig, tests, data, exclude={name})
+        same = [c for c in chosen if muts[c[1]].get("kind") == m["kind"]
+                and c[1].split(".")[0] == name.split(".")[0]]
+        outcome = "silent" if not chosen else "right" if same else "wrong"
+        out.append((name, not twins, outcome, [c[1] for c in chosen]))
+    return out
+
+
+def loo_report(repo, labs, markdown, verbose):
+    rows = []
+    for lab in labs:
+        data = hints.load_signatures(repo, lab)
+        if data is None:
+            print(f"{lab}: no signatures (tools/mutants --signatures --lab {lab})")
+            continue
+        res = leave_one_out(data)
+        own = sum(1 for n in data["mutants"]
+                  if any(c[1] == n for c in hints.matches(data["mutants"][n]["failed"],
+                                                          data["tests"], data)))
+        uniq = [r for r in res if r[1] and r[2] != "no kind"]
+        shared = [r for r in res if not r[1] and r[2] != "no kind"]
+        nokind = [r for r in res if r[2] == "no kind"]
+
+        def share(rs, what):
+            return (sum(1 for r in rs if r[2] == what), len(rs))
+        rows.append((lab, len(res), own, share(uniq, "right"), share(uniq, "wrong"),
+                     share(uniq, "silent"), share(shared, "right"), share(shared, "wrong"),
+                     len(nokind)))
+        if verbose:
+            for name, u, outcome, named in res:
+                print(f"  {lab}  {name:<40} {'unique' if u else 'shared':<6}  {outcome:<7}  "
+                      f"{', '.join(named)}")
+
+    def pct(a):
+        return f"{a[0]}/{a[1]} ({100 * a[0] / a[1]:.0f}%)" if a[1] else "0/0"
+    head = ["lab", "mutants", "own hint when graded", "unique: right", "unique: wrong",
+            "unique: silent", "shared: right", "shared: wrong", "no kind"]
+    tot = [sum(r[1] for r in rows), sum(r[2] for r in rows)] + \
+        [(sum(r[k][0] for r in rows), sum(r[k][1] for r in rows)) for k in range(3, 8)] + \
+        [sum(r[8] for r in rows)]
+    lines = [[r[0], str(r[1]), f"{r[2]}/{r[1]}"] + [pct(r[k]) for k in range(3, 8)] + [str(r[8])]
+             for r in rows]
+    lines.append(["all", str(tot[0]), f"{tot[1]}/{tot[0]}"] + [pct(a) for a in tot[2:7]]
+                 + [str(tot[7])])
+    if markdown:
+        print("| " + " | ".join(head) + " |")
+        print("|" + "---|" * len(head))
+        for l in lines:
+            print("| " + " | ".join(l) + " |")
+    else:
+        w = [max(len(h), *(len(l[k]) for l in lines)) for k, h in enumerate(head)]
+        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
+        for l in lines:
+            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+    print(f"\nrule: tools/wbgrade_hints.py (CLOSE = {hints.CLOSE}, TIE = {hints.TIE}, "
+          f"MAX_HINTS = {hints.MAX_HINTS}, ASSERTION_WEIGHT = {hints.ASSERTION_WEIGHT}, "
+          f"RARITY_WEIGHTS = {hints.RARITY_WEIGHTS}, "
+          f"CLASS_PREFIX = {hints.CLASS_PREFIX})")
+    return 0
+
+
+def lab_groups(repo, labs, n):
+    """The labs split into n groups of about the same number of variants (largest first),
+    each group graded in its own scratch build while the others run: a variant's build
+    uses one core, its tests the others."""
+    weight = {lab: len(os.listdir(os.path.join(repo, "tests", "mutants", lab))) for lab in labs}
+    groups = [[] for _ in range(min(n, len(labs)))]
+    load = [0] * len(groups)
+    for lab in sorted(labs, key=lambda l: -weight[l]):
+        k = load.index(min(load))
+        groups[k].append(lab)
+        load[k] += weight[lab]
+    return [g for g in groups if g]
+
+
+def run_lab(repo, grader, lab, args, stop):
+    """Grades every variant of one lab; returns its rows (the signatures row last, once
+    every variant was graded)."""
+    rows, all_tests = [], None
+    for name, expected, files, comments in variants(repo, lab):
+        if stop.is_set():
+            return rows
+        row = Row(lab, name, expected)
+        rows.append(row)
+        if isinstance(files, str):
+            row.verdict = "BAD MUTANT: " + files if expected != "100" else files
+            row.got = "-"
+        else:
+            grade.log(f"mutants: {lab}: {name}")
+            graded = None
+            if name != "solution" and not args.through_grader:
+                graded = direct_files(grader, lab, files)
+                row.how = "direct" if graded else "grader (the direct run was not plain)"
+            if graded is None:
+                graded = grade_files(grader, lab, files)
+                row.how = row.how or "grader"
+            if name == "solution":
+                all_tests = sorted(r[0] for r in graded[3])
+            judge(row, graded, expected, comments)
+        if not row.ok and not args.keep_going:
+            stop.set()
+            return rows
+    if all_tests is None:
+        return rows
+    # Every variant of the lab was graded: its signatures are known.
+    row = Row(lab, "signatures.json", "current")
+    row.got = str(sum(1 for r in rows if r.signature is not None))
+    doc = signature_doc(lab, all_tests, rows)
+    why = check_signatures(repo, lab, doc, args.signatures)
+    for r in rows:  # what the grader would tell a student with this code
+        if r.signature:
+            r.details += ["grader's hint: " + h for h in
+                          hints.hints_for(lab, r.signature, all_tests, doc) or ["(none)"]]
+    row.ok = why is None
+    row.verdict = ("written" if args.signatures else "current") if row.ok else \
+        f"STALE: {why}: run tools/mutants --signatures --lab {lab} and commit it"
+    rows.append(row)
+    if not row.ok and not args.keep_going:
+        stop.set()
+    return rows
+
+
+def main(argv):
+    p = argparse.ArgumentParser(
+        prog="tools/mutants",
+        description="Checks that the graded tests catch known-wrong code (tests/mutants/<lab>/*.patch "
+                    "must score < 100 and fail the tests named by '# caught-by:') and accept correct "
+                    "code written differently (tests/mutants/<lab>/alternatives/*.cpp must score 100), "
+                    "and that the stored failure signatures (tests/mutants/<lab>/signatures.json, "
+                    "the data of the grader's hints) are current.",
+        epilog="Exit status: 0 all as expected, 1 a mutant survived, an alternative lost points, a "
+               "mutant file is broken or the signatures are stale, 2 bad input. See docs/grading.md.")
+    p.add_argument("--lab", action="append", default=[], metavar="L", help="only this lab (repeatable)")
+    p.add_argument("--keep-going", action="store_true", help="run every variant even after one is wrong")
+    p.add_argument("--build-dir", metavar="DIR",
+                   help="keep the scratch builds in DIR/0, DIR/1 ... (one per group of labs run "
+                        "at once; tools/grade --build-dir DIR/0 shares the first; default: a "
+                        "temporary folder)")
+    p.add_argument("--parallel", type=int, default=2, metavar="N",
+                   help="groups of labs graded at once, each in its own scratch build (default 2)")
+    p.add_argument("--jobs", type=int, default=2, metavar="J", help="test cases run at once (default 2)")
+    p.add_argument("--timeout", type=float, default=60.0, metavar="S",
+                   help="time limit of each test case in seconds (default 60)")
+    p.add_argument("--signatures", action="store_true",
+                   help="(re)write tests/mutants/<lab>/signatures.json from this run instead of "
+                        "checking it (implies --keep-going and --through-grader)")
+    p.add_argument("--through-grader", action="store_true",
+                   help="grade every mutant through the grader (sandboxed test and worker "
+                        "processes) instead of first running the tests linked straight with it")
+    p.add_argument("--refresh-hints", action="store_true",
+                   help="no build: rewrite only the hint, kind and task of each mutant in the stored "
+                        "signatures from the patches' headers (after editing a '# hint:'); the "
+                        "measured failures are kept")
+    p.add_argument("--leave-one-out", action="store_true",
+                   help="no build: from the stored signatures, how often the hint names a mistake "
+                        "of the right kind when a mutant's own signature is left out")
+    p.add_argument("--markdown", action="store_true", help="with --leave-one-out: a Markdown table")
+    p.add_argument("-v", "--verbose", action="store_true", help="list the failed tests of every variant "
+                   "(with --leave-one-out: every mutant's outcome)")
+    args = p.parse_args(argv)
+    repo = grade.repo_root()
+    known = grade.known_labs(repo)
+    for lab in args.lab:
+        if lab not in known:
+            raise grade.BadInput(f"--lab {lab}: unknown lab (known: {', '.join(known)})")
+    labs = args.lab or [l for l in known if os.path.isdir(os.path.join(repo, "tests", "mutants", l))]
+    if args.leave_one_out:
+        return loo_report(repo, labs, args.markdown, args.verbose)
+    if args.refresh_hints:
+        return refresh_hints(repo, labs)
+    if args.signatures:
+        args.keep_going = args.through_grader = True
+    if not labs:
+        print("mutants: no lab has tests/mutants/<lab>/: nothing to check")
+        return 0
+    for lab in labs:
+        if not os.path.isdir(os.path.join(repo, "solutions", lab)):
+            raise grade.BadInput(f"solutions/{lab}/ is missing: mutants are patches of the solution")
+    tmp = None
+    root = args.build_dir
+    if root is None:
+        tmp = root = tempfile.mkdtemp(prefix="wb-mutants-")
+    groups = lab_groups(repo, labs, max(1, args.parallel))
+    results = {}  # lab: its rows
+    stop = threading.Event()
+
+    def run_group(k, group):
+        grader = grade.Grader(repo, os.path.join(root, str(k)), args.jobs, args.timeout)
+        try:
+            for lab in group:
+                if stop.is_set():
+                    return
+                results[lab] = run_lab(repo, grader, lab, args, stop)
+        finally:
+            grader.close()
+
+    try:
+        with concurrent.futures.ThreadPoolExecutor(len(groups)) as pool:
+            for f in [pool.submit(run_group, k, g) for k, g in enumerate(groups)]:
+                f.result()
+    finally:
+        if tmp:
+            shutil.rmtree(tmp, ignore_errors=True)
+    rows = [r for lab in labs for r in results.get(lab, [])]
+    print_rows(rows, args.verbose)
+    bad = [r for r in rows if not r.ok]
+    mut = [r for r in rows if r.expected == "< 100"]
+    print(f"\nmutants: {sum(r.ok for r in mut)} of {len(mut)} caught; "
+          f"{sum(r.ok for r in rows if r.expected == '100')} of "
+          f"{sum(1 for r in rows if r.expected == '100')} correct variants kept 100"
+          + (" (stopped at the first wrong one: --keep-going runs them all)" if stop.is_set()
+             else ""))
+    direct = sum(1 for r in mut if r.how == "direct")
+    alts = [r for r in rows if r.expected == "100" and r.variant != "solution"]
+    print(f"mutants: {direct} of {len(mut)} mutants and {sum(1 for r in alts if r.how == 'direct')} "
+          f"of {len(alts)} alternatives judged from their tests run directly, the others (and "
+          "each solution) through the grader")
+    return 1 if bad else 0
+
+
+def run():
+    """The entry tools/mutants calls: main() with the command line, its exit status."""
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except grade.BadInput as e:
+        grade.log(f"mutants: {e}")
+        sys.exit(2)
+    except grade.Defect as e:
+        grade.log(f"mutants: internal error:\n{e}")
+        sys.exit(1)
+    except KeyboardInterrupt:
+        grade.kill_all()
+        grade.log("mutants: interrupted")
+        sys.exit(130)

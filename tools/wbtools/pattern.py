@@ -1,0 +1,508 @@
+"""Checks that every lab, present and future, keeps the workbook's pattern (docs/grading.md, "The pattern").
+
+Each stage covers every lab folder it finds (labs/<lab>/, scenes/<lab>/, handouts/<lab>.md,
+tests/<lab>/), so a new lab is checked without anyone remembering it:
+
+  stubs     every lab's skeleton (build/bin/<lab>) on every default scene prints a stub
+            warning on stderr ("<lab>: warning: ...") and in its summary's "warnings"
+  periods   every lab's skeleton sweep on every scene with an exact solution ("exact" key)
+            gives each integrator an error well above round-off: no scene ends where a step
+            that does nothing scores 0 (a whole period); on a scene whose exact values are
+            conserved ones (the rigid lab's torque-free scenes, where doing nothing is exact
+            at any time), the sweep must print a stub warning naming the integrator
+  claims    every handout sentence that states a number or a direction about a run carries
+            a claim marker (<!-- claim: ... -->, checked by tools/claims) or says why not
+            (<!-- not-a-claim: ... -->)
+  asserts   every REQUIRE/CHECK in tests/<lab>/*.cpp carries words a student can act on: a
+            wbtest::require_* helper with a message, or an INFO/CAPTURE in scope before it
+  reportdoc docs/report.md names every figure the last report drew (build/report), and
+            names no figure file the report does not draw
+
+With no stage, all of them. Exit status: 0 every stage passed, 1 a stage found something
+(each finding on one line: file, what, what to do), 2 bad input (a flag, a missing build)."""
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+sys.dont_write_bytecode = True
+
+from wbplot import recipes  # noqa: E402
+
+STAGES = ["stubs", "periods", "claims", "asserts", "reportdoc"]
+RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
+# The smallest error a skeleton's sweep may show for an integrator, relative to the scene
+# size: a stub that does nothing is off by O(1) of the motion, rounding by 1e-16; a whole
+# period lands a stub on the exact answer to rounding (6e-16 on one-spring).
+ROUNDOFF_REL = 1e-9
+
+
+def rel(p):
+    r = os.path.relpath(p, ROOT)
+    return p if r.startswith("..") else r
+
+
+def labs():
+    """Every lab: a folder labs/<lab>/ (the student side)."""
+    d = os.path.join(ROOT, "labs")
+    return sorted(x for x in os.listdir(d) if os.path.isdir(os.path.join(d, x))) \
+        if os.path.isdir(d) else []
+
+
+def scenes(lab):
+    return sorted(glob.glob(os.path.join(ROOT, "scenes", lab, "*.json")))
+
+
+def summary_of(stdout):
+    lines = [s for s in stdout.splitlines() if s.strip()]
+    try:
+        j = json.loads(lines[-1]) if lines else None
+    except json.JSONDecodeError:
+        return None
+    return j if isinstance(j, dict) else None
+
+
+def run(argv, timeout=RUN_TIMEOUT):
+    try:
+        p = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None, "", f"timed out after {timeout} s"
+    return p.returncode, p.stdout, p.stderr
+
+
+def skeleton(lab, build):
+    exe = os.path.join(build, "bin", lab)
+    if not os.path.exists(exe):
+        raise SystemExit(f"tools/pattern: error: {rel(exe)}: not built (the skeleton of lab "
+                         f"{lab}); build first (cmake --build --preset default)")
+    return exe
+
+
+# ----------------------------------------------------------------------------
+# stubs: every skeleton run says it is a stub
+
+
+def stage_stubs(build, out, verbose):
+    findings = []
+    for lab in labs():
+        exe = skeleton(lab, build)
+        for scene in scenes(lab):
+            status, stdout, stderr = run([exe, "--scene", rel(scene)])
+            s = summary_of(stdout)
+            where = f"{rel(scene)} on the skeleton ({rel(exe)})"
+            if status != 0 or s is None:
+                why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
+                findings.append(f"{where}: the run failed: {why}")
+                continue
+            warned = [ln for ln in stderr.splitlines() if f"{lab}: warning:" in ln]
+            if not warned or not s.get("warnings"):
+                findings.append(
+                    f"{where}: no stub warning (\"{lab}: warning: ...\" on stderr and "
+                    f"\"warnings\" in the summary; status {s.get('status')}): a run of "
+                    "untouched stubs must say so (docs/run-contract.md, \"warnings\"); make "
+                    "the lab's glue detect what its stubs do")
+            elif verbose:
+                print(f"ok: {where}: {warned[0].strip()}")
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# periods: no scene lets a stub score zero error
+
+
+def _rigid_torque_free(doc):
+    return "bodies" in doc and not (doc.get("forces") or doc.get("planes") or doc.get("hinges"))
+
+
+def stage_periods(build, out, verbose):
+    from wbplot import sweep as wsweep
+    findings = []
+    os.makedirs(out, exist_ok=True)
+    for lab in labs():
+        exe = skeleton(lab, build)
+        status, help_text, _ = run([exe, "--help"])
+        if "--sweep" not in help_text:
+            continue
+        for scene in scenes(lab):
+            with open(scene, encoding="utf-8") as f:
+                doc = json.load(f)
+            if not ("exact" in doc or _rigid_torque_free(doc)):
+                continue
+            csv = os.path.join(out, f"{lab}-{os.path.basename(scene)[:-5]}-sweep.csv")
+            argv, _ = recipes.sweep_argv(exe, rel(scene), doc, help_text, csv, repeats=1)
+            status, stdout, stderr = run(argv)
+            where = f"{rel(scene)}: the skeleton's sweep"
+            if status != 0:
+                why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
+                findings.append(f"{where} failed: {why}")
+                continue
+            scale = recipes.length_scale(doc)
+            rows = wsweep.read_sweep(csv)
+            for name in sorted({r.integrator for r in rows}):
+                errs = [r.error for r in rows if r.integrator == name and not r.diverged]
+                small = [e for e in errs if abs(e) <= ROUNDOFF_REL * scale]
+                # A closed-form motion ("exact"): a stub can only score 0 where the motion
+                # returns to its start, so any small error is a finding. A conservation law
+                # (the rigid lab's torque-free scenes): doing nothing conserves everything at
+                # any end time, so the sweep must say it is a stub instead.
+                warned = "exact" not in doc and any(
+                    "warning" in ln and f" {name} " in ln for ln in stderr.splitlines())
+                if small and not warned:
+                    findings.append(
+                        f"{where}: {name} scores error {max(small):.2g} (at most "
+                        f"{ROUNDOFF_REL:g} x the scene size {scale:.3g}) at "
+                        f"{len(small)} of {len(errs)} step sizes with the stubs untouched: the "
+                        "scene ends where doing nothing is exact (a whole period?); change its "
+                        "t_end (docs/report.md, \"Scenes never end on a whole period\")")
+                elif verbose:
+                    print(f"ok: {where}: {name}: least error "
+                          f"{min(errs) if errs else float('nan'):.3g}"
+                          + (" (stub warned)" if warned else ""))
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# claims: every statement about a run is marked
+
+CLAIM = re.compile(r"<!--\s*claim:.*?-->", re.S)
+NOT_A_CLAIM = re.compile(r"<!--\s*not-a-claim:\s*(.*?)\s*-->", re.S)
+# Words that say what a run did. A sentence with one of them and a number or a direction
+# (below) states something about a run.
+RUN_WORDS = re.compile(
+    r"\b(diverg\w*|blows? up|blew up|blow-?ups?|explod\w*|stays? (?:bounded|finite|put|on)"
+    r"|stay (?:bounded|finite)|bounded|lands?|ends? (?:at|up|with|on)"
+    r"|measured|coincid\w*|grows?|grew|gains?|loses?|lost|decays?|drifts?|spirals?"
+    r"|flips?|precess\w*|slides?|sticks?|bounces?|tunnels?|passes? through|falls? through"
+    r"|comes? to rest|swings?|converg\w*|keeps?|kept|damps?|vanish\w*|oscillates?"
+    r"|holds? (?:the|it|up|still)|sinks?"
+    r"|widens?|shrinks?|settles?)\b", re.I)
+DIRECTION = re.compile(
+    r"\b(above|below|left|right|outwards?|inwards?|up|down|faster|slower|more|less|larger"
+    r"|smaller|higher|lower|twice|half|never|always|exactly|at once|within)\b", re.I)
+NUMBER = re.compile(r"(?<![\w.\-/])[−-]?\d+(?:[.,]\d+)?(?:e[−-]?\d+)?(?![\w])")
+TASK_VERB = re.compile(r"[\s*_(]*(Show|Prove|Derive|Use|Run|Compare|Plot|Measure|Explain|"
+                       r"Time|Remove|Turn|Halve|Edit|Try|Write|Check)\b")
+TASK_HEADING = re.compile(r"^#{1,6}\s+[A-Z]\d+\b")  # "## I4 Backward Euler ...": a task
+
+
+def _plain(text):
+    """A paragraph as a reader sees its words: no math, code, links' targets, HTML."""
+    t = re.sub(r"\$\$.*?\$\$", " FORMULA ", text, flags=re.S)
+    t = re.sub(r"\$[^$]*\$", " FORMULA ", t)
+    t = re.sub(r"`[^`]*`", " CODE ", t)
+    t = re.sub(r"!\[[^\]]*\]\([^)]*\)", " ", t)
+    t = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", t)
+    t = re.sub(r"<!--.*?-->", " ", t, flags=re.S)
+    t = re.sub(r"<[^>]+>", " ", t)
+    return t
+
+
+def _sentences(par):
+    """(sentence with its markers, plain text) pairs of a paragraph. A marker right after a
+    sentence's full stop belongs to that sentence."""
+    out = []
+    # Split after . ! ? ; followed by space and a capital letter or a marker-free start.
+    parts = re.split(r"(?<=[.!?])\s+(?=[A-Z*(`$])", par)
+    for p in parts:
+        if out and re.match(r"\s*<!--", p):
+            out[-1] += " " + p
+        else:
+            out.append(p)
+    return [(s, _plain(s)) for s in out]
+
+
+def lint_claims(path):
+    """Unmarked statements about runs in one handout: [(line, sentence)]."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    findings = []
+    lines = text.split("\n")
+    in_code, in_task = False, False
+    par, par_line = [], 0
+
+    def flush():
+        if not par:
+            return
+        body = "\n".join(par)
+        for sent, plain in _sentences(body):
+            if CLAIM.search(sent) or NOT_A_CLAIM.search(sent):
+                continue
+            words = plain.strip()
+            if words.endswith("?") and not re.search(r"\bwhy\b", words, re.I):
+                continue  # a question asks; it states nothing ("why ...?" states its premise)
+            if TASK_VERB.match(words):
+                continue  # "Show that ...", "Run ...": a task for the student
+            if not RUN_WORDS.search(words):
+                continue
+            if NUMBER.search(words) or DIRECTION.search(words):
+                findings.append((par_line, " ".join(sent.split())[:160]))
+
+    for i, ln in enumerate(lines, 1):
+        if ln.strip().startswith("```"):
+            flush()
+            par = []
+            in_code = not in_code
+            continue
+        if in_code:
+            continue
+        if ln.startswith("#"):
+            flush()
+            par = []
+            in_task = bool(TASK_HEADING.match(ln))
+            continue
+        if not ln.strip():
+            flush()
+            par = []
+            continue
+        if in_task:
+            continue  # a task's statement: its numbers are the task's, not a run's
+        # A table row, a list item: a unit of its own (a table cell, a question).
+        if re.match(r"\s*(\||[-*+]\s|\d+\.\s)", ln):
+            flush()
+            par = []
+            if re.match(r"\s*\|[-:| ]+\|\s*$", ln):
+                continue  # a table's rule
+            if ln.lstrip().startswith("|"):
+                # Cells split on the | outside math ($|g|$ is not a cell's edge).
+                masked = re.sub(r"\$[^$]*\$", lambda m: m.group(0).replace("|", "\0"), ln)
+                for cell in masked.strip().strip("|").split("|"):
+                    cell = cell.replace("\0", "|")
+                    par, par_line = [cell], i
+                    flush()
+                par = []
+                continue
+        if not par:
+            par_line = i
+        par.append(ln)
+    flush()
+    return findings
+
+
+def stage_claims(build, out, verbose):
+    findings = []
+    for path in sorted(glob.glob(os.path.join(ROOT, "handouts", "*.md"))):
+        for line, sent in lint_claims(path):
+            findings.append(f"{rel(path)}:{line}: states a number or a direction about a run "
+                            f"without a claim marker: \"{sent}\": add <!-- claim: ... --> "
+                            "(docs/report.md, Claims), or <!-- not-a-claim: why --> when it is "
+                            "not about a run")
+        if verbose:
+            n = len(CLAIM.findall(open(path, encoding="utf-8").read()))
+            print(f"{rel(path)}: {n} claim markers")
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# asserts: every graded assertion carries words
+
+ASSERT = re.compile(r"\b(REQUIRE|CHECK|REQUIRE_FALSE|CHECK_FALSE|REQUIRE_THAT|CHECK_THAT"
+                    r"|REQUIRE_NOTHROW|CHECK_NOTHROW|REQUIRE_THROWS\w*|CHECK_THROWS\w*)\s*\(")
+WORDS = re.compile(r"\b(INFO|CAPTURE|UNSCOPED_INFO)\s*\(")
+
+
+def _strip_comments_and_strings(src):
+    """The source with comments and string literals blanked (same length, same lines)."""
+    out, i, n = [], 0, len(src)
+    while i < n:
+        c = src[i]
+        if src.startswith("//", i):
+            j = src.find("\n", i)
+            j = n if j < 0 else j
+            out.append(" " * (j - i))
+            i = j
+        elif src.startswith("/*", i):
+            j = src.find("*/", i + 2)
+            j = n if j < 0 else j + 2
+            out.append(re.sub(r"[^\n]", " ", src[i:j]))
+            i = j
+        elif c == '"' or c == "'":
+            j = i + 1
+            while j < n and src[j] != c:
+                j += 2 if src[j] == "\\" else 1
+            out.append(c + re.sub(r"[^\n]", " ", src[i + 1:j]) + c)
+            i = j + 1
+        else:
+            out.append(c)
+            i += 1
+    return "".join(out)
+
+
+def lint_asserts(path):
+    """[(line, text)] of bare assertions with no INFO/CAPTURE before them in an enclosing
+    scope (the same block or one around it, from its opening brace)."""
+    with open(path, encoding="utf-8") as f:
+        raw = f.read()
+    src = _strip_comments_and_strings(raw)
+    findings = []
+    # Scopes: for each position, the stack of open-brace positions.
+    stack, opens = [], {}
+    for i, c in enumerate(src):
+        if c == "{":
+            stack.append(i)
+        elif c == "}" and stack:
+            stack.pop()
+        opens[i] = stack[-1] if stack else 0
+    for m in ASSERT.finditer(src):
+        start = m.start()
+        # Skip macro definitions and the helpers' own bodies (namespace wbtest).
+        line_start = src.rfind("\n", 0, start) + 1
+        if src[line_start:start].lstrip().startswith("#"):
+            continue
+        # Scope text: from the outermost enclosing function body (brace depth >= 1 inside a
+        # TEST_CASE) to the assertion; an INFO/CAPTURE in an enclosing, still-open scope
+        # before it counts. Approximation: the text from the innermost '{' that is still open
+        # at `start`, walking outwards, minus closed inner blocks.
+        visible = _visible_before(src, start)
+        if WORDS.search(visible):
+            continue
+        line = raw.count("\n", 0, start) + 1
+        end = raw.find("\n", start)
+        findings.append((line, raw[start:end if end > 0 else None].strip()[:120]))
+    return findings
+
+
+def _visible_before(src, pos):
+    """The text of the scopes open at `pos`, before it, without the blocks already closed
+    (an INFO inside an earlier, closed block is out of scope)."""
+    out, depth = [], 0
+    i = pos - 1
+    while i >= 0:
+        c = src[i]
+        if c == "}":
+            depth += 1
+        elif c == "{":
+            if depth == 0:
+                # Stop at a TEST_CASE/SECTION body? No: enclosing scopes stay visible up to
+                # the test case's opening brace, which is reached when the text before it is
+                # a TEST_CASE(...) header.
+                header = src[max(0, i - 400):i]
+                out.append(c)
+                if re.search(r"\b(TEST_CASE|TEST_CASE_METHOD|SCENARIO)\s*\([^{}]*$", header):
+                    break
+            else:
+                depth -= 1
+        elif depth == 0:
+            out.append(c)
+        i -= 1
+    return "".join(reversed(out))
+
+
+def stage_asserts(build, out, verbose):
+    findings = []
+    for lab in labs():
+        for path in sorted(glob.glob(os.path.join(ROOT, "tests", lab, "*.cpp"))):
+            for line, text in lint_asserts(path):
+                findings.append(f"{rel(path)}:{line}: \"{text}\" has no words for the student: "
+                                "put an INFO(...) or CAPTURE(...) before it in the same scope "
+                                "(what was expected, what came out, what that usually "
+                                "means), or use a wbtest::require_* helper with a message "
+                                "(docs/grading.md, \"Words on every assertion\")")
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# reportdoc: docs/report.md and the report's figures agree
+
+FIG_EXT = (".png", ".gif")
+
+
+def _pattern_of(name, lab_scenes):
+    """A figure file name -> its pattern in docs/report.md: the scene's stem as <scene>."""
+    for stem in sorted(lab_scenes, key=len, reverse=True):
+        if name.startswith(stem + "-") or name.startswith(stem + "."):
+            return "<scene>" + name[len(stem):]
+        if name.endswith("-" + stem + name[name.rfind("."):]):
+            return name[:-len(stem + name[name.rfind("."):])] + "<scene>" + name[name.rfind("."):]
+    return name
+
+
+def stage_reportdoc(build, out, verbose):
+    report = os.path.join(build, "report")
+    if not os.path.isdir(report):
+        raise SystemExit(f"tools/pattern: error: {rel(report)}: no report (run tools/report "
+                         "first: this stage checks docs/report.md against its figures)")
+    with open(os.path.join(ROOT, "docs", "report.md"), encoding="utf-8") as f:
+        doc = f.read()
+    findings = []
+    for lab in labs():
+        folder = os.path.join(report, lab)
+        if not os.path.isdir(folder):
+            findings.append(f"{rel(folder)}: the report has no section for lab {lab} (run "
+                            "tools/report)")
+            continue
+        stems = [os.path.basename(s)[:-5] for s in scenes(lab)]
+        missing = {}  # pattern -> the files drawn under it
+        for name in sorted(f for f in os.listdir(folder) if f.endswith(FIG_EXT)):
+            pat = _pattern_of(name, stems)
+            if f"`{pat}`" not in doc and f"`{name}`" not in doc:
+                missing.setdefault(pat, []).append(name)
+            elif verbose:
+                print(f"ok: {lab}: {name}")
+        for pat, names in sorted(missing.items()):
+            findings.append(f"docs/report.md: names no figure `{pat}` (lab {lab}: "
+                            f"{', '.join(names[:3])}{' ...' if len(names) > 3 else ''}, "
+                            "drawn by the last tools/report): add it to the lab's table")
+    # Names docs/report.md lists that no lab's report drew.
+    every = set()
+    for lab in labs():
+        folder = os.path.join(report, lab)
+        stems = [os.path.basename(s)[:-5] for s in scenes(lab)]
+        if os.path.isdir(folder):
+            every |= {_pattern_of(f, stems) for f in os.listdir(folder) if f.endswith(FIG_EXT)}
+            every |= {f for f in os.listdir(folder) if f.endswith(FIG_EXT)}
+    for pat in sorted(set(re.findall(r"`([^`\s]*<scene>[^`\s]*\.(?:png|gif))`", doc))
+                      | set(re.findall(r"`([\w.-]+\.(?:png|gif))`", doc))):
+        if pat not in every and not pat.startswith(("FIG", "F.", "x.", "amp.")):
+            findings.append(f"docs/report.md: names `{pat}`, which the last tools/report did "
+                            "not draw for any lab: remove it, or make the report draw it")
+    return findings
+
+
+# ----------------------------------------------------------------------------
+
+
+def main():
+    ap = argparse.ArgumentParser(prog="tools/pattern", description=__doc__.split("\n\n")[0],
+                                 epilog="\n\n".join(__doc__.split("\n\n")[1:]),
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("stages", nargs="*", metavar="STAGE",
+                    help="some of: " + ", ".join(STAGES) + " (default: all)")
+    ap.add_argument("--build-dir", default="build",
+                    help="executables in DIR/bin, the report in DIR/report (default build)")
+    ap.add_argument("-v", "--verbose", action="store_true", help="print what passed too")
+    try:
+        args = ap.parse_args()
+    except SystemExit as e:
+        return 2 if e.code else 0
+    stages = args.stages or STAGES
+    bad = [s for s in stages if s not in STAGES]
+    if bad:
+        print(f"tools/pattern: error: stage '{bad[0]}': expected some of {', '.join(STAGES)}",
+              file=sys.stderr)
+        return 2
+    build = os.path.join(ROOT, args.build_dir)
+    out = os.path.join(build, "pattern")
+    total = 0
+    for stage in stages:
+        t0 = time.monotonic()
+        try:
+            findings = globals()[f"stage_{stage}"](build, out, args.verbose)
+        except SystemExit as e:
+            print(e, file=sys.stderr)
+            return 2
+        for f in findings:
+            print(f"{stage}: {f}")
+        print(f"pattern: {stage}: {len(findings)} finding(s) ({time.monotonic() - t0:.1f} s)")
+        total += len(findings)
+    return 1 if total else 0
+
+
+def run():
+    """The entry tools/pattern calls: main() with the command line, its exit status."""
+    sys.exit(main())
