@@ -58,6 +58,20 @@ def load_catalogue(repo, lab):
     return data
 
 
+# ------------------------------------------------------- failed tests' texts
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+FAILURE_CHARS = 300  # characters of a blanked failure text kept in the catalogue
+
+
+def failure_text(output):
+    """What the catalogue keeps of a failed test (tools/mutants compares it between runs): the
+    first paragraph of the grader's output for it, every number blanked to '#', whitespace
+    collapsed, at most FAILURE_CHARS characters."""
+    first = (output or "").split("\n\n", 1)[0]
+    return " ".join(_NUMBER.sub("#", first).split())[:FAILURE_CHARS]
+
+
 # ------------------------------------------------------------------ records
 
 def parse_lines(text, limit=4096):
@@ -248,6 +262,10 @@ def part_key(name, m):
     return (name.split(".")[0], str(m.get("kind") or ""))
 
 
+LEVELS = ("probe", "output", "unit")  # coarse to fine: how a part is told apart
+NEAR = 0.75  # another part that reaches this share of the wrong units makes the naming unsure
+
+
 def bad_units(probes, outputs):
     """The units (of the probes that tell parts apart: not the simple ones) that are not ok."""
     bad = set()
@@ -260,18 +278,30 @@ def bad_units(probes, outputs):
     return bad
 
 
-def part_of(cat, task, outputs, exclude=()):
-    """The part of the computation the probes point at, or None.
+def _at(units_, level):
+    """Units seen at one level: the probe alone, the probe and output, or the whole unit."""
+    if level == "probe":
+        return {u[:1] for u in units_}
+    if level == "output":
+        return {u[:2] for u in units_}
+    return set(units_)
 
-    With B the units that go wrong for the submission, and for each part k (the catalogued
-    mistakes of one file and kind, those in `exclude` left out) core_k the units every one of
-    them gets wrong and reach_k those any of them gets wrong: k fits when core_k is not empty,
-    core_k is in B and B is in reach_k. A part is named only when it is the only one that
-    fits: a submission whose wrong probes could come from two parts, or from none that is
-    catalogued, gets no part named (its counterexample still says what is wrong)."""
+
+def part_of(cat, task, outputs, exclude=()):
+    """The part of the computation the wrong probes point at, or None.
+
+    B is the set of wrong units of the submission; for each part k (the catalogued mistakes of
+    one file and '# kind:', those in `exclude` left out), core_k is what every one of them gets
+    wrong and reach_k what any of them gets wrong. k fits when core_k is in B and B is in
+    reach_k: B is what a mistake of that part does, as far as the catalogue knows. This is
+    asked first of whole probes, then of each output of a probe (the new x apart from the new
+    v), then of each particle or body: the first level where exactly one part fits names it,
+    unless another part reaches NEAR of B there too (then nothing is named). A submission
+    whose wrong probes could come from two parts, or from none, gets no part named: its
+    counterexample still says what is wrong."""
     probes = task_probes(cat, task)
-    B = bad_units(probes, outputs)
-    if not B:
+    B0 = bad_units(probes, outputs)
+    if not B0:
         return None
     parts = {}
     for name, m in task_mutants(cat, task, exclude).items():
@@ -280,12 +310,25 @@ def part_of(cat, task, outputs, exclude=()):
         bad = bad_units(probes, m.get("probes") or {})
         if bad:
             parts.setdefault(part_key(name, m), []).append(bad)
-    fits = []
-    for key, sets in parts.items():
-        core, reach = set.intersection(*sets), set.union(*sets)
-        if core and core <= B and B <= reach:
-            fits.append(key)
-    return fits[0] if len(fits) == 1 else None
+    cands = sorted(parts)
+    for level in LEVELS:
+        B = _at(B0, level)
+        fits, near = [], []
+        for key in cands:
+            sets = [_at(b, level) for b in parts[key]]
+            core, reach = set.intersection(*sets), set.union(*sets)
+            if not core <= B:
+                continue
+            if B <= reach:
+                fits.append(key)
+            elif len(B & reach) >= NEAR * len(B):
+                near.append(key)
+        if len(fits) == 1:
+            return None if near else fits[0]
+        if not fits:
+            return None
+        cands = fits
+    return None
 
 
 def exact_mistakes(cat, task, outputs, exclude=()):

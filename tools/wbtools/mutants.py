@@ -50,6 +50,7 @@ def load_grade():
 grade = load_grade()
 sys.path.insert(0, TOOLS)
 import wbgrade_hints as hints  # noqa: E402
+from wbtools import diagnosis as diag  # noqa: E402
 
 
 def grade_files(grader, lab, files):
@@ -253,6 +254,7 @@ class Row:
         self.signature = None  # {failed test: assertion class} of a graded mutant
         self.comments = []
         self.how = ""  # "direct" or "grader ..." (see direct_files)
+        self.probes = None  # {probe id: record}: the diagnosis probes' outputs (diagnosis.py)
 
 
 def read(path):
@@ -361,20 +363,15 @@ def print_rows(rows, verbose):
                 print("    " + d.replace("\n", "\n    "))
 
 
-def signature_doc(lab, tests, rows):
-    """The signatures file of one lab: generated, compared as a whole."""
-    muts = {}
+def signature_doc(repo, lab, tests, rows, solution, skeleton, digest):
+    """The catalogue of one lab (tools/wbtools/diagnosis.py): generated, compared as a whole."""
+    muts = []
     for r in rows:
         if r.expected == "100" or r.signature is None:
             continue
         name = r.variant[:-len(".patch")] if r.variant.endswith(".patch") else r.variant
-        muts[name] = {"task": header_value(r.comments, "task"),
-                      "kind": header_value(r.comments, "kind"),
-                      "hint": header_value(r.comments, "hint"),
-                      "failed": dict(sorted(r.signature.items()))}
-    return {"version": hints.SIGNATURES_VERSION, "lab": lab,
-            "generated_by": "tools/mutants --signatures: do not edit by hand",
-            "tests": tests, "mutants": muts}
+        muts.append((name, r.comments, r.signature, r.probes))
+    return diag.catalogue(repo, lab, tests, solution, skeleton, muts, digest)
 
 
 def write_json_atomic(path, data):
@@ -390,7 +387,7 @@ def write_json_atomic(path, data):
 
 def check_signatures(repo, lab, doc, write):
     """None when the stored signatures equal `doc` (or were just written), else why not."""
-    path = hints.signatures_path(repo, lab)
+    path = hints.catalogue_path(repo, lab)
     if write:
         write_json_atomic(path, doc)
         return None
@@ -417,7 +414,7 @@ def refresh_hints(repo, labs):
     """--refresh-hints: the headers' hint, kind and task into the stored signatures."""
     bad = 0
     for lab in labs:
-        data = hints.load_signatures(repo, lab)
+        data = hints.load_catalogue(repo, lab)
         if data is None:
             print(f"{lab}: no signatures to refresh (tools/mutants --signatures --lab {lab})")
             bad += 1
@@ -435,90 +432,13 @@ def refresh_hints(repo, labs):
                 bad += 1
             else:
                 m = data["mutants"][key]
-                new = {"task": header_value(comments, "task"), "kind": header_value(comments, "kind"),
+                new = {"kind": header_value(comments, "kind"),
                        "hint": header_value(comments, "hint")}
                 n += any(m.get(k) != v for k, v in new.items())
                 m.update(new)
-        write_json_atomic(hints.signatures_path(repo, lab), data)
+        write_json_atomic(hints.catalogue_path(repo, lab), data)
         print(f"{lab}: {n} mutant(s) refreshed")
     return 1 if bad else 0
-
-
-# ------------------------------------------------------------- leave-one-out
-
-def leave_one_out(data):
-    """Per mutant of one lab's signatures: (name, unique?, outcome, named mutants), where
-    outcome is "right" (a mistake of the same task and kind is named), "wrong" (only others
-    are named), "silent" (nothing named) or "no kind" (the mutant has no '# kind:')."""
-    muts = data.get("mutants", {})
-    tests = data.get("tests", [])
-    out = []
-    for name in sorted(muts):
-        m = muts[name]
-        sig = m.get("failed", {})
-        twins = [o for o in muts if o != name and muts[o].get("failed") == sig]
-        if not m.get("kind"):
-            out.append((name, not twins, "no kind", []))
-            continue
-        chosen = hints.matches(sig, tests, data, exclude={name})
-        same = [c for c in chosen if muts[c[1]].get("kind") == m["kind"]
-                and c[1].split(".")[0] == name.split(".")[0]]
-        outcome = "silent" if not chosen else "right" if same else "wrong"
-        out.append((name, not twins, outcome, [c[1] for c in chosen]))
-    return out
-
-
-def loo_report(repo, labs, markdown, verbose):
-    rows = []
-    for lab in labs:
-        data = hints.load_signatures(repo, lab)
-        if data is None:
-            print(f"{lab}: no signatures (tools/mutants --signatures --lab {lab})")
-            continue
-        res = leave_one_out(data)
-        own = sum(1 for n in data["mutants"]
-                  if any(c[1] == n for c in hints.matches(data["mutants"][n]["failed"],
-                                                          data["tests"], data)))
-        uniq = [r for r in res if r[1] and r[2] != "no kind"]
-        shared = [r for r in res if not r[1] and r[2] != "no kind"]
-        nokind = [r for r in res if r[2] == "no kind"]
-
-        def share(rs, what):
-            return (sum(1 for r in rs if r[2] == what), len(rs))
-        rows.append((lab, len(res), own, share(uniq, "right"), share(uniq, "wrong"),
-                     share(uniq, "silent"), share(shared, "right"), share(shared, "wrong"),
-                     len(nokind)))
-        if verbose:
-            for name, u, outcome, named in res:
-                print(f"  {lab}  {name:<40} {'unique' if u else 'shared':<6}  {outcome:<7}  "
-                      f"{', '.join(named)}")
-
-    def pct(a):
-        return f"{a[0]}/{a[1]} ({100 * a[0] / a[1]:.0f}%)" if a[1] else "0/0"
-    head = ["lab", "mutants", "own hint when graded", "unique: right", "unique: wrong",
-            "unique: silent", "shared: right", "shared: wrong", "no kind"]
-    tot = [sum(r[1] for r in rows), sum(r[2] for r in rows)] + \
-        [(sum(r[k][0] for r in rows), sum(r[k][1] for r in rows)) for k in range(3, 8)] + \
-        [sum(r[8] for r in rows)]
-    lines = [[r[0], str(r[1]), f"{r[2]}/{r[1]}"] + [pct(r[k]) for k in range(3, 8)] + [str(r[8])]
-             for r in rows]
-    lines.append(["all", str(tot[0]), f"{tot[1]}/{tot[0]}"] + [pct(a) for a in tot[2:7]]
-                 + [str(tot[7])])
-    if markdown:
-        print("| " + " | ".join(head) + " |")
-        print("|" + "---|" * len(head))
-        for l in lines:
-            print("| " + " | ".join(l) + " |")
-    else:
-        w = [max(len(h), *(len(l[k]) for l in lines)) for k, h in enumerate(head)]
-        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
-        for l in lines:
-            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
-    print(f"\nrule: tools/wbgrade_hints.py (CLOSE = {hints.CLOSE}, TIE = {hints.TIE}, "
-          f"MAX_HINTS = {hints.MAX_HINTS}, ASSERTION_WEIGHT = {hints.ASSERTION_WEIGHT}, "
-          f"RARITY_WEIGHTS = {hints.RARITY_WEIGHTS}, "
-          f"CLASS_PREFIX = {hints.CLASS_PREFIX})")
-    return 0
 
 
 def lab_groups(repo, labs, n):
@@ -536,9 +456,9 @@ def lab_groups(repo, labs, n):
 
 
 def run_lab(repo, grader, lab, args, stop):
-    """Grades every variant of one lab; returns its rows (the signatures row last, once
-    every variant was graded)."""
-    rows, all_tests = [], None
+    """Grades every variant of one lab and runs the diagnosis probes on it; returns its rows
+    (the catalogue's row last, once every variant was graded)."""
+    rows, all_tests, solution = [], None, None
     for name, expected, files, comments in variants(repo, lab):
         if stop.is_set():
             return rows
@@ -559,20 +479,47 @@ def run_lab(repo, grader, lab, args, stop):
             if name == "solution":
                 all_tests = sorted(r[0] for r in graded[3])
             judge(row, graded, expected, comments)
+            if not graded[0]:  # it compiles: what its probes give
+                row.probes, why = diag.record(grader, lab, files)
+                if why:
+                    row.ok, row.verdict = False, "PROBES: " + why.splitlines()[0]
+                    row.details.append(why)
+            if name == "solution":
+                solution = row.probes
+            elif expected == "100" and row.ok and solution and row.probes is not None:
+                bad = diag.disagreements(solution, row.probes)
+                if bad:  # a correct variant the probes tell from the solution
+                    row.ok = False
+                    row.verdict = "PROBE DISAGREES: " + ", ".join(bad[:3]) + \
+                        " (too tight a tolerance, or a probe of unspecified behaviour)"
         if not row.ok and not args.keep_going:
             stop.set()
             return rows
-    if all_tests is None:
+    if all_tests is None or solution is None:
         return rows
-    # Every variant of the lab was graded: its signatures are known.
+    # Every variant of the lab was graded: its catalogue is known. The skeleton's probe
+    # outputs are measured again only when what they depend on changed (or --signatures).
+    digest = diag.probe_inputs_digest(repo, lab)
+    stored = hints.load_catalogue(repo, lab)
+    if not args.signatures and stored and stored.get("skeleton_inputs") == digest:
+        skeleton = {p["probe"]: p.get("skeleton") for p in stored.get("probes", [])}
+    else:
+        skel_files = {n: read(os.path.join(repo, "labs", lab, n))
+                      for n in grade.student_files(repo, lab)}
+        skeleton, why = diag.record(grader, lab, skel_files)
+        skeleton = skeleton or {}
     row = Row(lab, "signatures.json", "current")
     row.got = str(sum(1 for r in rows if r.signature is not None))
-    doc = signature_doc(lab, all_tests, rows)
+    doc = signature_doc(repo, lab, all_tests, rows, solution, skeleton, digest)
     why = check_signatures(repo, lab, doc, args.signatures)
     for r in rows:  # what the grader would tell a student with this code
-        if r.signature:
-            r.details += ["grader's hint: " + h for h in
-                          hints.hints_for(lab, r.signature, all_tests, doc) or ["(none)"]]
+        key = r.variant[:-len(".patch")]
+        if r.signature is not None and key in doc["mutants"]:
+            m = doc["mutants"][key]
+            d = hints.diagnose(doc, m["task"], m.get("probes") or {},
+                               [(t, False, x) for t, x in r.signature.items()],
+                               hints.task_title(doc, m["task"]))
+            r.details += ["diagnosis: " + l for l in d.lines()]
     row.ok = why is None
     row.verdict = ("written" if args.signatures else "current") if row.ok else \
         f"STALE: {why}: run tools/mutants --signatures --lab {lab} and commit it"
@@ -627,7 +574,7 @@ def main(argv):
             raise grade.BadInput(f"--lab {lab}: unknown lab (known: {', '.join(known)})")
     labs = args.lab or [l for l in known if os.path.isdir(os.path.join(repo, "tests", "mutants", l))]
     if args.leave_one_out:
-        return loo_report(repo, labs, args.markdown, args.verbose)
+        return diag.loo_table(repo, labs, args.markdown, args.verbose)
     if args.refresh_hints:
         return refresh_hints(repo, labs)
     if args.signatures:
@@ -648,6 +595,7 @@ def main(argv):
 
     def run_group(k, group):
         grader = grade.Grader(repo, os.path.join(root, str(k)), args.jobs, args.timeout)
+        grader.diagnosis = False  # the catalogue is measured directly (diagnosis.record)
         try:
             for lab in group:
                 if stop.is_set():

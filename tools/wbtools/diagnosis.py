@@ -1,0 +1,261 @@
+"""The diagnosis catalogue of tools/mutants: each lab's probes (tests/<lab>/probes/, built as
+<lab>-probes-direct in the mutants' scratch build) run on the solution, the skeleton, every
+mutant and every alternative, and written to tests/mutants/<lab>/signatures.json (numbers
+only: the pack ships it, never the mutants), with the leave-one-out figures of the rule that
+names a mistake's part (tools/wbgrade_hints.py; docs/grading.md, "Diagnosis").
+
+Trust: runs our own code (the solution, the skeleton, the mutants), never a submission."""
+import collections
+import hashlib
+import json
+import os
+import re
+import subprocess
+import time
+
+import wbgrade_hints as wh
+
+PROBE_TIMEOUT = 60.0  # s, one variant's probes run directly (the slowest take < 1 s)
+
+
+# ------------------------------------------------------------------- tasks
+
+def lab_tasks(repo, lab):
+    """{task: {"title", "handout", "files"}} from the 'TODO(<task>) <title>: ... Handout: ...'
+    line that opens each of the lab's headers."""
+    tasks = {}
+    d = os.path.join(repo, "labs", lab)
+    for name in sorted(os.listdir(d)):
+        if not name.endswith(".h"):
+            continue
+        with open(os.path.join(d, name), encoding="utf-8") as f:
+            head = f.read(600)
+        m = re.search(r"TODO\((\w+)\)\s*([^:.]*)", head)
+        if not m:
+            continue
+        t = tasks.setdefault(m.group(1), {"title": m.group(2).strip(), "handout": "", "files": []})
+        h = re.search(r"Handout:\s*(\S+?)\.?\s", head.replace("\n//", " "))
+        if h and not t["handout"]:
+            t["handout"] = h.group(1)
+        cpp = name[:-2] + ".cpp"
+        if os.path.isfile(os.path.join(d, cpp)):
+            t["files"].append(cpp)
+    return tasks
+
+
+def task_of_file(tasks):
+    return {f: t for t, info in tasks.items() for f in info["files"]}
+
+
+def mutant_task(tasks, name):
+    return task_of_file(tasks).get(name.split(".")[0] + ".cpp", "")
+
+
+# ---------------------------------------------------------------- recording
+
+def record(grader, lab, files):
+    """Runs the lab's probes on `files` ({student file name: bytes}, the others pristine) from
+    <lab>-probes-direct; returns ({probe id: record}, None) or (None, why not)."""
+    from grader.project import pristine_files
+    from grader.worker import worker_files
+    from grader.project import known_labs
+    if not os.path.isdir(os.path.join(grader.repo, "tests", lab, "probes")):
+        return {}, None
+    pristine = pristine_files(grader.repo)
+    pristine.update(worker_files(grader.repo, known_labs(grader.repo)))
+    staged = dict(pristine)
+    for name, data in files.items():
+        staged[os.path.join("labs", lab, name)] = data
+    grader.direct_tests = True
+    grader.sync(staged)
+    grader.configure([lab])
+    binary = os.path.join(grader.build, "bin", f"{lab}-probes-direct")
+    if os.path.exists(binary):
+        os.remove(binary)
+    proc = subprocess.run(["cmake", "--build", grader.build, "--target", f"{lab}-probes-direct",
+                           "-j", str(grader.jobs)], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, timeout=900)
+    if proc.returncode != 0 or not os.path.isfile(binary):
+        return None, "the probes do not build:\n" + proc.stdout.decode("utf-8", "replace")[-3000:]
+    listed = subprocess.run([binary, "--list"], stdout=subprocess.PIPE, timeout=60, cwd=grader.cwd)
+    ids = [r["probe"] for r in wh.parse_lines(listed.stdout.decode("utf-8", "replace"))]
+    out, todo = {}, list(ids)
+    while todo:  # a probe that crashes the process: recorded as an error, the rest run again
+        try:
+            p = subprocess.run([binary] + todo, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               timeout=PROBE_TIMEOUT, cwd=grader.cwd, stdin=subprocess.DEVNULL)
+            recs = wh.parse_lines(p.stdout.decode("utf-8", "replace"))
+            crash = f"crashed (status {p.returncode})"
+        except subprocess.TimeoutExpired as e:
+            recs = wh.parse_lines((e.stdout or b"").decode("utf-8", "replace"))
+            crash = f"did not finish within {PROBE_TIMEOUT:g} s"
+        for r in recs:
+            out[r["probe"]] = r
+        done = {r["probe"] for r in recs}
+        rest = [i for i in todo if i not in done]
+        if not rest:
+            break
+        out[rest[0]] = {"probe": rest[0], "error": f"the probe {crash}"}
+        todo = rest[1:]
+    return out, None
+
+
+def probe_inputs_digest(repo, lab):
+    """A hash of what the skeleton's probe outputs depend on: the lab's skeleton files, its
+    probes and the probe headers (the stored skeleton outputs are reused while it holds)."""
+    h = hashlib.sha256()
+    paths = [os.path.join(repo, "labs", lab, n) for n in sorted(os.listdir(os.path.join(repo, "labs", lab)))]
+    pdir = os.path.join(repo, "tests", lab, "probes")
+    paths += [os.path.join(pdir, n) for n in sorted(os.listdir(pdir))] if os.path.isdir(pdir) else []
+    common = os.path.join(repo, "tests", "common")
+    paths += [os.path.join(common, n) for n in sorted(os.listdir(common)) if n.startswith("wb_probe")]
+    for p in paths:
+        with open(p, "rb") as f:
+            h.update(os.path.relpath(p, repo).encode() + b"\0" + f.read() + b"\0")
+    return h.hexdigest()
+
+
+# ----------------------------------------------------------------- the file
+
+def probe_entry(rec, skeleton):
+    e = {"probe": rec["probe"], "task": rec.get("task", ""), "title": rec.get("title", "")}
+    for k in ("call", "notes", "tol", "in"):
+        if rec.get(k) is not None:
+            e[k] = rec[k]
+    if rec.get("simple"):
+        e["simple"] = True
+    e["expected"] = wh.compact(rec)
+    e["skeleton"] = skeleton
+    return e
+
+
+def deviates(probes_by_id, records, task):
+    """Whether `records` differ from the expected outputs on a probe of `task`."""
+    return any(not wh.same(wh.compact(records.get(pid)), p["expected"], wh.tolerance(p))
+               for pid, p in probes_by_id.items() if p["task"] == task)
+
+
+def catalogue(repo, lab, tests, solution, skeleton, mutants, digest):
+    """The lab's catalogue (tools/wbgrade_hints.py reads it).
+
+    solution, skeleton: {probe id: record}; mutants: [(name, comments, failed {test: text},
+    records)] with header values read by `value(comments, key)`."""
+    from wbtools.mutants import header_value
+    tasks = lab_tasks(repo, lab)
+    probes = [probe_entry(r, wh.compact(skeleton.get(pid)) if skeleton is not None else None)
+              for pid, r in solution.items()]
+    by_id = {p["probe"]: p for p in probes}
+    uses = collections.defaultdict(set)
+    muts = {}
+    for name, comments, failed, records in mutants:
+        task = mutant_task(tasks, name) or header_value(comments, "task")
+        for t in tasks:
+            if t != task and records is not None and deviates(by_id, records, t):
+                uses[t].add(task)  # t's probes go wrong when task's code is wrong: t uses it
+        m = {"task": task, "kind": header_value(comments, "kind"),
+             "hint": header_value(comments, "hint"), "failed": dict(sorted(failed.items()))}
+        if records is not None:
+            m["probes"] = {pid: wh.compact(records.get(pid)) for pid, p in by_id.items()
+                           if p["task"] == task}
+        muts[name] = m
+    for t, info in tasks.items():
+        info["uses"] = sorted(uses.get(t, ()))
+    return {"version": wh.CATALOGUE_VERSION, "lab": lab,
+            "generated_by": "tools/mutants --signatures: do not edit by hand",
+            "skeleton_inputs": digest, "tests": tests, "tasks": tasks, "probes": probes,
+            "mutants": muts}
+
+
+# ------------------------------------------------------------- leave-one-out
+
+def outcome(cat, name):
+    """What the diagnosis says of mutant `name` when it is left out of the catalogue:
+    ("mistake"|"part"|"counterexample"|"tests"|..., the part named or None)."""
+    m = cat["mutants"][name]
+    task = m.get("task", "")
+    fails = [(t, False, txt) for t, txt in (m.get("failed") or {}).items()]
+    d = wh.diagnose(cat, task, m.get("probes") or {}, fails or [("?", False, "")],
+                    exclude={name})
+    if d.status == "mistake":
+        parts = {wh.part_key(n, cat["mutants"][n]) for n in d.mistake_names}
+        return d.status, parts.pop() if len(parts) == 1 else None, d
+    return d.status, d.part, d
+
+
+def leave_one_out(cat):
+    """[(mutant, has a peer of its part?, right|wrong|counterexample|tests|...)]."""
+    muts = cat.get("mutants", {})
+    peers = collections.Counter(wh.part_key(n, m) for n, m in muts.items() if m.get("kind"))
+    rows = []
+    for name in sorted(muts):
+        m = muts[name]
+        key = wh.part_key(name, m)
+        status, part, _ = outcome(cat, name)
+        if part is not None:
+            res = "right" if part == key else "wrong"
+        else:
+            res = status  # counterexample, tests (no probe differs), no probes
+        rows.append((name, peers[key] > 1 and bool(m.get("kind")), res, part))
+    return rows
+
+
+def loo_table(repo, labs, markdown=False, verbose=False):
+    """The leave-one-out figures of every lab with a catalogue; returns the exit status."""
+    head = ["lab", "mutants", "with a peer: right", "wrong", "counterexample", "alone: wrong",
+            "alone: counterexample", "probes blind"]
+    lines, totals = [], [0] * 8
+    for lab in labs:
+        cat = wh.load_catalogue(repo, lab)
+        if cat is None:
+            print(f"{lab}: no catalogue (tools/mutants --signatures --lab {lab})")
+            continue
+        rows = leave_one_out(cat)
+        if verbose:
+            for name, peer, res, part in rows:
+                print(f"  {lab:10} {name:44} {'peer' if peer else 'alone':5} {res:14} "
+                      f"{part[1] if part else ''}")
+        peer = [r for r in rows if r[1]]
+        alone = [r for r in rows if not r[1]]
+        counts = [len(rows), sum(r[2] == "right" for r in peer), sum(r[2] == "wrong" for r in peer),
+                  sum(r[2] == "counterexample" for r in peer), sum(r[2] == "wrong" for r in alone),
+                  sum(r[2] == "counterexample" for r in alone),
+                  sum(r[2] in ("tests", "no probes") for r in rows)]
+        lines.append((lab, counts, len(peer), len(alone)))
+        for k, c in enumerate(counts):
+            totals[k] += c
+        totals[7] += len(peer)
+    if not lines:
+        return 1
+    allpeer = totals[7]
+    allalone = totals[0] - allpeer
+    lines.append(("all", totals[:7], allpeer, allalone))
+
+    def pct(a, b):
+        return f"{a}/{b} ({100 * a / b:.0f}%)" if b else "0/0"
+    table = [[lab, str(c[0]), pct(c[1], p), pct(c[2], p), pct(c[3], p), pct(c[4], a),
+              pct(c[5], a), str(c[6])] for lab, c, p, a in lines]
+    if markdown:
+        print("| " + " | ".join(head) + " |")
+        print("|" + "---|" * len(head))
+        for l in table:
+            print("| " + " | ".join(l) + " |")
+    else:
+        w = [max(len(h), *(len(l[k]) for l in table)) for k, h in enumerate(head)]
+        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
+        for l in table:
+            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+    print("\nright/wrong: the part named (a catalogued mistake matched exactly, or the part the "
+          "wrong probes point at) is / is not the left-out mutant's file and '# kind:'; "
+          "counterexample: no part named, the first wrong probe shown; probes blind: every "
+          "probe agrees with the solution (the failed test's own message is shown).")
+    return 0
+
+
+def disagreements(solution, records):
+    """The probes on which `records` (a correct variant's) differ from the solution's."""
+    out = []
+    for pid, rec in solution.items():
+        probe = {"probe": pid, "tol": rec.get("tol"), "expected": wh.compact(rec)}
+        if not wh.same(wh.compact(records.get(pid)), probe["expected"], wh.tolerance(probe)):
+            out.append(pid)
+    return out
