@@ -262,8 +262,9 @@ def part_key(name, m):
     return (name.split(".")[0], str(m.get("kind") or ""))
 
 
-LEVELS = ("probe", "output", "unit")  # coarse to fine: how a part is told apart
-NEAR = 0.75  # another part that reaches this share of the wrong units makes the naming unsure
+REACH_LEVEL = "unit"   # what a part's mistakes must explain: every wrong particle, body, output
+CORE_LEVEL = "unit"   # what a submission must share with every mistake of the part: the probes
+NEAR = 0.75  # another part that explains this share of the wrong units makes the naming unsure
 
 
 def bad_units(probes, outputs):
@@ -290,18 +291,17 @@ def _at(units_, level):
 def part_of(cat, task, outputs, exclude=()):
     """The part of the computation the wrong probes point at, or None.
 
-    B is the set of wrong units of the submission; for each part k (the catalogued mistakes of
-    one file and '# kind:', those in `exclude` left out), core_k is what every one of them gets
-    wrong and reach_k what any of them gets wrong. k fits when core_k is in B and B is in
-    reach_k: B is what a mistake of that part does, as far as the catalogue knows. This is
-    asked first of whole probes, then of each output of a probe (the new x apart from the new
-    v), then of each particle or body: the first level where exactly one part fits names it,
-    unless another part reaches NEAR of B there too (then nothing is named). A submission
-    whose wrong probes could come from two parts, or from none, gets no part named: its
-    counterexample still says what is wrong."""
+    B is what goes wrong for the submission, for each part k (the catalogued mistakes of one
+    file and '# kind:', those in `exclude` left out) reach_k is what any of its mistakes gets
+    wrong, core_k the probes every one of them gets wrong. k fits when B is within reach_k,
+    unit by unit (each particle, body and output of each probe: a mistake of k explains every
+    wrong value) and B's probes include core_k (what every mistake of k gives away shows). The
+    one part that fits is named, unless another part explains NEAR of B as well; a submission
+    whose wrong probes could come from two parts, or from none, gets no part named (its
+    counterexample still says what is wrong)."""
     probes = task_probes(cat, task)
-    B0 = bad_units(probes, outputs)
-    if not B0:
+    B = bad_units(probes, outputs)
+    if not B:
         return None
     parts = {}
     for name, m in task_mutants(cat, task, exclude).items():
@@ -310,25 +310,18 @@ def part_of(cat, task, outputs, exclude=()):
         bad = bad_units(probes, m.get("probes") or {})
         if bad:
             parts.setdefault(part_key(name, m), []).append(bad)
-    cands = sorted(parts)
-    for level in LEVELS:
-        B = _at(B0, level)
-        fits, near = [], []
-        for key in cands:
-            sets = [_at(b, level) for b in parts[key]]
-            core, reach = set.intersection(*sets), set.union(*sets)
-            if not core <= B:
-                continue
-            if B <= reach:
-                fits.append(key)
-            elif len(B & reach) >= NEAR * len(B):
-                near.append(key)
-        if len(fits) == 1:
-            return None if near else fits[0]
-        if not fits:
-            return None
-        cands = fits
-    return None
+    Br, Bc = _at(B, REACH_LEVEL), _at(B, CORE_LEVEL)
+    fits, near = [], []
+    for key, sets in sorted(parts.items()):
+        reach = set.union(*(_at(b, REACH_LEVEL) for b in sets))
+        core = set.intersection(*(_at(b, CORE_LEVEL) for b in sets))
+        if not core <= Bc:
+            continue
+        if Br <= reach:
+            fits.append(key)
+        elif len(Br & reach) >= NEAR * len(Br):
+            near.append(key)
+    return fits[0] if len(fits) == 1 and not near else None
 
 
 def exact_mistakes(cat, task, outputs, exclude=()):
@@ -535,7 +528,10 @@ def counterexample(probe, got):
             lines.append(f"  got      no {name}")
             continue
         lines.append(f"  got      {name} = {fmt_value(*gv)}")
-        why = explain(name, (rows, cols, ev), gv, base.get(name), rel, ab)
+        try:
+            why = explain(name, (rows, cols, ev), gv, base.get(name), rel, ab)
+        except (ValueError, ArithmeticError, IndexError):
+            why = ""
         if why:
             lines.append(f"  {name}: {why}")
     return lines
@@ -545,6 +541,8 @@ def _ratio(dg, de, rel, ab):
     """c with dg = c de for every entry, or None."""
     c = None
     for a, b in zip(dg, de):
+        if not (math.isfinite(a) and math.isfinite(b)):
+            return None
         if abs(b) <= ab:
             if abs(a) > ab:
                 return None
@@ -558,6 +556,8 @@ def _ratio(dg, de, rel, ab):
 
 
 def _pretty(c):
+    if not math.isfinite(c):
+        return str(c)
     for den in (1, 2, 3, 4):
         if abs(c * den - round(c * den)) < 1e-9 and round(c * den) != 0:
             n = int(round(c * den))
@@ -582,11 +582,12 @@ def explain(name, expected, got, before, rel, ab):
             return (f"what {name} held before the call is lost: add to {name}, do not "
                     "overwrite it")
         de, dg = contrib, [g - b for g, b in zip(gv, bv)]
-        what = "what is added"
+        what = f"the change of {name}"
     else:
-        de, dg, what = ev, gv, "it"
+        de, dg, what = ev, gv, name
     if all(abs(v) <= ab for v in dg) and any(abs(v) > ab for v in de):
-        return "zero (nothing computed?)" if what == "it" else "nothing was added"
+        return f"{name} is zero (nothing computed?)" if what == name else \
+            f"{name} is unchanged: nothing was done to it"
     c = _ratio(dg, de, rel, ab)
     if c is not None and not _close(c, 1.0, 1e-6, 0):
         if _close(c, -1.0, 1e-6, 0):

@@ -176,6 +176,6 @@ def diagnose_lab(repo, lab, results, overlay, run, say=log):
                 what = "is not started" if t.status == "not started" else "fails too"
                 d.notes.append(f"{task} calls your {dep} ({wh.task_title(cat, dep) or dep}), "
                                f"which {what}: fix {dep} first.")
-    if out:
+    if out and time.monotonic() - t0 > 1:
         say(f"grade: {lab}: diagnosed {len(out)} task(s) in {time.monotonic() - t0:.1f} s")
     return out

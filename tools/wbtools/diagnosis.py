@@ -168,14 +168,17 @@ def catalogue(repo, lab, tests, solution, skeleton, mutants, digest):
 
 # ------------------------------------------------------------- leave-one-out
 
-def outcome(cat, name):
-    """What the diagnosis says of mutant `name` when it is left out of the catalogue:
-    ("mistake"|"part"|"counterexample"|"tests"|..., the part named or None)."""
+def outcome(cat, name, leave_out=True):
+    """What the diagnosis says of mutant `name` (left out of the catalogue, or not: what a
+    student with exactly that mistake reads): ("mistake"|"part"|"counterexample"|"tests"|...,
+    the part named or None, the Diagnosis)."""
     m = cat["mutants"][name]
     task = m.get("task", "")
-    fails = [(t, False, txt) for t, txt in (m.get("failed") or {}).items()]
-    d = wh.diagnose(cat, task, m.get("probes") or {}, fails or [("?", False, "")],
-                    exclude={name})
+    failed = m.get("failed") or {}
+    tests = [(t, t not in failed, failed.get(t, "")) for t in cat.get("tests", [])
+             if re.match(rf"^{re.escape(task)}\b", t)]
+    d = wh.diagnose(cat, task, m.get("probes") or {}, tests or [("?", False, "")],
+                    wh.task_title(cat, task), exclude={name} if leave_out else ())
     if d.status == "mistake":
         parts = {wh.part_key(n, cat["mutants"][n]) for n in d.mistake_names}
         return d.status, parts.pop() if len(parts) == 1 else None, d
@@ -199,7 +202,7 @@ def leave_one_out(cat):
     return rows
 
 
-def loo_table(repo, labs, markdown=False, verbose=False):
+def loo_table(repo, labs, markdown=False, verbose=False, min_right=None, max_wrong=None):
     """The leave-one-out figures of every lab with a catalogue; returns the exit status."""
     head = ["lab", "mutants", "with a peer: right", "wrong", "counterexample", "alone: wrong",
             "alone: counterexample", "probes blind"]
@@ -244,11 +247,21 @@ def loo_table(repo, labs, markdown=False, verbose=False):
         print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
         for l in table:
             print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+    status = 0
+    right_pct = 100 * totals[1] / allpeer if allpeer else 0
+    wrong_pct = 100 * totals[2] / allpeer if allpeer else 0
+    if min_right is not None and right_pct < min_right:
+        print(f"mutants: leave-one-out: right for {right_pct:.0f}% < --min-right {min_right:g}%")
+        status = 1
+    if max_wrong is not None and (wrong_pct > max_wrong or totals[4]):
+        print(f"mutants: leave-one-out: wrong for {wrong_pct:.0f}% (--max-wrong {max_wrong:g}%), "
+              f"{totals[4]} alone in their part named wrong")
+        status = 1
     print("\nright/wrong: the part named (a catalogued mistake matched exactly, or the part the "
           "wrong probes point at) is / is not the left-out mutant's file and '# kind:'; "
           "counterexample: no part named, the first wrong probe shown; probes blind: every "
           "probe agrees with the solution (the failed test's own message is shown).")
-    return 0
+    return status
 
 
 def disagreements(solution, records):
@@ -259,3 +272,82 @@ def disagreements(solution, records):
         if not wh.same(wh.compact(records.get(pid)), probe["expected"], wh.tolerance(probe)):
             out.append(pid)
     return out
+
+
+# ------------------------------------------------------------------ mid-lab
+
+def mid_lab_variants(repo, lab, cat, variant_files):
+    """Two submissions of one lab, each with every other task at its skeleton and the rest
+    holding one catalogued mistake each (the first of the task the probes can see), the tasks
+    alternating between the two; a task that a mistake's task builds on (tasks[...].uses)
+    gets the solution's files instead of the skeleton's. Returns [(files, {task: mutant or
+    None})]. variant_files: {mutant name: its files} (the solution's with the patch)."""
+    from grader.project import student_files
+    tasks = cat.get("tasks") or {}
+    names = student_files(repo, lab)
+    skeleton = {}
+    solution = {}
+    for n in names:
+        with open(os.path.join(repo, "labs", lab, n), "rb") as f:
+            skeleton[n] = f.read()
+        with open(os.path.join(repo, "solutions", lab, n), "rb") as f:
+            solution[n] = f.read()
+    picks = {}
+    for task in sorted(tasks):
+        for name, m in sorted(cat.get("mutants", {}).items()):
+            if m.get("task") != task or name not in variant_files:
+                continue
+            status, _, _ = outcome(cat, name, leave_out=False)
+            if status not in ("tests", "no probes"):
+                picks[task] = name
+                break
+    order = sorted(tasks)
+    out = []
+    for parity in (0, 1):
+        files, plan = dict(skeleton), {}
+        for k, task in enumerate(order):
+            if k % 2 != parity or task not in picks:
+                plan[task] = None
+                continue
+            plan[task] = picks[task]
+            for f in tasks[task].get("files") or []:
+                files[f] = variant_files[picks[task]][f]
+            for dep in tasks[task].get("uses") or []:
+                for f in tasks.get(dep, {}).get("files") or []:
+                    files[f] = solution[f]
+                plan[dep] = "solution"
+        out.append((files, plan))
+    return out
+
+
+def mid_lab_check(repo, grader, lab, cat, variant_files, log):
+    """Grades the two mid-lab submissions through the grader (sandboxed tests, the probes
+    through the worker) and compares each task's diagnosis with the whole-lab one (the same
+    mistake, every other task correct: from the catalogue). Returns a list of problems."""
+    problems = []
+    for files, plan in mid_lab_variants(repo, lab, cat, variant_files):
+        t0 = time.monotonic()
+        rep = grader.grade({lab: files}, [lab])[lab]
+        if not rep.gradable:
+            problems.append(f"{lab}: the mid-lab submission {plan} does not compile or was refused")
+            continue
+        for task, mutant in plan.items():
+            got = rep.diagnosis.get(task)
+            if mutant is None:
+                if got is None or got.status != "not started":
+                    problems.append(f"{lab} {task} (skeleton, mid-lab): expected 'not started', "
+                                    f"got {got.status if got else 'no diagnosis'}")
+                continue
+            if mutant == "solution":
+                if got is not None:
+                    problems.append(f"{lab} {task} (solution, mid-lab): expected no diagnosis, "
+                                    f"got {got.status}")
+                continue
+            _, _, want = outcome(cat, mutant, leave_out=False)
+            if got is None or got.lines() != want.lines():
+                problems.append(f"{lab} {task} ({mutant}): mid-lab diagnosis differs from "
+                                "whole-lab:\n  whole-lab: " + "\n    ".join(want.lines()) +
+                                "\n  mid-lab:   " + "\n    ".join(got.lines() if got else ["(none)"]))
+        log(f"mutants: {lab}: mid-lab {sorted(t for t, m in plan.items() if m and m != 'solution')} "
+            f"in {time.monotonic() - t0:.1f} s")
+    return problems

@@ -529,6 +529,33 @@ def run_lab(repo, grader, lab, args, stop):
     return rows
 
 
+def mid_lab(repo, labs, args):
+    """--mid-lab: diagnosis.mid_lab_check of every lab with a catalogue, in one scratch build."""
+    tmp = None
+    root = args.build_dir
+    if root is None:
+        tmp = root = tempfile.mkdtemp(prefix="wb-mutants-")
+    grader = grade.Grader(repo, os.path.join(root, "0"), args.jobs, args.timeout)
+    problems = []
+    try:
+        for lab in labs:
+            cat = hints.load_catalogue(repo, lab)
+            if cat is None:
+                problems.append(f"{lab}: no catalogue (tools/mutants --signatures --lab {lab})")
+                continue
+            files = {v[0][:-len(".patch")]: v[2] for v in variants(repo, lab)
+                     if v[0].endswith(".patch") and not isinstance(v[2], str)}
+            problems += diag.mid_lab_check(repo, grader, lab, cat, files, grade.log)
+    finally:
+        grader.close()
+        if tmp:
+            shutil.rmtree(tmp, ignore_errors=True)
+    for p in problems:
+        print(p)
+    print(f"mutants: mid-lab: {len(problems)} problem(s) in {', '.join(labs)}")
+    return 1 if problems else 0
+
+
 def main(argv):
     p = argparse.ArgumentParser(
         prog="tools/mutants",
@@ -561,8 +588,19 @@ def main(argv):
                         "signatures from the patches' headers (after editing a '# hint:'); the "
                         "measured failures are kept")
     p.add_argument("--leave-one-out", action="store_true",
-                   help="no build: from the stored signatures, how often the hint names a mistake "
-                        "of the right kind when a mutant's own signature is left out")
+                   help="no build: from the stored catalogue, how often the diagnosis names the "
+                        "right part of the computation when a mutant is left out of it")
+    p.add_argument("--min-right", type=float, metavar="PCT",
+                   help="with --leave-one-out: exit 1 unless the part is right for at least PCT %% "
+                        "of the mutants that have a peer of their part")
+    p.add_argument("--max-wrong", type=float, metavar="PCT",
+                   help="with --leave-one-out: exit 1 unless the part is wrong for at most PCT %% "
+                        "of them, and never for a mutant alone in its part")
+    p.add_argument("--mid-lab", action="store_true",
+                   help="grade, through the grader, two submissions per lab with every other task "
+                        "at its skeleton and one catalogued mistake in each of the others: each "
+                        "task's diagnosis must be the whole-lab one, each skeleton task 'not "
+                        "started' (builds; exit 1 otherwise)")
     p.add_argument("--markdown", action="store_true", help="with --leave-one-out: a Markdown table")
     p.add_argument("-v", "--verbose", action="store_true", help="list the failed tests of every variant "
                    "(with --leave-one-out: every mutant's outcome)")
@@ -574,7 +612,10 @@ def main(argv):
             raise grade.BadInput(f"--lab {lab}: unknown lab (known: {', '.join(known)})")
     labs = args.lab or [l for l in known if os.path.isdir(os.path.join(repo, "tests", "mutants", l))]
     if args.leave_one_out:
-        return diag.loo_table(repo, labs, args.markdown, args.verbose)
+        return diag.loo_table(repo, labs, args.markdown, args.verbose, args.min_right,
+                              args.max_wrong)
+    if args.mid_lab:
+        return mid_lab(repo, labs, args)
     if args.refresh_hints:
         return refresh_hints(repo, labs)
     if args.signatures:
