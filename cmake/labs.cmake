@@ -257,6 +257,11 @@ function(wb_lab_probes lab side suffix)
     endforeach()
     target_link_libraries(${lab}_probes_obj PRIVATE wb_headers)
     wb_use_pch(${lab}_probes_obj LAB)
+    # One translation unit per lab, as the tests: each file keeps its helpers in a namespace.
+    if(WB_UNITY_TESTS)
+      set_target_properties(${lab}_probes_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
+                                                         UNITY_BUILD_BATCH_SIZE 0)
+    endif()
   endif()
   set(probes ${lab}${suffix}-probes)
   add_executable(${probes} EXCLUDE_FROM_ALL $<TARGET_OBJECTS:${lab}_probes_obj>)

@@ -214,23 +214,31 @@ def same(a, b, tol):
 
 
 def units(probe, got):
-    """{unit: class} for one probe: a unit is (probe, output, column) for a matrix of several
-    columns of at least two rows (a particle, a body), else (probe, output, 0); the class is
+    """{unit: class} for one probe: a unit is (probe, output, column) for an output whose
+    columns are told apart (out_each: particles, bodies), else (probe, output, 0); the class is
     "ok", "error" (an exception where the solution returned, or the reverse), "shape", "nan"
     (not finite), "none" (what the skeleton gives: nothing was done) or "wrong"."""
     pid = probe["probe"]
     exp, skel, g = expand(probe.get("expected")), expand(probe.get("skeleton")), expand(got)
     if exp is None or g is None:
-        return {(pid, "*", 0): "ok" if exp is None and g is None else "error"}
+        if exp is not None:  # an error where the solution returns: every output is wrong
+            flags = {str(o.get("name")): o for o in (probe.get("out") or []) if isinstance(o, dict)}
+            return {(pid, str(flags.get(n, {}).get("group") or n), 0): "error" for n in exp} \
+                or {(pid, "*", 0): "error"}
+        return {(pid, "*", 0): "ok" if g is None else "error"}
     rel, ab = tolerance(probe)
     out = {}
+    flags = {str(o.get("name")): o for o in (probe.get("out") or []) if isinstance(o, dict)}
+    each = {n for n, o in flags.items() if o.get("each")}
+    group = {n: str(o["group"]) for n, o in flags.items() if o.get("group")}
     for name, (rows, cols, ev) in exp.items():
+        unit = group.get(name, name)
         if name not in g or g[name][:2] != (rows, cols) or len(g[name][2]) != len(ev):
-            out[(pid, name, 0)] = "shape"
+            out[(pid, unit, 0)] = "shape"
             continue
         gv = g[name][2]
         sv = skel[name][2] if skel and name in skel and skel[name][:2] == (rows, cols) else None
-        per = cols > 1 and rows > 1
+        per = name in each and cols > 1
         for c in range(cols if per else 1):
             idx = range(c * rows, (c + 1) * rows) if per else range(len(ev))
             if all(_close(gv[i], ev[i], rel, ab) for i in idx):
@@ -241,7 +249,8 @@ def units(probe, got):
                 k = "none"
             else:
                 k = "wrong"
-            out[(pid, name, c)] = k
+            if out.get((pid, unit, c), "ok") == "ok":  # a group: its worst output
+                out[(pid, unit, c)] = k
     return out
 
 

@@ -3,26 +3,42 @@
 //
 // A probe is not a test: it carries no points and checks nothing. It records the inputs it
 // gives and the outputs it gets; tools/mutants records the same probes' outputs for the
-// solution, the skeleton and every catalogued mistake (tests/mutants/<lab>/diagnosis.json,
-// numbers only), and tools/wbgrade_hints.py compares a submission's outputs with them.
+// solution, the skeleton and every catalogued mistake (tests/mutants/<lab>/signatures.json,
+// numbers only), and tools/wbgrade_hints.py compares a submission's outputs with them: the
+// first probe whose output differs is the counterexample the student reads, and the outputs
+// that go wrong point at the part of the computation the mistake is in.
 //
-//   WB_PROBE("F3", "axis", "one particle on the x axis, unit mass, GM = 1") {
-//     Mat2X x(2, 1); x << 2, 0; ...
-//     P.in("x", x); P.in("m", m); P.in("center", c); P.in("GM", 1.0); P.in("f", f);
-//     add_attractor(x, m, c, 1.0, f);
+//   WB_PROBE("F3", "pull", "a particle of mass 2 at distance 5 from the centre, a massless one") {
+//     ...
+//     P.call("add_attractor");
+//     P.in("x", x), P.in("m", m), P.in("center", c), P.in("GM", GM), P.in("f", f);
+//     add_attractor(x, m, c, GM, f);
 //     P.out("f", f);
 //   }
 //
-// - Probes of a task run in the order they are written: write the simplest first (the
-//   counterexample a student reads is the first probe whose output is wrong).
+// How to write them (docs/grading.md, "Writing probes"):
+// - Details first, marked P.simple(): the simplest cases and those that isolate one factor (unit
+//   masses, one axis, one situation such as "just touching"). The counterexample is the first
+//   probe, in the order written, whose output is wrong: a detail reads best.
+// - Then one probe per part of the computation (a '# kind:' of the catalogue: the spring term,
+//   the damper, the particle loop), with generic values (no 1, no 0, no symmetry, a centre off
+//   the origin), so that every mistake in that part shows there and mistakes in other parts
+//   show as little as possible: the damper at the rest length, the spring at rest. Where a
+//   part's mistakes show in different situations (a contact test: just touching, receding, the
+//   centre below the plane), put the situations in one probe and one output. Give a particle
+//   that a correct function leaves alone the last place (massless, moving with the flow): a
+//   loop that skips the last particle then shows only in the probe of the loop.
 // - Record every input a student needs to redo the call (P.in), in the order of the
 //   parameters; a callback is described in words (P.note).
-// - Record outputs whole (a 2 x n matrix, not its first column): what comes back from the
-//   student's code may have any size. Outputs whose order is unspecified (a list of pairs) are
-//   put in a canonical order before recording.
+// - Record outputs whole (P.out: a 2 x n matrix, not its first column): what comes back from
+//   the student's code may have any size. P.out_each tells its columns apart (a particle that
+//   goes wrong alone). Outputs whose order is unspecified (a list of pairs) are put in a
+//   canonical order before recording. Outputs that separate parts (the new x from the new v)
+//   are recorded apart; outputs that one part's mistakes change in turn (the fields of a
+//   report) together.
 // - P.tol(rel, abs): how close two outputs must be to count as the same (default 1e-7
-//   relative, 1e-9 of the probe's largest reference output absolute): alternatives written
-//   differently from the solution must agree with it to this tolerance.
+//   relative, 1e-9 of the probe's largest expected output absolute): every alternative in
+//   tests/mutants/<lab>/alternatives/ must agree with the solution to this tolerance.
 //
 // The binary (<lab>-probes, built by the grader with the stubs of the worker, or
 // <lab>-probes-direct linked with the lab for tools/mutants) prints one JSON line per probe:
@@ -50,6 +66,8 @@ struct Value {
   long rows = 1, cols = 1;  // a scalar is 1 x 1
   std::vector<double> data;  // column-major
   bool integer = false;      // shown without decimals
+  bool each = false;         // its columns are told apart (Probe::out_each)
+  std::string group;         // outputs of one group go wrong together (Probe::group)
 };
 
 class Probe {
@@ -59,10 +77,22 @@ class Probe {
   void in(const char* name, const T& v) {
     inputs_.push_back(value(name, v));
   }
-  // Outputs, whole.
+  // Outputs, whole: the diagnosis tells parts apart by which outputs of which probes go wrong.
   template <class T>
   void out(const char* name, const T& v) {
     outputs_.push_back(value(name, v));
+    outputs_.back().group = group_;
+  }
+  // Outputs recorded after P.group("body") go wrong together for the diagnosis (each is still
+  // shown apart): one part's mistakes change some of them, another's others (P.group("") ends).
+  void group(const char* name) { group_ = name; }
+  // An output whose columns (particles, bodies) go wrong apart: a loop that misses one shows as
+  // that column alone.
+  template <class T>
+  void out_each(const char* name, const T& v) {
+    outputs_.push_back(value(name, v));
+    outputs_.back().each = true;
+    outputs_.back().group = group_;
   }
   // The function called (shown with the inputs: "add_attractor(x = ..., m = ...)").
   void call(const char* name) { call_ = name; }
@@ -70,9 +100,10 @@ class Probe {
   // Words for an input that is not a number (a callback: "a(x, v) = -x").
   void note(const std::string& words) { notes_.push_back(words); }
   void tol(double rel, double abs) { rel_ = rel, abs_ = abs; }
-  // A simple case, written for the counterexample a student reads (one factor at a time: unit
-  // masses, one axis): it explains a mistake but does not say which part of the computation
-  // it is in, so the diagnosis leaves it out when it tells parts apart.
+  // A detail: a simple case, or one that isolates one factor of a part (unit masses, one axis,
+  // one situation), written for the counterexample a student reads. It explains a mistake but
+  // does not say which part of the computation it is in: the diagnosis leaves it out when it
+  // tells parts apart (docs/grading.md, "Writing probes").
   void simple() { simple_ = true; }
   bool is_simple() const { return simple_; }
 
@@ -113,7 +144,7 @@ class Probe {
 
   std::vector<Value> inputs_, outputs_;
   std::vector<std::string> notes_;
-  std::string call_;
+  std::string call_, group_;
   double rel_ = 1e-7, abs_ = 1e-9;
   bool simple_ = false;
 };
@@ -187,6 +218,8 @@ inline std::string values(const std::vector<Value>& vs) {
     out += (k ? ",{" : "{") + std::string("\"name\":") + quoted(v.name) +
            ",\"shape\":[" + std::to_string(v.rows) + "," + std::to_string(v.cols) + "]";
     if (v.integer) out += ",\"integer\":true";
+    if (v.each) out += ",\"each\":true";
+    if (!v.group.empty()) out += ",\"group\":" + quoted(v.group);
     out += ",\"v\":[";
     for (std::size_t i = 0; i < v.data.size(); ++i) out += (i ? "," : "") + number(v.data[i]);
     out += "]}";

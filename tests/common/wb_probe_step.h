@@ -34,20 +34,20 @@ inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& w
   P.in("h", h), P.in("x", x), P.in("v", v);
   fn(dyn, h, x, v, s);
   P.out("x", x), P.out("v", v);
-  P.out("force evaluations", long(seen_x.size()));
-  // The states of the first evaluations, side by side (2 x n per evaluation).
+  // The evaluations in one output: one column each (the first four), the state it was asked
+  // at, particle after particle: (x_0, v_0, x_1, v_1, ...).
   const Eigen::Index n = x.cols(), k = std::min<Eigen::Index>(4, Eigen::Index(seen_x.size()));
-  wb::Mat2X at_x(2, n * k), at_v(2, n * k);
+  Eigen::MatrixXd at(4 * n, k);
   for (Eigen::Index e = 0; e < k; ++e) {
     const wb::Mat2X& sx = seen_x[std::size_t(e)];
     const wb::Mat2X& sv = seen_v[std::size_t(e)];
     if (sx.cols() != n || sv.cols() != n) {
-      at_x.resize(2, 0), at_v.resize(2, 0);  // an evaluation of another size: shown as empty
+      at.resize(4 * n, 0);  // an evaluation of another size: shown as none
       break;
     }
-    at_x.middleCols(e * n, n) = sx, at_v.middleCols(e * n, n) = sv;
+    for (Eigen::Index i = 0; i < n; ++i) at.col(e).segment<4>(4 * i) << sx.col(i), sv.col(i);
   }
-  P.out("x of each evaluation", at_x), P.out("v of each evaluation", at_v);
+  P.out("force evaluations: (x_i, v_i) of each", at);
 }
 
 // Accelerations used by the step probes: none; constant per particle; a spring to the origin

@@ -211,6 +211,33 @@ class Grader:
         with open(stamp, "w", encoding="utf-8") as f:
             json.dump(args, f)
 
+    def decide_prebuilt(self, pristine):
+        """Which labs' test and probe binaries come from prebuilt/grader/ (see above)."""
+        self._prebuilt = {}
+        path = os.path.join(self.repo, PREBUILT_GRADER, "manifest.json")
+        if not os.path.isfile(path):
+            return
+        why = ""
+        try:
+            with open(path, encoding="utf-8") as f:
+                manifest = json.load(f)
+            with open(os.path.join(self.build, "wb-toolchain.txt"), encoding="utf-8") as f:
+                key = f.read().strip()
+            if manifest.get("toolchain") != key:
+                why = "another toolchain"
+            elif manifest.get("inputs") != prebuilt_inputs(pristine):
+                why = "the tests or the grader's files changed since the pack was made"
+            else:
+                for lab, names in (manifest.get("labs") or {}).items():
+                    paths = {n: os.path.join(self.repo, PREBUILT_GRADER, n) for n in names}
+                    if all(os.path.isfile(p) for p in paths.values()):
+                        self._prebuilt[lab] = paths
+        except (OSError, ValueError, AttributeError, TypeError) as e:
+            why = f"its manifest cannot be read ({e})"
+        if why and not getattr(self, "_said_prebuilt", False):
+            self._said_prebuilt = True
+            self.say(f"grade: the pack's prebuilt tests are not used ({why}): building them")
+
     def binary(self, lab):
         return os.path.join(self.build, "bin", f"{lab}-tests")
 
@@ -240,7 +267,9 @@ class Grader:
             except FileNotFoundError:
                 pass
         t0 = time.monotonic()
+        prebuilt = getattr(self, "_prebuilt", {}).get(lab, {})
         targets = [f"{lab}-tests", f"{lab}-worker"] + ([f"{lab}-probes"] if self.probes(lab) else [])
+        targets = [t for t in targets if t not in prebuilt]
         cmd = [shutil.which("cmake") or "cmake", "--build", self.build, "--target", *targets, "-j",
                str(self.jobs)]
         as_user = "user" in self.sandbox.layers and _world_traversable(self.build)
@@ -273,6 +302,11 @@ class Grader:
                 out += f"\nthe build was killed ({signal_name(status[1])}): a limit reached?"
             if status[0] == "error":
                 raise Defect(f"the sandbox could not start the build: {status[1]}")
+        for name, src in prebuilt.items():  # the pack's pristine binaries, as if built here
+            dst = os.path.join(self.build, "bin", name)
+            shutil.copyfile(src, dst + ".tmp")
+            os.chmod(dst + ".tmp", 0o755)
+            os.replace(dst + ".tmp", dst)
         self.say(f"grade: built the tests of {lab} (once per build folder) in "
                  f"{time.monotonic() - t0:.1f} s" if pristine else
                  f"grade: built {lab} with the submitted files in {time.monotonic() - t0:.1f} s")
@@ -352,6 +386,7 @@ class Grader:
         if missing:
             self.sync(pristine)
             self.configure(labs)
+            self.decide_prebuilt(pristine)
             for lab in missing:
                 ok, out = self.build_lab(lab, pristine=True)
                 if not ok:
@@ -554,6 +589,7 @@ class Grader:
                 files[os.path.join("labs", lab, name)] = data
         self.sync(files)
         self.configure(labs)
+        self.decide_prebuilt(pristine)
         reports = {}
         for lab in labs:
             if refusals[lab]:
@@ -691,6 +727,24 @@ def file_stamp(path):
     return (st.st_ino, st.st_size, st.st_mtime_ns, h)
 
 
+
+
+# ------------------------------------------------------------ prebuilt parts
+# The student pack ships the pristine test and probe binaries of each lab, compiled when the
+# pack was made (tools/pack, prebuilt/grader/): they hold no student code (the stubs call the
+# worker), so a student's first grade compiles only the worker and the student's files. They
+# are used only when the toolchain (the scratch build's wb-toolchain.txt) and every pristine
+# file they are made of are the same as when they were compiled; otherwise they are built
+# from source, as in an instructor's checkout (which has no prebuilt/).
+PREBUILT_GRADER = os.path.join("prebuilt", "grader")
+
+
+def prebuilt_inputs(pristine):
+    """The digest of the pristine files the test and probe binaries are made of: all but the
+    student files (labs/<lab>/*.cpp) and the scenes."""
+    return digest({rel: data for rel, data in pristine.items()
+                   if not (rel.startswith("labs" + os.sep) and rel.endswith(".cpp"))
+                   and not rel.startswith("scenes" + os.sep)})
 
 
 # The reasons of tests that did not end by themselves: a report holding one is not reused.

@@ -124,6 +124,10 @@ def probe_entry(rec, skeleton):
             e[k] = rec[k]
     if rec.get("simple"):
         e["simple"] = True
+    flags = [{k: o[k] for k in ("name", "each", "group") if o.get(k)}
+             for o in rec.get("out") or [] if isinstance(o, dict) and (o.get("each") or o.get("group"))]
+    if flags:
+        e["out"] = flags
     e["expected"] = wh.compact(rec)
     e["skeleton"] = skeleton
     return e

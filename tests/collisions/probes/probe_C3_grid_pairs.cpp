@@ -6,6 +6,10 @@
 #include "grid_pairs.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_C3_grid_pairs {
+
 using wbprobe::cols;
 using wbprobe::vec;
 
@@ -50,3 +54,5 @@ WB_PROBE("C3", "large", "one disc of radius 1.5 among discs of radius 0.1") {
 WB_PROBE("C3", "stale", "two overlapping discs, the list coming in with old pairs (0, 5) and (2, 3)") {
   run(P, cols({{0, 0}, {0.8, 0}, {3, 3}}), vec({0.5, 0.5, 0.5}), {{0, 5}, {2, 3}});
 }
+
+}  // namespace probe_C3_grid_pairs

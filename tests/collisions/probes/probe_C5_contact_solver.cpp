@@ -4,6 +4,10 @@
 #include "contact_solver.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_C5_contact_solver {
+
 using wbprobe::cols;
 using wbprobe::vec;
 
@@ -38,7 +42,9 @@ void solve(wbprobe::Probe& P, const wb::VecX& w, Contact c, wb::Mat2X v) {
   P.call("solve_contact");
   P.in("w", w), contact_in(P, c), P.in("v", v);
   const double dPn = solve_contact(w, c, v);
+  P.group("everything");  // one part's mistakes change some, another's others
   P.out("returned", dPn), contact_out(P, c), P.out("v", v);
+  P.group("");
 }
 const Vec2 kN(0.6, 0.8);
 const wb::VecX kW = vec({2.0 / 3, 2.0});  // masses 1.5 and 0.5
@@ -76,3 +82,5 @@ WB_PROBE("C5", "solve-take-back", "solve_contact: the pair separating at 0.5 m/s
 WB_PROBE("C5", "solve-friction", "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = 0.15 stored, mu = 0.4") {
   solve(P, kW, contact(0, 1, kN, 0.4, 0.5, 0.15, 0.375, 0), cols({{2.0, -1.2}, {0.3, 0.4}}));
 }
+
+}  // namespace probe_C5_contact_solver

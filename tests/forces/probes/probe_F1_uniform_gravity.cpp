@@ -2,6 +2,10 @@
 #include "uniform_gravity.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F1_uniform_gravity {
+
 using wbprobe::cols;
 using wbprobe::vec;
 
@@ -30,3 +34,5 @@ WB_PROBE("F1", "weight", "three particles of different masses, a tilted g") {
 WB_PROBE("F1", "adds", "the same particles with f already holding other forces") {
   run(P, vec({1.5, 0.4, 3}), wb::Vec2(1.2, -3.5), cols({{0.5, -1}, {0, 2}, {-3, 0.25}}));
 }
+
+}  // namespace probe_F1_uniform_gravity

@@ -3,6 +3,10 @@
 #include "newton_gravity.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F2_newton_gravity {
+
 using wbprobe::cols;
 using wbprobe::vec;
 
@@ -48,3 +52,5 @@ WB_PROBE("F2", "coincident", "two bodies at the same point and a third 2 away, n
 WB_PROBE("F2", "adds", "the pair of masses 2 and 3 with f already holding forces") {
   run(P, cols({{0, 0}, {3, 4}}), vec({2, 3}), 0.8, 0.0, cols({{1, 2}, {-3, 0.5}}));
 }
+
+}  // namespace probe_F2_newton_gravity

@@ -4,6 +4,10 @@
 #include "attractor.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F3_attractor {
+
 using wbprobe::cols;
 using wbprobe::vec;
 
@@ -42,3 +46,5 @@ WB_PROBE("F3", "three", "three particles of different masses and distances") {
 WB_PROBE("F3", "adds", "the particle of mass 2 and the massless one, f already holding forces") {
   run(P, cols({{4, 1}, {0, 3}}), vec({2, 0}), wb::Vec2(1, -3), 1.5, cols({{1, 2}, {-0.5, 1}}));
 }
+
+}  // namespace probe_F3_attractor

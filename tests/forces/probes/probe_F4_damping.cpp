@@ -2,6 +2,10 @@
 #include "damping.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F4_damping {
+
 using wbprobe::cols;
 
 namespace {
@@ -25,3 +29,5 @@ WB_PROBE("F4", "drag", "three particles moving in different directions, b = 0.8"
 WB_PROBE("F4", "adds", "the same particles with f already holding forces") {
   run(P, cols({{1.5, -0.5}, {0, 2}, {-1, -1}}), 0.8, cols({{1, 2}, {-0.5, 0}, {0, -3}}));
 }
+
+}  // namespace probe_F4_damping

@@ -6,6 +6,10 @@
 #include "boids.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F7_boids {
+
 using wbprobe::cols;
 using wbprobe::vec;
 
@@ -22,7 +26,7 @@ BoidsParams rules(double ws, double wa, double wc, double radius) {
 }
 
 void run(wbprobe::Probe& P, const Mat2X& x, const Mat2X& v, const VecX& m, const BoidsParams& p,
-         Mat2X f) {
+         Mat2X f, bool each = false) {
   P.call("add_boids");
   P.in("x", x), P.in("v", v), P.in("m", m);
   P.in("separation.weight", p.separation.weight), P.in("separation.radius", p.separation.radius);
@@ -30,7 +34,11 @@ void run(wbprobe::Probe& P, const Mat2X& x, const Mat2X& v, const VecX& m, const
   P.in("cohesion.weight", p.cohesion.weight), P.in("cohesion.radius", p.cohesion.radius);
   P.in("goal_weight", p.goal_weight), P.in("goal", p.goal), P.in("f", f);
   add_boids(x, v, m, p, f);
-  P.out("f", f);
+  if (each) {
+    P.out_each("f", f);
+  } else {
+    P.out("f", f);
+  }
 }
 Mat2X zeros(Eigen::Index n) { return Mat2X::Zero(2, n); }
 // Two boids and their midpoint last.
@@ -42,8 +50,9 @@ WB_PROBE("F7", "separation-two", "separation alone: two boids 0.5 apart, every r
   run(P, cols({{0, 0}, {0.5, 0}}), zeros(2), vec({1, 1}), rules(1, 0, 0, 1), zeros(2));
 }
 // One rule at a time.
-WB_PROBE("F7", "separation", "separation alone: two boids and their midpoint, every radius 2") {
-  run(P, kTrio, zeros(3), vec({1, 1, 1}), rules(0.7, 0, 0, 2), zeros(3));
+WB_PROBE("F7", "separation", "separation alone: two boids and their midpoint, every radius 2; two boids at one point far away") {
+  run(P, cols({{0.4, 0.7}, {1.6, 1.3}, {-6, 5}, {1, 1}, {-6, 5}}), zeros(5), vec({1, 1, 1, 1, 1}),
+      rules(0.7, 0, 0, 2), zeros(5));
 }
 WB_PROBE("F7", "alignment", "alignment alone: two boids and their midpoint, moving differently") {
   run(P, kTrio, cols({{1, 0}, {-0.2, 0.8}, {0.4, 0.4}}), vec({1, 1, 1}), rules(0, 0.9, 0, 2),
@@ -72,10 +81,12 @@ WB_PROBE("F7", "goal", "the goal alone: a boid 5 from its goal, another standing
 }
 // The masses.
 WB_PROBE("F7", "masses", "separation alone, masses 2 and 0.5, and their midpoint") {
+  P.simple();
   run(P, kTrio, zeros(3), vec({2, 0.5, 3}), rules(0.7, 0, 0, 2), zeros(3));
 }
 // Coincident boids.
 WB_PROBE("F7", "coincident", "two boids at the same point and a third 0.5 away, every rule on") {
+  P.simple();
   run(P, cols({{0, 0}, {0, 0}, {0.5, 0}}), cols({{1, 0}, {0, 1}, {0, 0}}), vec({1, 1, 1}),
       rules(0.7, 0.9, 0.6, 2), zeros(3));
 }
@@ -85,5 +96,7 @@ WB_PROBE("F7", "flock", "four boids, every rule and the goal, f holding forces")
   p.alignment.radius = 2, p.cohesion.radius = 2.5, p.goal_weight = 1.5, p.goal = wb::Vec2(3, 3);
   run(P, cols({{0, 0}, {0.7, 0.2}, {1.5, -0.5}, {-0.9, 1.1}}),
       cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 2, 0.5, 1.5}), p,
-      cols({{1, 0}, {0, 1}, {-1, 0}, {0.5, 0.5}}));
+      cols({{1, 0}, {0, 1}, {-1, 0}, {0.5, 0.5}}), true);
 }
+
+}  // namespace probe_F7_boids

@@ -4,6 +4,10 @@
 #include "vortex.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F8_vortex {
+
 using wbprobe::cols;
 
 namespace {
@@ -57,3 +61,5 @@ WB_PROBE("F8", "three", "add_vortex on three particles, f holding forces") {
   drag(P, cols({{2, 0}, {0.5, -2}, {4, 2}}), cols({{0.3, 0}, {1, 1}, {0.5, -0.5}}), kVortex,
        cols({{1, 0}, {0, 1}, {-1, 0}}));
 }
+
+}  // namespace probe_F8_vortex

@@ -5,6 +5,10 @@
 #include "curl_noise.h"
 #include "wb_probe.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_F9_curl_noise {
+
 using wbprobe::cols;
 
 namespace {
@@ -46,19 +50,38 @@ WB_PROBE("F9", "potential-free", "curl_noise_potential with no obstacle: psi its
 }
 // The ramp of the potential.
 WB_PROBE("F9", "potential-near", "curl_noise_potential 1.3 from a disc's edge, ramp distance 2.5") {
+  P.simple();
   potential(P, Vec2(3, -0.5), field({kDisc}, 2.5, 1));
 }
 WB_PROBE("F9", "potential-far", "curl_noise_potential 2.8 from a disc's edge, beyond the ramp 2.5") {
+  P.simple();
   potential(P, Vec2(4.5, -0.5), field({kDisc}, 2.5, 1));
 }
 WB_PROBE("F9", "potential-two", "curl_noise_potential between two discs, nearer to the second") {
+  P.simple();
   potential(P, Vec2(3, -0.5), field({kDisc, Disc{Vec2(4, 0.5), 0.5}}, 2.5, 1));
+}
+// The obstacles, in one output: the potential within the ramp of a disc, beyond it, between two
+// discs, and the flow within the ramp.
+WB_PROBE("F9", "obstacles", "curl_noise_potential 1.3 and 2.8 from a disc's edge (ramp 2.5) and between two discs; curl_noise_flow 1.3 from the edge") {
+  P.call("curl_noise_potential, curl_noise_flow");
+  const CurlNoiseParams one = field({kDisc}, 2.5, 1);
+  const CurlNoiseParams two = field({kDisc, Disc{Vec2(4, 0.5), 0.5}}, 2.5, 1);
+  in(P, two);
+  P.note("near and far: the first disc alone");
+  P.in("x (near, far, between)", wbprobe::cols({{3, -0.5}, {4.5, -0.5}, {3, -0.5}}));
+  const Vec2 u = curl_noise_flow(Vec2(3, -0.5), one);
+  P.out("(psi_c near, psi_c far, psi_c between, u near)",
+        wbprobe::vec({curl_noise_potential(Vec2(3, -0.5), one),
+                      curl_noise_potential(Vec2(4.5, -0.5), one),
+                      curl_noise_potential(Vec2(3, -0.5), two), u.x(), u.y()}));
 }
 // The curl.
 WB_PROBE("F9", "flow-free", "curl_noise_flow with no obstacle, h = 0.1") {
   flow(P, Vec2(1, 2), field({}, 1, 1));
 }
 WB_PROBE("F9", "flow-near", "curl_noise_flow 1.3 from a disc's edge, ramp distance 2.5") {
+  P.simple();
   flow(P, Vec2(3, -0.5), field({kDisc}, 2.5, 1));
 }
 // The drag: the first and last particles move with the flow.
@@ -71,3 +94,5 @@ WB_PROBE("F9", "several", "add_curl_noise on three particles near a disc, f hold
   drag(P, cols({{3, -0.5}, {-2, 0.5}, {0, -3}}), cols({{0.5, 0}, {0, 0}, {-1, 1}}),
        field({kDisc}, 2.5, 0.5), cols({{1, 0}, {0, 1}, {-1, 0}}));
 }
+
+}  // namespace probe_F9_curl_noise

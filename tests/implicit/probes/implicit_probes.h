@@ -34,13 +34,18 @@ inline void network_in(wbprobe::Probe& P, const SpringNetwork& net) {
   }
 }
 
+// The report as one output: (iterations, converged, solver_failed, scale[, residual]). The
+// residual of a converged step is rounding: recorded only where it is not.
+inline Eigen::VectorXd report(const NewtonReport& r, bool residual) {
+  Eigen::VectorXd out(residual ? 5 : 4);
+  out.head<4>() << r.iterations, r.converged, r.solver_failed, r.scale;
+  if (residual) out[4] = r.residual;
+  return out;
+}
 inline void report_out(wbprobe::Probe& P, const NewtonReport& r, bool residual) {
-  P.out("iterations", long(r.iterations));
-  P.out("converged", r.converged);
-  P.out("solver_failed", r.solver_failed);
-  P.out("scale", r.scale);
-  // The residual of a converged step is rounding: recorded only where it is not.
-  if (residual) P.out("residual", r.residual);
+  P.out(residual ? "report (iterations, converged, solver_failed, scale, residual)"
+                 : "report (iterations, converged, solver_failed, scale)",
+        report(r, residual));
 }
 
 // A small nonlinear network: a triangle with a tail to an anchor, every spring stretched or

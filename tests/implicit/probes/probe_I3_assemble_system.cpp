@@ -4,6 +4,10 @@
 #include "assemble_system.h"
 #include "implicit_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_I3_assemble_system {
+
 namespace {
 using improbe::Mat2X;
 using improbe::Vec2;
@@ -71,3 +75,5 @@ WB_PROBE("I3", "pinned", "three particles in a chain, the middle one pinned, at 
   const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {0, 0}, {-0.75, 0.5}});
   run(P, net, x, v, x + 0.1 * vl, vl, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1, true);
 }
+
+}  // namespace probe_I3_assemble_system

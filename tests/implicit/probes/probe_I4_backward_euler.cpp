@@ -4,6 +4,10 @@
 // fails. The new state and each field of the report are recorded apart.
 #include "implicit_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_I4_backward_euler {
+
 namespace {
 using improbe::Mat2X;
 using improbe::Vec2;
@@ -16,7 +20,7 @@ NewtonOptions options() {
 }
 
 void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double h,
-         const NewtonOptions& o, Mat2X x, Mat2X v, bool residual) {
+         const NewtonOptions& o, Mat2X x, Mat2X v, bool residual, bool together = false) {
   P.call("backward_euler_step");
   improbe::network_in(P, net);
   P.in("f_ext", f_ext), P.in("h", h);
@@ -25,8 +29,10 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
   P.in("x", x), P.in("v", v);
   P.tol(1e-6, 1e-8);  // Newton stops within tol = 1e-9 of the scale: alternatives differ there
   const NewtonReport r = backward_euler_step(net, f_ext, h, o, x, v);
+  if (together) P.group("everything");  // one part's mistakes change some, another's others
   P.out("x", x), P.out("v", v);
   improbe::report_out(P, r, residual);
+  P.group("");
 }
 }  // namespace
 
@@ -48,6 +54,7 @@ WB_PROBE("I4", "network", "a small nonlinear network with drag and gravity, h = 
 }
 // The single solve.
 WB_PROBE("I4", "one-iteration", "the same network, one_iteration (Baraff and Witkin)") {
+  P.simple();
   SpringNetwork net;
   Mat2X x, v;
   improbe::small_network(net, x, v);
@@ -57,6 +64,7 @@ WB_PROBE("I4", "one-iteration", "the same network, one_iteration (Baraff and Wit
 }
 // A capped iteration: the residual left after two solves.
 WB_PROBE("I4", "capped", "the same network, at most 2 solves") {
+  P.simple();
   SpringNetwork net;
   Mat2X x, v;
   improbe::small_network(net, x, v);
@@ -64,8 +72,33 @@ WB_PROBE("I4", "capped", "the same network, at most 2 solves") {
   o.max_iterations = 2;
   run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.05, o, x, v, true);
 }
+// Newton's iteration, in one output: the same network capped at 2 solves, then with
+// one_iteration.
+WB_PROBE("I4", "iteration", "the network capped at 2 solves, then with one_iteration: states and reports in one output") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  const Mat2X g = wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}});
+  NewtonOptions capped = options(), one = options();
+  capped.max_iterations = 2, one.one_iteration = true;
+  P.call("backward_euler_step");
+  improbe::network_in(P, net);
+  P.in("f_ext", g), P.in("h", 0.05), P.in("x", x), P.in("v", v);
+  P.tol(1e-6, 1e-8);
+  Mat2X x1 = x, v1 = v, x2 = x, v2 = v;
+  const NewtonReport r1 = backward_euler_step(net, g, 0.05, capped, x1, v1);
+  const NewtonReport r2 = backward_euler_step(net, g, 0.05, one, x2, v2);
+  P.group("everything");
+  P.out("capped: x", x1), P.out("capped: v", v1);
+  P.out("capped: report (iterations, converged, solver_failed, scale, residual)",
+        improbe::report(r1, true));
+  P.out("one_iteration: x", x2), P.out("one_iteration: v", v2);
+  P.out("one_iteration: report (iterations, converged, solver_failed, scale, residual)",
+        improbe::report(r2, true));
+}
 // The scale, one term at a time.
 WB_PROBE("I4", "gliding", "two particles gliding with their spring at rest length, no force: scale |M v|") {
+  P.simple();
   SpringNetwork net;
   net.m = Eigen::Vector2d(1.5, 0.5);
   net.springs = {spring(0, 1, 20, 5)};
@@ -73,6 +106,7 @@ WB_PROBE("I4", "gliding", "two particles gliding with their spring at rest lengt
       wbprobe::cols({{0.5, -1}, {0.5, -1}}), false);
 }
 WB_PROBE("I4", "released", "two particles released from rest on a stretched spring: scale |b_0|") {
+  P.simple();
   SpringNetwork net;
   net.m = Eigen::Vector2d(1.5, 0.5);
   net.springs = {spring(0, 1, 20, 2)};
@@ -80,6 +114,7 @@ WB_PROBE("I4", "released", "two particles released from rest on a stretched spri
       Mat2X::Zero(2, 2), false);
 }
 WB_PROBE("I4", "hanging", "a particle at rest in equilibrium under gravity: scale h |f_ext|") {
+  P.simple();
   SpringNetwork net;
   net.m = Eigen::VectorXd::Constant(1, 2.0);
   net.springs = {spring(0, -1, 49, 0, 0, Vec2(0, 1))};
@@ -108,5 +143,7 @@ WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, 
   o.definite = false;
   run(P, net, wbprobe::cols({{0, 0}, {0, 0}, {0, -1}}), 1.0, o,
       wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}), wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}),
-      true);
+      true, true);
 }
+
+}  // namespace probe_I4_backward_euler

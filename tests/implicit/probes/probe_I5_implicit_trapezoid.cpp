@@ -3,6 +3,10 @@
 #include "implicit_probes.h"
 #include "implicit_trapezoid.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_I5_implicit_trapezoid {
+
 namespace {
 using improbe::Mat2X;
 using improbe::Vec2;
@@ -17,6 +21,7 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
   P.in("f_ext", f_ext), P.in("h", h), P.in("x", x), P.in("v", v);
   P.tol(1e-6, 1e-8);
   const NewtonReport r = implicit_trapezoid_step(net, f_ext, h, o, x, v);
+  P.group("everything");  // one part's mistakes change some, another's others
   P.out("x", x), P.out("v", v);
   improbe::report_out(P, r, false);
 }
@@ -31,6 +36,7 @@ WB_PROBE("I5", "linear", "one particle on a zero-rest-length spring to the origi
 }
 // External forces alone.
 WB_PROBE("I5", "external", "two free particles under external forces only, no spring") {
+  P.simple();
   SpringNetwork net;
   net.m = Eigen::Vector2d(1.5, 0.5);
   run(P, net, wbprobe::cols({{0, -14.7}, {2, -4.9}}), 0.1, wbprobe::cols({{0, 0}, {3, 4}}),
@@ -38,6 +44,7 @@ WB_PROBE("I5", "external", "two free particles under external forces only, no sp
 }
 // A pinned particle that arrives moving.
 WB_PROBE("I5", "pinned", "a chain of three, the middle one pinned and arriving with a velocity") {
+  P.simple();
   SpringNetwork net;
   net.m = Eigen::Vector3d(1.5, 2, 0.5);
   net.drag = 0.5;
@@ -46,10 +53,13 @@ WB_PROBE("I5", "pinned", "a chain of three, the middle one pinned and arriving w
   run(P, net, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1,
       wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}), wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}));
 }
-// The half steps on a nonlinear network.
-WB_PROBE("I5", "network", "a small nonlinear network with drag and gravity, h = 0.05") {
+// The half steps on a nonlinear network, one particle of it pinned and moving.
+WB_PROBE("I5", "network", "a small nonlinear network with drag and gravity, particle 1 pinned, h = 0.05") {
   SpringNetwork net;
   Mat2X x, v;
   improbe::small_network(net, x, v);
+  net.pinned = {0, 1, 0, 0};
   run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.05, x, v);
 }
+
+}  // namespace probe_I5_implicit_trapezoid

@@ -2,6 +2,10 @@
 #include "body_inertia.h"
 #include "rigid_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_R1_body_inertia {
+
 using rbprobe::Vec3;
 
 WB_PROBE("R1", "cube", "box_inertia of a unit cube of mass 1") {
@@ -21,3 +25,5 @@ WB_PROBE("R1", "cylinder", "cylinder_inertia: mass 3, radius 0.5, length 2 (alon
   P.call("cylinder_inertia"), P.in("m", 3.0), P.in("radius", 0.5), P.in("length", 2.0);
   P.out("returned", cylinder_inertia(3.0, 0.5, 2.0));
 }
+
+}  // namespace probe_R1_body_inertia

@@ -3,14 +3,20 @@
 #include "world_inertia.h"
 #include "rigid_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_R2_world_inertia {
+
 using rbprobe::Mat3;
 using rbprobe::Vec3;
 
 namespace {
 void world(wbprobe::Probe& P, const Mat3& R, const Mat3& I) {
   P.call("world_inertia / world_inverse_inertia"), P.in("R", R), P.in("I_body", I);
+  P.group("world inertia");
   P.out("world_inertia", world_inertia(R, I));
   P.out("world_inverse_inertia", world_inverse_inertia(R, I));
+  P.group("");
 }
 }  // namespace
 
@@ -26,3 +32,5 @@ WB_PROBE("R2", "parallel-axis", "parallel_axis: mass 2, offset (0.5, -1, 0.75)")
   P.call("parallel_axis"), P.in("I", I), P.in("m", 2.0), P.in("d", Vec3(0.5, -1, 0.75));
   P.out("returned", parallel_axis(I, 2.0, Vec3(0.5, -1, 0.75)));
 }
+
+}  // namespace probe_R2_world_inertia

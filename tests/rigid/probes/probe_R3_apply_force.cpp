@@ -3,6 +3,10 @@
 #include "apply_force.h"
 #include "rigid_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_R3_apply_force {
+
 using rbprobe::Vec3;
 
 namespace {
@@ -32,3 +36,5 @@ WB_PROBE("R3", "gravity", "apply_gravity, g = (0, -9.81, 0)") {
   apply_gravity(b, Vec3(0, -9.81, 0));
   rbprobe::body_out(P, b);
 }
+
+}  // namespace probe_R3_apply_force

@@ -3,6 +3,10 @@
 #include "integrate_position.h"
 #include "rigid_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_R4_integrate_position {
+
 using rbprobe::Vec3;
 
 namespace {
@@ -44,3 +48,5 @@ WB_PROBE("R4", "unnormalised", "a turned body whose q has drifted to |q| = 1.01,
   b.q.coeffs() *= 1.01;
   run(P, b, 0.1);
 }
+
+}  // namespace probe_R4_integrate_position

@@ -4,6 +4,10 @@
 #include "integrate_velocity.h"
 #include "rigid_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_R5_integrate_velocity {
+
 using rbprobe::Vec3;
 
 namespace {
@@ -54,3 +58,5 @@ WB_PROBE("R5", "implicit-torque", "integrate_velocity_implicit: torque only, no 
 WB_PROBE("R5", "implicit-gyro", "integrate_velocity_implicit: spinning, no torque, turned body") {
   run(P, &integrate_velocity_implicit, "integrate_velocity_implicit", gyro(), 0.1);
 }
+
+}  // namespace probe_R5_integrate_velocity

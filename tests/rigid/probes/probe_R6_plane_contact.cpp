@@ -7,6 +7,10 @@
 #include "plane_contact.h"
 #include "rigid_probes.h"
 
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_R6_plane_contact {
+
 using rbprobe::Mat3;
 using rbprobe::Vec3;
 
@@ -17,8 +21,10 @@ void contact_in(wbprobe::Probe& P, const Contact& c) {
   P.in("c.mass_n", c.mass_n), P.in("c.bias", c.bias);
 }
 void contact_out(wbprobe::Probe& P, const Contact& c) {
+  P.group("the contact");
   P.out("c.Pn", c.Pn), P.out("c.Pt", c.Pt), P.out("c.r", c.r), P.out("c.K", c.K);
   P.out("c.mass_n", c.mass_n), P.out("c.bias", c.bias);
+  P.group("");
 }
 // A body falling onto the floor y = 0, a corner of it touching at p.
 rigid::Body falling() {
@@ -75,6 +81,7 @@ WB_PROBE("R6", "prepare-slow", "prepare_contact: the same body, threshold 5 (abo
 }
 // Warm starting.
 WB_PROBE("R6", "warm-start", "warm_start_contact: stored totals Pn = 0.7, Pt = (0.1, 0, -0.05)") {
+  P.simple();
   rigid::Body b = falling();
   const Contact c = prepared(b, 1.2, corner(0.7, Vec3(0.1, 0, -0.05)));
   P.call("warm_start_contact"), rbprobe::body_in(P, b), contact_in(P, c), P.in("n", kN);
@@ -109,3 +116,5 @@ WB_PROBE("R6", "solve-plane", "solve_plane_contacts: two corners, stored totals,
   P.out("returned", total), rbprobe::body_out(P, b);
   if (cs.size() == 2) P.out("contacts[0].Pn", cs[0].Pn), P.out("contacts[1].Pn", cs[1].Pn);
 }
+
+}  // namespace probe_R6_plane_contact

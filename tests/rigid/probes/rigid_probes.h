@@ -33,10 +33,13 @@ inline void body_in(wbprobe::Probe& P, const rigid::Body& b) {
   P.in("b.m", b.m), P.in("b.I_body", b.I_body), P.in("b.x", b.x), P.in("b.v", b.v);
   P.in("b.q", b.q), P.in("b.omega", b.omega), P.in("b.f", b.f), P.in("b.tau", b.tau);
 }
-// Every field that a function may change, apart.
+// Every field that a function may change: shown apart, wrong together (one part's mistakes
+// change some fields, another's others).
 inline void body_out(wbprobe::Probe& P, const rigid::Body& b) {
+  P.group("the body");
   P.out("b.x", b.x), P.out("b.v", b.v), P.out("b.q", b.q), P.out("b.omega", b.omega);
   P.out("b.f", b.f), P.out("b.tau", b.tau);
+  P.group("");
 }
 
 }  // namespace rbprobe
