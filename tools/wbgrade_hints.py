@@ -107,12 +107,15 @@ def _num(v):
 def values(rec):
     """{output name: (rows, cols, [floats])} of a record ("out"), {} for an error."""
     out = {}
-    for o in (rec or {}).get("out") or []:
+    outs = (rec or {}).get("out") if isinstance(rec, dict) else None
+    for o in outs if isinstance(outs, list) else []:
         try:
             rows, cols = int(o["shape"][0]), int(o["shape"][1])
-            out[str(o["name"])] = (rows, cols, [_num(v) for v in o["v"]])
+            vs = [_num(v) for v in o["v"]]
         except (KeyError, TypeError, ValueError, IndexError):
             continue
+        if rows >= 0 and cols >= 0 and rows * cols == len(vs):
+            out[str(o["name"])] = (rows, cols, vs)
     return out
 
 
@@ -153,12 +156,17 @@ def expand(c):
     """A compact record back as {name: (rows, cols, [floats])}, or None for an error."""
     if not isinstance(c, dict) or "out" not in c:
         return None
+    got = c.get("out")
+    if not isinstance(got, dict):
+        return None
     out = {}
-    for name, v in (c.get("out") or {}).items():
+    for name, v in got.items():
         try:
-            out[str(name)] = (int(v[0]), int(v[1]), [_num(x) for x in v[2]])
-        except (TypeError, ValueError, IndexError):
+            rows, cols, vs = int(v[0]), int(v[1]), [_num(x) for x in v[2]]
+        except (TypeError, ValueError, IndexError, KeyError):
             continue
+        if rows >= 0 and cols >= 0 and rows * cols == len(vs):
+            out[str(name)] = (rows, cols, vs)
     return out
 
 
