@@ -409,7 +409,9 @@ class Diagnosis:
             out.append("  Every probe agrees with the solution; the first failed test says:")
             out += ["    " + l for l in self.test_message.splitlines()[:8]]
         if self.status == "no probes":
-            out.append("  (no probe output: the diagnosis could not run; see the failed tests)")
+            out.append("  (the probes could not run: out of time, or no catalogue); the first "
+                       "failed test says:")
+            out += ["    " + l for l in self.test_message.splitlines()[:8]]
         return [l[:LINE_CHARS] for l in out]
 
 
@@ -432,6 +434,9 @@ def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
     if pristine:
         d.status = "not started"
         return d
+    first = next((t for t in tests if not t[1]), None)
+    if first:
+        d.test_message = f"{first[0]}:\n" + (first[2] or "").split("\n\n")[0]
     if not probes or outputs is None:
         d.status = "no probes"
         return d
@@ -445,10 +450,6 @@ def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
     d.wrong = [p.get("title", p["probe"]) for p in wrong]
     if not wrong:
         d.status = "tests"
-        first = next((t for t in tests if not t[1]), None)
-        d.test_message = (first[2] or "").split("\n\n")[0] if first else ""
-        if first:
-            d.test_message = f"{first[0]}:\n{d.test_message}"
         return d
     d.status = "counterexample"
     names = exact_mistakes(cat, task, got, exclude)

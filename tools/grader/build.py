@@ -694,13 +694,15 @@ class Grader:
 
 
 def _diagnose_one(grader, lab, results, overlay, prober, worker, end):
-    from .diagnose import diagnose_lab, run_probes
+    from .diagnose import LAB_BUDGET, PROBES_TIMEOUT, diagnose_lab, run_probes
+    end = min(end, time.monotonic() + LAB_BUDGET)  # the submission's budget, and the lab's
 
     def run(ids):
-        left = min(end - time.monotonic(), 60.0)
+        left = end - time.monotonic()
         if left <= 1:
-            return None  # the submission's budget is used up: no diagnosis
-        return run_probes(grader.sandbox, prober, worker, ids, grader.cwd, min(left, 20.0))
+            return None  # the budget is used up: this task gets no probe output
+        return run_probes(grader.sandbox, prober, worker, ids, grader.cwd,
+                          min(left, PROBES_TIMEOUT))
     return diagnose_lab(grader.repo, lab, results, overlay, run, grader.say)
 
 

@@ -22,6 +22,8 @@ if _TOOLS not in sys.path:
 import wbgrade_hints as wh  # noqa: E402
 
 PROBES_TIMEOUT = 20.0  # s, all the probes of one task (each takes milliseconds)
+LAB_BUDGET = 60.0  # s, all the probes of one lab: a submission whose every task loops forever
+                   # costs at most this much more than its tests
 PROBES_CAP = 2 * 1024 * 1024  # bytes of one probe process's report kept
 GONE = "the lab's code stopped answering"  # the stubs' words when the worker is gone
 

@@ -12,12 +12,16 @@ using wbprobe::vec;
 
 namespace {
 void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& m, double G, double eps,
-         wb::Mat2X f) {
+         wb::Mat2X f, bool each = false) {
   P.call("add_newton_gravity");
   P.in("x", x), P.in("m", m), P.in("G", G), P.in("eps", eps), P.in("f", f);
   const wb::Mat2X f0 = f;
   add_newton_gravity(x, m, G, eps, f);
-  P.out("f", f);
+  if (each) {
+    P.out_each("f", f);
+  } else {
+    P.out("f", f);
+  }
   if (f.cols() == f0.cols()) P.out("sum", wb::Vec2((f - f0).rowwise().sum()));
 }
 }  // namespace
@@ -42,6 +46,12 @@ WB_PROBE("F2", "softened", "the same pair softened by eps = 1.5") {
 WB_PROBE("F2", "four", "four bodies of different masses, no softening") {
   run(P, cols({{0, 0}, {3, 4}, {-1, 2}, {2, -1.5}}), vec({2, 3, 1.5, 0.5}), 0.8, 0.0,
       cols({{0, 0}, {0, 0}, {0, 0}, {0, 0}}));
+}
+// The pairs: three equal bodies equally spaced on a line. The middle one feels nothing from a
+// pair force of any form, as long as every pair is visited once and acts on both bodies.
+WB_PROBE("F2", "symmetric", "three bodies of mass 2 at (-1.5, 0.5), (0.5, 1), (2.5, 1.5): the middle one feels no force") {
+  run(P, cols({{-1.5, 0.5}, {0.5, 1}, {2.5, 1.5}}), vec({2, 2, 2}), 0.8, 0.0,
+      cols({{0, 0}, {0, 0}, {0, 0}}), true);
 }
 // A coincident pair without softening.
 WB_PROBE("F2", "coincident", "two bodies at the same point and a third 2 away, no softening") {

@@ -50,9 +50,9 @@ WB_PROBE("F7", "separation-two", "separation alone: two boids 0.5 apart, every r
   run(P, cols({{0, 0}, {0.5, 0}}), zeros(2), vec({1, 1}), rules(1, 0, 0, 1), zeros(2));
 }
 // One rule at a time.
-WB_PROBE("F7", "separation", "separation alone: two boids and their midpoint, every radius 2; two boids at one point far away") {
-  run(P, cols({{0.4, 0.7}, {1.6, 1.3}, {-6, 5}, {1, 1}, {-6, 5}}), zeros(5), vec({1, 1, 1, 1, 1}),
-      rules(0.7, 0, 0, 2), zeros(5));
+WB_PROBE("F7", "separation", "separation alone, every radius 2: two boids and their midpoint (last); far away, two boids at one point and a third 0.5 from them") {
+  run(P, cols({{0.4, 0.7}, {1.6, 1.3}, {5, 5}, {5, 5}, {5.5, 5}, {1, 1}}), zeros(6),
+      vec({1, 1, 1, 1, 1, 1}), rules(0.7, 0, 0, 2), zeros(6));
 }
 WB_PROBE("F7", "alignment", "alignment alone: two boids and their midpoint, moving differently") {
   run(P, kTrio, cols({{1, 0}, {-0.2, 0.8}, {0.4, 0.4}}), vec({1, 1, 1}), rules(0, 0.9, 0, 2),
@@ -66,12 +66,12 @@ WB_PROBE("F7", "means", "alignment and cohesion, radius 1.5: two neighbours of t
   run(P, cols({{0, 0}, {1, 0}, {0, 1.2}, {5, 5}}), cols({{1, 0}, {0, 1}, {-1, 0.5}, {0.3, 0.3}}),
       vec({1, 1, 1, 1}), rules(0, 0.9, 0.6, 1.5), zeros(4));
 }
-// Each rule its own radius.
-WB_PROBE("F7", "radii", "every rule on, radii 0.9, 1.6 and 2.6: boids 0.8 and 2.06 from the first") {
+// Each rule its own radius; a boid far from all last (no neighbour: nothing).
+WB_PROBE("F7", "radii", "every rule on, radii 0.9, 1.6 and 2.6: boids 0.8 and 2.06 from the first, one far from all") {
   BoidsParams p = rules(0.7, 0.9, 0.6, 0.9);
   p.alignment.radius = 1.6, p.cohesion.radius = 2.6;
-  run(P, cols({{0, 0}, {0.8, 0}, {2, 0.5}}), cols({{0, 0}, {1, 0}, {0, 1}}), vec({1, 1, 1}), p,
-      zeros(3));
+  run(P, cols({{0, 0}, {0.8, 0}, {2, 0.5}, {8, -8}}), cols({{0, 0}, {1, 0}, {0, 1}, {0.5, 0.5}}),
+      vec({1, 1, 1, 1}), p, zeros(4));
 }
 // The goal: a boid 5 from it and one on it (last).
 WB_PROBE("F7", "goal", "the goal alone: a boid 5 from its goal, another standing on it") {
@@ -90,13 +90,19 @@ WB_PROBE("F7", "coincident", "two boids at the same point and a third 0.5 away, 
   run(P, cols({{0, 0}, {0, 0}, {0.5, 0}}), cols({{1, 0}, {0, 1}, {0, 0}}), vec({1, 1, 1}),
       rules(0.7, 0.9, 0.6, 2), zeros(3));
 }
-// Everything, every boid.
-WB_PROBE("F7", "flock", "four boids, every rule and the goal, f holding forces") {
+// Every rule, different radii and masses, f holding forces; a boid far from all last.
+WB_PROBE("F7", "flock", "four boids, every rule, f holding forces, and a boid far from all") {
   BoidsParams p = rules(0.5, 0.8, 0.3, 1.2);
-  p.alignment.radius = 2, p.cohesion.radius = 2.5, p.goal_weight = 1.5, p.goal = wb::Vec2(3, 3);
+  p.alignment.radius = 2, p.cohesion.radius = 2.5;
+  run(P, cols({{0, 0}, {0.7, 0.2}, {1.5, -0.5}, {-0.9, 1.1}, {9, 9}}),
+      cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}, {0.2, 0.1}}), vec({1, 2, 0.5, 1.5, 1}), p,
+      cols({{1, 0}, {0, 1}, {-1, 0}, {0.5, 0.5}, {0, 0}}));
+}
+// Every boid: all within every radius, so that only the boid a loop misses goes wrong alone.
+WB_PROBE("F7", "every", "four boids all within every radius (3), every rule, masses 1, 2, 0.5 and 1.5") {
   run(P, cols({{0, 0}, {0.7, 0.2}, {1.5, -0.5}, {-0.9, 1.1}}),
-      cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 2, 0.5, 1.5}), p,
-      cols({{1, 0}, {0, 1}, {-1, 0}, {0.5, 0.5}}), true);
+      cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 2, 0.5, 1.5}), rules(0.5, 0.8, 0.3, 3),
+      zeros(4), true);
 }
 
 }  // namespace probe_F7_boids
