@@ -284,15 +284,22 @@ CORE_LEVEL = "unit"   # what a submission must share with every mistake of the p
 NEAR = 0.75  # another part that explains this share of the wrong units makes the naming unsure
 
 
-def bad_units(probes, outputs):
-    """The units (of the probes that tell parts apart: not the simple ones) that are not ok."""
+CLASSES = True  # a part explains a wrong output only if one of its mistakes gets it wrong alike:
+# "nothing done" (the skeleton's value, a test never reached) apart from a wrong value
+_KIND = {"none": "none", "nan": "wrong", "error": "wrong", "shape": "wrong", "wrong": "wrong"}
+
+
+def bad_units(probes, outputs, classes=False):
+    """The units (of the probes that tell parts apart: not the simple ones) that are not ok;
+    with classes, as (unit, how it is wrong): nothing done (the skeleton's value), NaN or an
+    error, another size, a wrong value."""
     bad = set()
     for p in probes:
         if p.get("simple"):
             continue
         for u, k in units(p, outputs.get(p["probe"])).items():
             if k != "ok":
-                bad.add(u)
+                bad.add((u, _KIND.get(k, "wrong")) if classes else u)
     return bad
 
 
@@ -317,21 +324,28 @@ def part_of(cat, task, outputs, exclude=()):
     whose wrong probes could come from two parts, or from none, gets no part named (its
     counterexample still says what is wrong)."""
     probes = task_probes(cat, task)
-    B = bad_units(probes, outputs)
+    B = bad_units(probes, outputs, classes=True)
     if not B:
         return None
     parts = {}
     for name, m in task_mutants(cat, task, exclude).items():
         if not m.get("kind"):
             continue
-        bad = bad_units(probes, m.get("probes") or {})
+        bad = bad_units(probes, m.get("probes") or {}, classes=True)
         if bad:
             parts.setdefault(part_key(name, m), []).append(bad)
-    Br, Bc = _at(B, REACH_LEVEL), _at(B, CORE_LEVEL)
+
+    def reach_of(b):  # (unit seen at REACH_LEVEL[, how it is wrong])
+        return {(_at({u}, REACH_LEVEL).pop(), k) if CLASSES else _at({u}, REACH_LEVEL).pop()
+                for u, k in b}
+
+    def core_of(b):
+        return _at({u for u, _ in b}, CORE_LEVEL)
+    Br, Bc = reach_of(B), core_of(B)
     fits, near = [], []
     for key, sets in sorted(parts.items()):
-        reach = set.union(*(_at(b, REACH_LEVEL) for b in sets))
-        core = set.intersection(*(_at(b, CORE_LEVEL) for b in sets))
+        reach = set.union(*(reach_of(b) for b in sets))
+        core = set.intersection(*(core_of(b) for b in sets))
         if not core <= Bc:
             continue
         if Br <= reach:

@@ -18,7 +18,10 @@ void run(wbprobe::Probe& P, const Vec2& p, const Vec2& n, double r, double m, do
   P.in("p", p), P.in("n", n), P.in("r", r), P.in("m", m), P.in("restitution", e);
   P.in("rest_speed", rest_speed), P.in("x", x), P.in("v", v);
   const double j = collide_plane(p, n, r, m, e, rest_speed, x, v);
-  P.out("returned", j), P.out("x", x), P.out("v", v);
+  P.group("the impulse");  // the impulse and the velocity go wrong together
+  P.out("returned", j), P.out("v", v);
+  P.group("");
+  P.out("x", x);
 }
 // Several situations in one output: (j, x, v) of each, one column each.
 struct Case {

@@ -15,7 +15,7 @@ void run(wbprobe::Probe& P, rigid::Body b, double h) {
   P.tol(1e-9, 1e-12);
   integrate_position(b, h);
   rbprobe::body_out(P, b);
-  P.out("|q|", b.q.norm());
+  P.group("the body"), P.out("|q|", b.q.norm()), P.group("");
 }
 }  // namespace
 
