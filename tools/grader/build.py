@@ -653,7 +653,7 @@ class Grader:
                 kill_all()
                 raise
         if jobs:
-            self.say(f"grade: ran {len(jobs)} test processes in {time.monotonic() - t0:.1f} s")
+            self.say(f"grade: ran {len(jobs)} tests in {time.monotonic() - t0:.1f} s")
         self.diagnose(reports, labs, futures, lists, overlays, probers, workers, submission_end)
         for lab in labs:
             rep = reports[lab]

@@ -53,30 +53,37 @@ def mutant_task(tasks, name):
 
 # ---------------------------------------------------------------- recording
 
-def record(grader, lab, files):
+def has_probes(repo, lab):
+    return os.path.isdir(os.path.join(repo, "tests", lab, "probes"))
+
+
+def record(grader, lab, files, built=False):
     """Runs the lab's probes on `files` ({student file name: bytes}, the others pristine) from
-    <lab>-probes-direct; returns ({probe id: record}, None) or (None, why not)."""
+    <lab>-probes-direct (built here, unless `built`: the caller built it with these files);
+    returns ({probe id: record}, None) or (None, why not)."""
     from grader.project import pristine_files
     from grader.worker import worker_files
     from grader.project import known_labs
-    if not os.path.isdir(os.path.join(grader.repo, "tests", lab, "probes")):
+    if not has_probes(grader.repo, lab):
         return {}, None
-    pristine = pristine_files(grader.repo)
-    pristine.update(worker_files(grader.repo, known_labs(grader.repo)))
-    staged = dict(pristine)
-    for name, data in files.items():
-        staged[os.path.join("labs", lab, name)] = data
-    grader.direct_tests = True
-    grader.sync(staged)
-    grader.configure([lab])
     binary = os.path.join(grader.build, "bin", f"{lab}-probes-direct")
-    if os.path.exists(binary):
-        os.remove(binary)
-    proc = subprocess.run(["cmake", "--build", grader.build, "--target", f"{lab}-probes-direct",
-                           "-j", str(grader.jobs)], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, timeout=900)
-    if proc.returncode != 0 or not os.path.isfile(binary):
-        return None, "the probes do not build:\n" + proc.stdout.decode("utf-8", "replace")[-3000:]
+    if not built:
+        pristine = pristine_files(grader.repo)
+        pristine.update(worker_files(grader.repo, known_labs(grader.repo)))
+        staged = dict(pristine)
+        for name, data in files.items():
+            staged[os.path.join("labs", lab, name)] = data
+        grader.direct_tests = True
+        grader.sync(staged)
+        grader.configure([lab])
+        if os.path.exists(binary):
+            os.remove(binary)
+        proc = subprocess.run(["cmake", "--build", grader.build, "--target",
+                               f"{lab}-probes-direct", "-j", str(grader.jobs)],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=900)
+        if proc.returncode != 0 or not os.path.isfile(binary):
+            return None, ("the probes do not build:\n" +
+                          proc.stdout.decode("utf-8", "replace")[-3000:])
     listed = subprocess.run([binary, "--list"], stdout=subprocess.PIPE, timeout=60, cwd=grader.cwd)
     ids = [r["probe"] for r in wh.parse_lines(listed.stdout.decode("utf-8", "replace"))]
     out, todo = {}, list(ids)
@@ -146,7 +153,7 @@ def catalogue(repo, lab, tests, solution, skeleton, mutants, digest):
     records)] with header values read by `value(comments, key)`."""
     from wbtools.mutants import header_value
     tasks = lab_tasks(repo, lab)
-    probes = [probe_entry(r, wh.compact(skeleton.get(pid)) if skeleton is not None else None)
+    probes = [probe_entry(r, wh.compact_any(skeleton.get(pid)) if skeleton is not None else None)
               for pid, r in solution.items()]
     by_id = {p["probe"]: p for p in probes}
     uses = collections.defaultdict(set)

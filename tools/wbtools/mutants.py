@@ -82,9 +82,10 @@ DIRECT_TIMEOUT = 20.0  # s, one test case run directly (the slowest solution tes
 UNSURE = (b"<Exception", b"<FatalErrorCondition", b"<StdOut", b"<StdErr", b"<Warning")
 
 
-def direct_files(grader, lab, files):
+def direct_files(grader, lab, files, probes=None):
     """Grades `files` from <lab>-tests-direct; None when the grader itself must judge them
-    (the build failed, or a test did not end the plain way)."""
+    (the build failed, or a test did not end the plain way). With `probes` (a dict), the
+    lab's probes are built in the same build and their records put there (diagnosis.py)."""
     from grader.project import pristine_files
     from grader.worker import worker_files
     from grader.verdict import judge as verdict, read_report
@@ -101,11 +102,20 @@ def direct_files(grader, lab, files):
     if os.path.exists(binary):
         os.remove(binary)
     t0 = time.monotonic()
-    proc = subprocess.run(["cmake", "--build", grader.build, "--target", f"{lab}-tests-direct",
+    with_probes = probes is not None and diag.has_probes(grader.repo, lab)
+    probes_binary = os.path.join(grader.build, "bin", f"{lab}-probes-direct")
+    if with_probes and os.path.exists(probes_binary):
+        os.remove(probes_binary)  # never run the probes of another variant
+    targets = [f"{lab}-tests-direct"] + ([f"{lab}-probes-direct"] if with_probes else [])
+    proc = subprocess.run(["cmake", "--build", grader.build, "--target", *targets,
                            "-j", str(grader.jobs)], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, timeout=600)
     if proc.returncode != 0 or not os.path.isfile(binary):
         return None  # the grader reports the compile error in its own words
+    if with_probes:  # built with the tests: only run them (diagnosis.record)
+        recs, _ = diag.record(grader, lab, files, built=True)
+        if recs is not None:
+            probes.update(recs)
     t1 = time.monotonic()
 
     def one(t):
@@ -407,6 +417,11 @@ def check_signatures(repo, lab, doc, write):
     why += [f"{m}: new" for m in sorted(set(dm) - set(sm))][:3]
     why += [f"{m}: removed" for m in sorted(set(sm) - set(dm))][:3]
     why += [f"{m}: changed" for m in sorted(set(dm) & set(sm)) if dm[m] != sm[m]][:5]
+    if isinstance(stored, dict):
+        for key, what in (("probes", "the probes or the solution's or skeleton's outputs on them"),
+                          ("tasks", "the tasks")):
+            if stored.get(key) != doc.get(key):
+                why.append(f"{what} changed")
     return "; ".join(why) or "the file differs from what this run measured"
 
 
@@ -470,8 +485,9 @@ def run_lab(repo, grader, lab, args, stop):
         else:
             grade.log(f"mutants: {lab}: {name}")
             graded = None
+            recorded = {}
             if name != "solution" and not args.through_grader:
-                graded = direct_files(grader, lab, files)
+                graded = direct_files(grader, lab, files, recorded)
                 row.how = "direct" if graded else "grader (the direct run was not plain)"
             if graded is None:
                 graded = grade_files(grader, lab, files)
@@ -479,7 +495,9 @@ def run_lab(repo, grader, lab, args, stop):
             if name == "solution":
                 all_tests = sorted(r[0] for r in graded[3])
             judge(row, graded, expected, comments)
-            if not graded[0]:  # it compiles: what its probes give
+            if recorded:  # recorded with the direct tests
+                row.probes = recorded
+            elif not graded[0]:  # it compiles: what its probes give
                 row.probes, why = diag.record(grader, lab, files)
                 if why:
                     row.ok, row.verdict = False, "PROBES: " + why.splitlines()[0]
