@@ -257,7 +257,8 @@ def units(probe, got):
                 k = "none"
             else:
                 k = "wrong"
-            if out.get((pid, unit, c), "ok") == "ok":  # a group: its worst output
+            prev = out.get((pid, unit, c), "ok")  # a group: "none" only if all of it is
+            if prev == "ok" or (prev == "none" and k != "ok"):
                 out[(pid, unit, c)] = k
     return out
 
@@ -281,7 +282,7 @@ def part_key(name, m):
 
 REACH_LEVEL = "unit"   # what a part's mistakes must explain: every wrong particle, body, output
 CORE_LEVEL = "unit"   # what a submission must share with every mistake of the part: the probes
-NEAR = 0.75  # another part that explains this share of the wrong units makes the naming unsure
+NEAR = 0.8  # another part that explains this share of the wrong units makes the naming unsure
 
 
 CLASSES = True  # a part explains a wrong output only if one of its mistakes gets it wrong alike:
@@ -614,17 +615,16 @@ def explain(name, expected, got, before, rel, ab):
             return (f"what {name} held before the call is lost: add to {name}, do not "
                     "overwrite it")
         de, dg = contrib, [g - b for g, b in zip(gv, bv)]
-        what = f"the change of {name}"
+        its = "its change"
     else:
-        de, dg, what = ev, gv, name
+        de, dg, its = ev, gv, ""
     if all(abs(v) <= ab for v in dg) and any(abs(v) > ab for v in de):
-        return f"{name} is zero (nothing computed?)" if what == name else \
-            f"{name} is unchanged: nothing was done to it"
+        return "zero (nothing computed?)" if not its else "unchanged: nothing was done to it"
     c = _ratio(dg, de, rel, ab)
     if c is not None and not _close(c, 1.0, 1e-6, 0):
         if _close(c, -1.0, 1e-6, 0):
-            return f"the sign of {what} is flipped"
-        return f"{what} is off by a constant factor {_pretty(c)}"
+            return f"the sign of {its} is flipped" if its else "the sign is flipped"
+        return (f"{its} is" if its else "it is") + f" off by a constant factor {_pretty(c)}"
     if rows in (2, 3) and cols >= 1:
         comps = "xyz"[:rows]
         per = [all(_close(gv[c * rows + r], ev[c * rows + r], rel, ab) for c in range(cols))
@@ -632,7 +632,7 @@ def explain(name, expected, got, before, rel, ab):
         if rows == 2 and not any(per) and all(
                 _close(dg[c * 2], de[c * 2 + 1], rel, ab) and _close(dg[c * 2 + 1], de[c * 2], rel, ab)
                 for c in range(cols)):
-            return f"the x and y components of {what} are swapped"
+            return f"the x and y components{' of ' + its if its else ''} are swapped"
         if any(per) and not all(per):
             bad = [comps[r] for r in range(rows) if not per[r]]
             return f"only the {' and '.join(bad)} component{'s' if len(bad) > 1 else ''} differ" + \
@@ -645,9 +645,11 @@ def explain(name, expected, got, before, rel, ab):
                 nothing = [c for c in badc if all(abs(dg[c * rows + r]) <= ab for r in range(rows))]
                 which = ", ".join(str(c) for c in badc)
                 s = "s" if len(badc) > 1 else ""
+                item = "particle" if rows == 2 else "column"
                 if nothing == badc:
-                    return f"column{s} {which} (of 0..{cols - 1}) get nothing; the others are right"
-                return f"only column{s} {which} (of 0..{cols - 1}) differ{'' if s else 's'}"
+                    return (f"{item}{s} {which} (of 0..{cols - 1}) get{'' if s else 's'} nothing; "
+                            "the others are right")
+                return f"only {item}{s} {which} (of 0..{cols - 1}) differ{'' if s else 's'}"
     return ""
 
 

@@ -90,7 +90,7 @@ def test_the_counterexample_is_the_first_wrong_probe_with_expected_and_got():
     d = wh.diagnose(CAT, "T", outs, TESTS_T)
     text = "\n".join(d.lines())
     assert "f(x = (1, 0))" in text and "expected f = (1, 2)" in text and "got      f = (-1, -2)" in text
-    assert "sign of f is flipped" in text
+    assert "f: the sign is flipped" in text
 
 
 @pytest.mark.parametrize("got, words", [
