@@ -20,9 +20,11 @@ void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& m, double G, dou
   if (each) {
     P.out_each("f", f);
   } else {
+    P.group("f");  // the forces and their sum go wrong together
     P.out("f", f);
   }
   if (f.cols() == f0.cols()) P.out("sum", wb::Vec2((f - f0).rowwise().sum()));
+  P.group("");
 }
 }  // namespace
 

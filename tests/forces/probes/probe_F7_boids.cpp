@@ -50,9 +50,11 @@ WB_PROBE("F7", "separation-two", "separation alone: two boids 0.5 apart, every r
   run(P, cols({{0, 0}, {0.5, 0}}), zeros(2), vec({1, 1}), rules(1, 0, 0, 1), zeros(2));
 }
 // One rule at a time.
-WB_PROBE("F7", "separation", "separation alone, every radius 2: two boids and their midpoint (last); far away, two boids at one point and a third 0.5 from them") {
+WB_PROBE("F7", "separation", "separation alone, radius 2 (cohesion's 6, its weight 0): two boids and their midpoint (last); farther, two boids at one point and a third 0.5 from them") {
+  BoidsParams p = rules(0.7, 0, 0, 2);
+  p.cohesion.radius = 6;
   run(P, cols({{0.4, 0.7}, {1.6, 1.3}, {5, 5}, {5, 5}, {5.5, 5}, {1, 1}}), zeros(6),
-      vec({1, 1, 1, 1, 1, 1}), rules(0.7, 0, 0, 2), zeros(6));
+      vec({1, 1, 1, 1, 1, 1}), p, zeros(6));
 }
 WB_PROBE("F7", "alignment", "alignment alone: two boids and their midpoint, moving differently") {
   run(P, kTrio, cols({{1, 0}, {-0.2, 0.8}, {0.4, 0.4}}), vec({1, 1, 1}), rules(0, 0.9, 0, 2),
@@ -62,9 +64,11 @@ WB_PROBE("F7", "cohesion", "cohesion alone: two boids and their midpoint") {
   run(P, kTrio, zeros(3), vec({1, 1, 1}), rules(0, 0, 0.6, 2), zeros(3));
 }
 // Who counts in a mean: three boids near each other, one alone (last).
-WB_PROBE("F7", "means", "alignment and cohesion, radius 1.5: two neighbours of the first boid, one boid far from all") {
+WB_PROBE("F7", "means", "alignment (radius 1.5) and cohesion (radius 2.5): two neighbours of the first boid, one boid far from all") {
+  BoidsParams p = rules(0, 0.9, 0.6, 1.5);
+  p.cohesion.radius = 2.5;
   run(P, cols({{0, 0}, {1, 0}, {0, 1.2}, {5, 5}}), cols({{1, 0}, {0, 1}, {-1, 0.5}, {0.3, 0.3}}),
-      vec({1, 1, 1, 1}), rules(0, 0.9, 0.6, 1.5), zeros(4));
+      vec({1, 1, 1, 1}), p, zeros(4));
 }
 // Each rule its own radius; a boid far from all last (no neighbour: nothing).
 WB_PROBE("F7", "radii", "every rule on, radii 0.9, 1.6 and 2.6: boids 0.8 and 2.06 from the first, one far from all") {
