@@ -358,7 +358,7 @@ class Grader:
         The cache is trusted only if it is signed with this build folder's key
         AND passes the same checks as a fresh list (names, one points tag per
         test, points summing to 100); otherwise it is rebuilt."""
-        key = digest(pristine)
+        key = prebuilt_inputs(pristine)  # not the student files: the tests never hold them
         path = os.path.join(self.root, "tests.json")
         cache = {}
         try:
@@ -498,7 +498,7 @@ class Grader:
 
     def _report_key(self, lab, overlay, refused, pristine):
         h = hashlib.sha256()
-        parts = [CACHE_VERSION, grader_digest(), digest(pristine), lab, refused, self.timeout,
+        parts = [CACHE_VERSION, grader_digest(), prebuilt_inputs(pristine), lab, refused, self.timeout,
                  self.lab_budget, self.submission_budget, self.screen, self.diagnosis,
                  sorted(self.sandbox.layers), sorted(self.sandbox.missing)]
         h.update(json.dumps(parts, default=str).encode())
@@ -556,7 +556,7 @@ class Grader:
         self.started = time.monotonic()
         self._deadline = self.started + self.submission_budget
         if self.screen:
-            self._load_screened(grader_digest() + digest(pristine))
+            self._load_screened(grader_digest() + prebuilt_inputs(pristine))
         files = dict(pristine)
         refusals = dict(refused or {})
         # The screening preprocesses each file with the build's own command: configure first.
@@ -743,7 +743,10 @@ PREBUILT_GRADER = os.path.join("prebuilt", "grader")
 
 def prebuilt_inputs(pristine):
     """The digest of the pristine files the test and probe binaries are made of: all but the
-    student files (labs/<lab>/*.cpp) and the scenes."""
+    student files (labs/<lab>/*.cpp) and the scenes. It also keys what a grade remembers (the
+    test list, the screened files, a lab's last report): in a student's checkout labs/ holds
+    the student's work, which none of these depend on (a lab's report depends on its own
+    submitted files, hashed apart)."""
     return digest({rel: data for rel, data in pristine.items()
                    if not (rel.startswith("labs" + os.sep) and rel.endswith(".cpp"))
                    and not rel.startswith("scenes" + os.sep)})

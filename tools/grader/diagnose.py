@@ -6,9 +6,9 @@ the same inputs, numbers only).
 
 Trust: the probe process is the trusted side; every value in its report came from the worker
 (hostile): it is parsed as data (capped, malformed lines dropped) and never changes a score."""
+import hashlib
 import os
 import re
-import secrets
 import sys
 import time
 
@@ -120,21 +120,17 @@ def run_probes(sandbox, binary, worker, ids, cwd, timeout=PROBES_TIMEOUT):
     return out
 
 
-def pristine_tasks(repo, lab, overlay, tasks):
-    """The tasks whose files the submission left as the skeleton's, byte for byte."""
+def pristine_tasks(overlay, tasks):
+    """The tasks whose files the submission left as the skeleton's, byte for byte (the
+    catalogue keeps each skeleton file's SHA-256: in a student's checkout labs/ holds the
+    student's own work, not the skeleton)."""
     out = set()
     for task, info in tasks.items():
-        same = True
-        for f in info.get("files") or []:
-            try:
-                with open(os.path.join(repo, "labs", lab, f), "rb") as fh:
-                    skel = fh.read()
-            except OSError:
-                same = False
-                break
-            if overlay.get(f, skel) != skel:
-                same = False
-        if same and info.get("files"):
+        sums = info.get("skeleton_sha256") or {}
+        files = info.get("files") or []
+        if files and all(f in sums and (f not in overlay or  # not submitted: the skeleton
+                                        hashlib.sha256(overlay[f]).hexdigest() == sums[f])
+                         for f in files):
             out.add(task)
     return out
 
@@ -153,7 +149,7 @@ def diagnose_lab(repo, lab, results, overlay, run, say=log):
     if not failing:
         return {}
     tasks = (cat or {}).get("tasks") or {}
-    untouched = pristine_tasks(repo, lab, overlay, tasks)
+    untouched = pristine_tasks(overlay, tasks)
     out = {}
     t0 = time.monotonic()
     for task in sorted(failing, key=lambda t: (re.sub(r"\d+", "", t), int(re.sub(r"\D", "", t) or 0))):

@@ -40,6 +40,8 @@ def lab_tasks(repo, lab):
         cpp = name[:-2] + ".cpp"
         if os.path.isfile(os.path.join(d, cpp)):
             t["files"].append(cpp)
+            with open(os.path.join(d, cpp), "rb") as f:  # the skeleton, to tell "not started"
+                t.setdefault("skeleton_sha256", {})[cpp] = hashlib.sha256(f.read()).hexdigest()
     return tasks
 
 
