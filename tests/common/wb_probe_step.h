@@ -18,8 +18,11 @@ using Accel = std::function<void(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat
 
 // A step of `name` (the step function `fn`) of size h from (x, v) under a(x, v) = `accel`,
 // described in words by `words`. The scratch holds NaN on entry (its contents are undefined).
+// What a step probe records: the new state, the evaluations, or both.
+enum Record { kState = 1, kEvaluations = 2, kBoth = 3 };
+
 inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& words,
-                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h) {
+                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h, Record what = kBoth) {
   std::vector<wb::Mat2X> seen_x, seen_v;
   wb::LambdaDynamics dyn([&](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
     seen_x.push_back(xx), seen_v.push_back(vv);
@@ -33,7 +36,8 @@ inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& w
   P.note("dyn: a(x, v) = " + words);
   P.in("h", h), P.in("x", x), P.in("v", v);
   fn(dyn, h, x, v, s);
-  P.out("x", x), P.out("v", v);
+  if (what & kState) P.out("x", x), P.out("v", v);
+  if (!(what & kEvaluations)) return;
   // The evaluations in one output: one column each (the first four), the state it was asked
   // at, particle after particle: (x_0, v_0, x_1, v_1, ...).
   const Eigen::Index n = x.cols(), k = std::min<Eigen::Index>(4, Eigen::Index(seen_x.size()));
@@ -74,8 +78,9 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
 }
 
 // The step probes of one integrator task, the same for every step function: the simple cases
-// first (one particle, no force; one particle falling from rest), then one particle state
-// dependence at a time, then everything.
+// first (one particle, no force; one particle falling from rest: the new state and the
+// evaluations), then the new state under one state dependence at a time and under all, then
+// the evaluations alone (where an update goes wrong apart from where the forces are asked).
 #define WB_STEP_PROBES(task, fn, name)                                                           \
   WB_PROBE(task, "free", "one particle, no force: h = 0.1") {                                    \
     P.simple();                                                                                  \
@@ -90,26 +95,33 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
   WB_PROBE(task, "drift", "three particles moving with no force, h = 0.25") {                   \
     wbprobe::step(P, &fn, name, "0", wbprobe::no_force(),                                        \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25,                        \
+                  wbprobe::kState);                                                              \
   }                                                                                              \
   WB_PROBE(task, "kick", "three particles at rest under constant forces, h = 0.25") {           \
     const wb::Mat2X g = wbprobe::cols({{0, -10}, {2, 1}, {-3, 0.5}});                            \
     wbprobe::step(P, &fn, name, "a constant per particle: (0, -10), (2, 1), (-3, 0.5)",          \
                   wbprobe::constant(g), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),             \
-                  wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}), 0.25);                                \
+                  wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}), 0.25, wbprobe::kState);               \
   }                                                                                              \
   WB_PROBE(task, "spring", "three moving particles on springs to the origin, a = -4 x, h = 0.25") { \
     wbprobe::step(P, &fn, name, "-4 x", wbprobe::spring(4), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}), \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
   WB_PROBE(task, "drag", "three moving particles under a drag, a = -3 v, h = 0.25") {           \
     wbprobe::step(P, &fn, name, "-3 v", wbprobe::drag(3), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}), \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
   WB_PROBE(task, "general", "three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") {     \
     wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)",                                         \
                   wbprobe::mixed(4, 3, wb::Vec2(0, -10)),                                        \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25);                       \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
+  }                                                                                              \
+  WB_PROBE(task, "evaluations", "where the forces are evaluated: three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") { \
+    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)",                                         \
+                  wbprobe::mixed(4, 3, wb::Vec2(0, -10)),                                        \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kEvaluations); \
   }
 }  // namespace wbprobe
