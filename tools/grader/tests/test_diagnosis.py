@@ -205,3 +205,42 @@ def test_a_reused_report_reads_as_the_graded_one():
     back = build.report_from_json(json.loads(json.dumps(build.report_to_json(rep))))
     assert back.score == rep.score and back.diagnosis["T"].lines() == d.lines()
     assert back.results[2].output == rep.results[2].output
+
+
+def test_not_started_is_the_skeletons_bytes_not_the_checkouts():
+    """Defect: in a student's checkout labs/ holds the student's work, so a task compared with
+    labs/ reads "not started" while it is wrong."""
+    import hashlib
+    from grader.diagnose import pristine_tasks
+    skel = b"void f() {}\n"
+    tasks = {"T": {"files": ["s.cpp"], "skeleton_sha256": {"s.cpp": hashlib.sha256(skel).hexdigest()}},
+             "U": {"files": ["u.cpp"]}}
+    assert pristine_tasks({"s.cpp": skel}, tasks) == {"T"}
+    assert pristine_tasks({}, tasks) == {"T"}  # not submitted: the skeleton
+    assert pristine_tasks({"s.cpp": b"void f() { g(); }\n"}, tasks) == set()
+
+
+def test_prebuilt_binaries_only_for_their_toolchain_and_files(tmp_path):
+    """Defect: the pack's prebuilt test binaries used after the tests, the grader's C++ or the
+    compiler changed (a test list or a wire format that is not this checkout's)."""
+    from grader.build import Grader, prebuilt_inputs
+    repo, build = tmp_path / "repo", tmp_path / "b"
+    (repo / "prebuilt" / "grader").mkdir(parents=True)
+    (repo / "prebuilt" / "grader" / "lab-tests").write_bytes(b"x")
+    pristine = {"tests/lab/t.cpp": b"a", "labs/lab/s.cpp": b"student"}
+    manifest = {"toolchain": "gcc 12", "inputs": prebuilt_inputs(pristine),
+                "labs": {"lab": ["lab-tests"]}}
+    (repo / "prebuilt" / "grader" / "manifest.json").write_text(json.dumps(manifest))
+    g = Grader.__new__(Grader)
+    g.repo, g.build, g.verbose = str(repo), str(build), False
+    build.mkdir()
+    (build / "wb-toolchain.txt").write_text("gcc 12\n")
+    g.decide_prebuilt(pristine)
+    assert list(g._prebuilt) == ["lab"]
+    g.decide_prebuilt(dict(pristine, **{"labs/lab/s.cpp": b"edited"}))  # student files: no matter
+    assert list(g._prebuilt) == ["lab"]
+    g.decide_prebuilt(dict(pristine, **{"tests/lab/t.cpp": b"b"}))
+    assert g._prebuilt == {}
+    (build / "wb-toolchain.txt").write_text("clang 16\n")
+    g.decide_prebuilt(pristine)
+    assert g._prebuilt == {}
