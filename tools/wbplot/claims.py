@@ -21,6 +21,7 @@ import re
 import statistics
 
 from .common import InputError, finite, read_csv
+from . import claimrules
 from . import exact as wexact
 from . import recipes
 from . import sweep as wsweep
@@ -289,9 +290,12 @@ def measure(claim, data):
             args = args[:3]
         want(3)
         lab, stem, integ = _target(args[0])
-        p = data.file(lab, data.run_name(stem, integ) + ".csv")
-        from .runs import read_trace
-        tr = read_trace(p)
+        run = data.run_name(stem, integ)
+        try:
+            p = data.file(lab, run + ".csv")
+        except InputError:  # the rigid report's name for its trace
+            p = data.file(lab, run + "-trace.csv")
+        tr = _read_any_trace(p)
         if only is not None:
             if only not in tr:
                 raise InputError(f"{claim.where}: id={only}: no such particle in {p}")
@@ -311,6 +315,14 @@ def measure(claim, data):
         if q.endswith(":end"):  # each particle's last row only
             q = q[:-len(":end")]
             tr = {pid: {c: col[-1:] for c, col in d.items()} for pid, d in tr.items()}
+        if q.startswith("move@"):  # per particle: the farthest it got, from t >= T on,
+            t0 = _number(q[5:])       # from where it was at the first row with t >= T
+            for d in tr.values():
+                ks = [k for k, t in enumerate(d["t"]) if t >= t0]
+                cs = [c for c in ("x", "y", "z") if c in d]
+                vals += [math.dist([d[c][k] for c in cs], [d[c][ks[0]] for c in cs])
+                         for k in ks]
+            return _reduce(vals, args[2])
         if q == "rchange":  # one value per particle: |x| at the end minus |x| at the start
             vals = [math.hypot(d["x"][-1], d["y"][-1]) - math.hypot(d["x"][0], d["y"][0])
                     for d in tr.values()]
@@ -329,7 +341,7 @@ def measure(claim, data):
                     vals.append(math.hypot(x - cx, y - cy))
                 else:
                     raise InputError(f"{claim.where}: quantity '{q}': expected x, y, vx, vy, "
-                                     "speed, disp, r, r@X,Y or rchange")
+                                     "speed, disp, r, r@X,Y, move@T or rchange")
         return _reduce(vals, args[2])
     if name == "csv":  # csv LAB/FILE COLUMN REDUCER [COL=VALUE ...]: any file of the report
         if len(args) < 3:
@@ -342,6 +354,19 @@ def measure(claim, data):
         return _reduce([_float(r[args[1]]) for r in rows], args[2])
     raise InputError(f"{claim.where}: unknown measure '{name}' (expected order, sweep, "
                      "sweep-ratio, cheapest, summary, stats, trace, offset or csv)")
+
+
+def _read_any_trace(path):
+    """{id: {column: values}} of a particle trace, or of a rigid one (3D: x, y, z, and the
+    velocities vx, vy, vz): the position quantities work on both."""
+    with open(path, encoding="utf-8") as f:
+        header = f.readline()
+    if "qw" not in header.split(","):
+        from .runs import read_trace
+        return read_trace(path)
+    from .labs.rigid import read_trace as rigid_trace
+    return {b: {c: d[c] for c in ("t", "x", "y", "z", "vx", "vy", "vz")}
+            for b, d in rigid_trace(path).items()}
 
 
 def _one(s, allowed):
@@ -374,7 +399,7 @@ def check(claims, data, failed_runs=None):
         if not why:
             try:
                 got = measure(c, data)
-                why = c.judge(got) or c.prose_problem()
+                why = c.judge(got) or claimrules.margin_problem(c, got) or c.prose_problem()
             except InputError as e:
                 why = str(e)
         out.append((c, got, why))

@@ -66,8 +66,13 @@ def build_parser():
                    help="predicted energy factor per step, drawn when the run blew up")
     s.add_argument("--diverged", type=int, metavar="STEP",
                    help="the step at which the run's summary says it diverged (its last "
-                        "row; docs/run-contract.md, \"Diverged\"); without it, the first "
-                        "row whose energy is not finite")
+                        "row; docs/run-contract.md, \"Diverged\"); without it (or "
+                        "--summary), the first row whose energy is not finite is drawn as "
+                        "'not finite'")
+    s.add_argument("--scene", metavar="SCENE.json",
+                   help="the run's scene: when it damps, drives or has lossy contacts, the "
+                        "middle panel is E - E0, the energy they change on purpose, not an "
+                        "error")
     s.add_argument("--title")
 
     s = sub.add_parser("energy", help="total energy of several runs on the same axes",
@@ -158,6 +163,11 @@ def build_parser():
     for mod in _lab_plugins():
         if hasattr(mod, "add_commands"):
             mod.add_commands(sub)
+    # What a figure says about a run (diverged, a stub) comes from the run's own summary.
+    from . import runinfo
+    for name, parser in sub.choices.items():
+        if name not in runinfo.NO_RUN:
+            runinfo.add_flag(parser)
     return p
 
 
@@ -174,7 +184,8 @@ def _lab_plugins():
 
 
 def run(args):
-    from . import runs, stability, sweep
+    from . import runinfo, runs, stability, sweep
+    runinfo.load(args)
     for mod in _lab_plugins():
         if hasattr(mod, "run") and mod.run(args):
             return
@@ -187,8 +198,10 @@ def run(args):
         runs.plot_paths(args.traces, labels, args.out, scene=args.exact, ids=ids,
                         title=args.title)
     elif args.command == "stats":
+        changes = runs.energy_changers(runs.read_scene(args.scene, "--scene")) \
+            if args.scene else None
         runs.plot_stats(args.stats, args.out, title=args.title, growth=args.growth,
-                        diverged=args.diverged)
+                        diverged=args.diverged, changes=changes)
     elif args.command == "energy":
         labels = parse_list(args.labels, "--labels") if args.labels else None
         growth = parse_label_map(args.growth, "--growth", _positive_float, "LABEL=F with F > 0")

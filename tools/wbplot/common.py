@@ -146,6 +146,7 @@ def save_figure(fig, path):
         plt.close(fig)
         raise InputError(f"{path}: folder {folder} does not exist")
     tmp = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}")
+    finish_frame(fig, path)
     try:
         fig.savefig(tmp, format="png", metadata={"Software": None}, bbox_inches="tight",
                     pad_inches=0.08)
@@ -156,6 +157,16 @@ def save_figure(fig, path):
         plt.close(fig)
         if os.path.exists(tmp):
             os.remove(tmp)
+
+
+def finish_frame(fig, path, inside=False):
+    """What every saved figure and every animation frame gets: the stub mark when the run's
+    summary says the run is a stub's (runinfo), and its facts for the report's checks
+    (figfacts). The animations call it once per grabbed frame (inside=True: no tight
+    bounding box there, so the mark sits inside the frame)."""
+    from . import figfacts, runinfo
+    runinfo.stamp(fig, inside=inside)
+    figfacts.note(fig, path)
 
 
 def write_text_atomic(path, text):
@@ -174,12 +185,18 @@ def write_text_atomic(path, text):
             os.remove(tmp)
 
 
-# Integrators keep one colour and marker in every figure.
+# Integrators keep one colour and marker in every figure. Every integrator a lab lists has
+# its own (the implicit lab draws twelve on one axes: colours by sorted order once gave
+# baraff-witkin-fast explicit Euler's red and implicit-trapezoid semi-implicit Euler's blue).
 KNOWN_INTEGRATORS = ["explicit-euler", "symplectic-euler", "midpoint", "trapezoid", "rk4",
-                     "verlet", "implicit-euler"]
+                     "verlet", "implicit-euler", "backward-euler", "backward-euler-fast",
+                     "baraff-witkin", "baraff-witkin-fast", "implicit-trapezoid",
+                     "backward-euler-1", "implicit-gyroscopic", "explicit-gyroscopic"]
 _COLORS = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2",
-           "#17becf", "#7f7f7f", "#bcbd22"]
-_MARKERS = ["o", "s", "^", "v", "D", "P", "X", "*", "<", ">"]
+           "#17becf", "#393b79", "#bcbd22", "#843c39", "#7f7f7f", "#637939", "#17becf",
+           "#d62728", "#e7969c", "#6b6ecf", "#b5cf6b"]
+_MARKERS = ["o", "s", "^", "v", "D", "P", "X", "*", "<", ">", "d", "h", "p", "o", "s", "8",
+            "H", "+"]
 
 
 def integrator_style(name, others=()):

@@ -54,18 +54,18 @@ def _finite_xy(d, a="x", b="y"):
     return [p for p, _ in pts], [q for _, q in pts]
 
 
-def read_scene(path):
-    """A scene JSON file (for --exact)."""
+def read_scene(path, flag="--exact"):
+    """A scene JSON file (for --exact, --scene)."""
     import json
     try:
         with open(path, encoding="utf-8") as f:
             doc = json.load(f)
     except OSError as e:
-        raise InputError(f"--exact: {path}: cannot read ({e.strerror})") from None
+        raise InputError(f"{flag}: {path}: cannot read ({e.strerror})") from None
     except json.JSONDecodeError as e:
-        raise InputError(f"--exact: {path}: not JSON ({e.msg}, line {e.lineno})") from None
+        raise InputError(f"{flag}: {path}: not JSON ({e.msg}, line {e.lineno})") from None
     if not isinstance(doc, dict):
-        raise InputError(f"--exact: {path}: expected a JSON object (a scene)")
+        raise InputError(f"{flag}: {path}: expected a JSON object (a scene)")
     return doc
 
 
@@ -145,9 +145,11 @@ def plot_paths(paths, labels, out, scene=None, ids=None, title=None):
     if ex:
         _draw_exact(ax, ex, kind)
         _view_of(ax, ex)
-        for label, d in far:
+        from . import runinfo
+        for n, (label, d) in enumerate(far):
             ax.plot([], [], ls="", label=f"{label}: ends {d:.3g} m from exact" if d is not None
-                    else f"{label}: diverged (not finite at the end)")
+                    else f"{label}: " + ("diverged (its summary)" if runinfo.said_diverged(n)
+                                         else "not finite at the end"))
     starts = [(runs[0][p]["x"][0], runs[0][p]["y"][0]) for p in ids]
     ax.scatter([a for a, _ in starts], [b for _, b in starts], s=40, facecolors="white",
                edgecolors="black", zorder=7, label="start")
@@ -215,7 +217,10 @@ def plot_trace(path, out, ids=None, title=None, exact=None):
     if not many or exact:
         handles = ax.get_legend_handles_labels()[0] + handles
     if diverged:
-        handles.append(Line2D([], [], ls="", label=f"{diverged} diverged (non-finite)"))
+        from . import runinfo
+        handles.append(Line2D([], [], ls="", label=(
+            f"the run diverged (its summary): {diverged} not finite at the end"
+            if runinfo.said_diverged(0) else f"{diverged} not finite at the end")))
     if clipped:
         far = max(math.hypot(x, y) for i in ids for x, y in zip(*_finite_xy(data[i])))
         handles.append(Line2D([], [], ls="", label=f"view clipped to {RUNAWAY}x the\n"
@@ -290,19 +295,26 @@ def drift_series(s):
 
 
 def _diverged_at(s, step=None):
-    """(t, step) where the run diverged: the row of `step` when the run's summary gave it
-    (--diverged: the run contract's rule, docs/run-contract.md), else the first row whose
-    energy is not finite; None when neither."""
+    """(t, step, said) where the run stopped: the row of `step` when the run's summary gave
+    it (--diverged or --summary: the run contract's rule, docs/run-contract.md; said=True,
+    the figure may call it "diverged"), else the first row whose energy is not finite
+    (said=False: the figure says "not finite", a fact of the data, not a verdict); None
+    when neither."""
     if step is not None:
         for t, st in zip(s["t"], s["step"]):
             if st == step:
-                return t, st
+                return t, st, True
         raise InputError(f"--diverged: step {step} is not a row of the stats (the run's "
                          f"last row is step {s['step'][-1]:.0f})")
     for t, st, e in zip(s["t"], s["step"], s["energy"]):
         if not finite(e):
-            return t, st
+            return t, st, False
     return None
+
+
+def _stop_words(div):
+    """How a figure names the row where a run stopped (see _diverged_at)."""
+    return "diverged at" if div[2] else "not finite from"
 
 
 def _start_scale(s):
@@ -358,16 +370,58 @@ def _finite_pairs(t, y):
 
 
 def _mark_divergence(ax, div, color="0.25", label=True):
-    t, step = div
+    t, step, said = div
     ax.axvline(t, color=color, ls=":", lw=1.2)
     if label:
-        ax.text(t, 0.5, f" diverged at step {step:.0f}\n (t = {t:.3g} s)",
+        ax.text(t, 0.5, f" {'diverged at' if said else 'not finite from'} step {step:.0f}\n"
+                        f" (t = {t:.3g} s)",
                 transform=blended_transform_factory(ax.transData, ax.transAxes),
                 ha="right", va="center", fontsize=8, color=color, rotation=90)
 
 
-def plot_stats(path, out, title=None, growth=None, diverged=None):
+def energy_changers(doc):
+    """What in a scene changes its energy on purpose (damping, driving forces, inelastic or
+    frictional contacts), as words; [] for a conservative scene. Read from the scene, not
+    from the run: the stats figure then draws E - E0 as what those do, not as an error."""
+    why = []
+    forces = [f for f in (doc or {}).get("forces", []) or [] if isinstance(f, dict)]
+
+    def num(d, k, default=0.0):
+        try:
+            return float(d.get(k, default))
+        except (TypeError, ValueError):
+            return default
+    kinds = {f.get("type") for f in forces}
+    if any(f.get("type") == "damping" and num(f, "b") > 0 for f in forces):
+        why.append("damping")
+    if any(f.get("type") == "spring" and num(f, "damping") > 0 for f in forces):
+        why.append("the springs' dampers")
+    for kind, words in (("boids", "the boids' steering"), ("vortex", "the vortex's drag"),
+                        ("curl-noise", "the flow's drag (curl-noise)")):
+        if kind in kinds:
+            why.append(words)
+    contact = (doc or {}).get("contact") if isinstance((doc or {}).get("contact"), dict) else {}
+    planes = [p for p in (doc or {}).get("planes", []) or [] if isinstance(p, dict)]
+    if "planes" in (doc or {}) or contact:
+        e = [num(contact, "restitution", 1.0)] + [num(p, "restitution", num(
+            contact, "restitution", 1.0)) for p in planes]
+        mu = [num(contact, "friction")] + [num(p, "friction", num(contact, "friction"))
+                                           for p in planes]
+        if min(e) < 1:
+            why.append("inelastic contacts (e < 1)")
+        if max(mu) > 0:
+            why.append("friction")
+    return why
+
+
+def plot_stats(path, out, title=None, growth=None, diverged=None, changes=None):
+    """Energy, its change and momentum against time. `changes`: what in the scene changes
+    the energy on purpose (energy_changers): then the middle panel is E - E0 in J, said to
+    be their work, not an error."""
+    from . import runinfo
     s = read_stats(path)
+    if diverged is None and runinfo.diverged_steps():
+        diverged = runinfo.diverged_steps()[0]
     drift = drift_series(s)
     blew = _blew_up(s, diverged)
     show_drift = drift is not None and not blew
@@ -387,6 +441,8 @@ def plot_stats(path, out, title=None, growth=None, diverged=None):
         curves.append((t, y, label, style))
     ys = [v for _, y, _, _ in curves for v in y]
     span = (max(ys) - min(ys)) if ys else 0.0
+    from . import flat
+    e_scale = max([abs(v) for _, y, _, _ in curves for v in y] + [0.0])
     for k, (t, y, label, style) in enumerate(curves):
         same = [c for c in curves[:k] if _coincides((c[0], c[1]), (t, y), span)]
         kw = {}
@@ -394,7 +450,13 @@ def plot_stats(path, out, title=None, growth=None, diverged=None):
             every = max(1, len(t) // 12)
             kw = dict(marker="o", mfc="white", ms=4, markevery=(k * every // 3 % every, every))
             label += _overlap_label(same[0][2], same[0][1], y, log10=blew)
+        if not blew and flat.is_constant(y, e_scale):
+            label += flat.label(y, "J", e_scale)
         ax.plot(t, y, style, label=label, **kw)
+    if not blew:
+        flat.plain_ticks(ax)
+        if all(flat.is_constant(y, e_scale) for _, y, _, _ in curves if y):
+            flat.flat_view(ax, [y for _, y, _, _ in curves], scale=e_scale)
     if blew:
         _pow10_axis(ax)
         ax.set_ylabel("|energy| (J), log scale")
@@ -413,17 +475,33 @@ def plot_stats(path, out, title=None, growth=None, diverged=None):
     else:
         ax.set_ylabel("energy (J)")
     ax.legend(loc="best", framealpha=0.85)
-    ax.set_title(title or ("Energy and momentum" + (f" (diverged at t = {div[0]:g} s)"
+    ax.set_title(title or ("Energy and momentum" + (f" ({_stop_words(div)} t = {div[0]:g} s)"
                                                     if div is not None else "")))
-    if show_drift:
+    if show_drift and changes:
+        # Damping, driving or lossy contacts change E on purpose: E - E0 is their work.
+        ax2 = axes[1]
+        e0 = s["energy"][0]
+        t2, d2 = _finite_pairs(s["t"], [e - e0 for e in s["energy"]])
+        ax2.plot(t2, d2, color="#444444", lw=1.1,
+                 label=f"final {d2[-1]:+.3g} J" if d2 else None)
+        ax2.axhline(0, color="0.6", lw=0.8)
+        if d2:
+            ax2.legend(loc="best", framealpha=0.85)
+        ax2.set_ylabel("E - E0 (J)")
+        ax2.set_title("energy changed on purpose by " + ", ".join(changes)
+                      + ": not an error", fontsize=8.5)
+    elif show_drift:
         ax2 = axes[1]
         t, d, kind = drift
         tp, dp = zip(*[(a, b) for a, b in zip(t, d) if b > 0]) if any(b > 0 for b in d) \
             else ([], [])
         if dp:
             unit = "" if kind == "relative" else " J"
-            ax2.semilogy(tp, dp, color="#444444", lw=1.1,
-                         label=f"max {max(d):.2e}{unit}, final {d[-1]:.2e}{unit}")
+            ax2.plot(tp, dp, color="#444444", lw=1.1,
+                     label=f"max {max(d):.2e}{unit}, final {d[-1]:.2e}{unit}")
+            if not (min(dp) > 1e-3 and max(dp) < 10 * min(dp)):
+                ax2.set_yscale("log")  # decades of drift; a large one within a decade reads
+                # better on a linear axis (a log axis labels its minor ticks there)
             ax2.legend(loc="lower right", framealpha=0.85)
         else:
             ax2.text(0.5, 0.5, "E = E0 to the last digit", transform=ax2.transAxes,
@@ -441,9 +519,15 @@ def plot_stats(path, out, title=None, growth=None, diverged=None):
         _pow10_axis(axm)
         axm.set_ylabel("|momentum| (kg m/s), log")
     else:
-        for key, label, style in (("px", "px", "-"), ("py", "py", "--")):
-            t, y = _finite_pairs(s["t"], s[key])
+        ps = [_finite_pairs(s["t"], s[key]) for key in ("px", "py")]
+        p_scale = max([abs(v) for _, y in ps for v in y] + [0.0])
+        for (t, y), label, style in zip(ps, ("px", "py"), ("-", "--")):
+            if flat.is_constant(y, p_scale):
+                label += flat.label(y, "kg m/s", p_scale)
             axm.plot(t, y, style, label=label)
+        flat.plain_ticks(axm)
+        if all(flat.is_constant(y, p_scale) for _, y in ps if y):
+            flat.flat_view(axm, [y for _, y in ps], scale=p_scale)
         axm.set_ylabel("momentum (kg m/s)")
     axm.set_xlabel("time t (s)")
     axm.legend(loc="best", framealpha=0.85)
@@ -500,7 +584,8 @@ def plot_energy(paths, labels, out, relative=False, title=None, growth=None, div
     if unknown:
         raise InputError(f"--growth: '{unknown[0]}' is not one of the labels "
                          f"{','.join(labels)}")
-    diverged = diverged or {}
+    from . import runinfo
+    diverged = dict(runinfo.diverged_steps(labels), **(diverged or {}))
     unknown = [k for k in diverged if k not in labels]
     if unknown:
         raise InputError(f"--diverged: '{unknown[0]}' is not one of the labels "
@@ -537,7 +622,7 @@ def plot_energy(paths, labels, out, relative=False, title=None, growth=None, div
     for k, ((t, y), s, label) in enumerate(zip(series, stats, labels)):
         color, marker = integrator_style(label, labels)
         div = _diverged_at(s, diverged.get(label))
-        suffix = f" (diverged at step {div[1]:.0f})" if div is not None else ""
+        suffix = f" ({_stop_words(div)} step {div[1]:.0f})" if div is not None else ""
         same = [j for j in drawn if _coincides(comp[j], comp[k], span)]
         kw = {}
         if same:
@@ -613,8 +698,10 @@ def plot_phase(paths, labels, out, pid=0, axis="x", title=None):
             # Markers of each coinciding curve at other places, so none hides another's.
             kw = dict(ls=(0, (4, 3)), lw=1.2, marker=marker,
                       markevery=(k * every // 3 % every, every), ms=5, mfc="white")
+        from . import runinfo
         ax.plot(xs, vs, color=color, **kw,
-                label=label + (" (diverged)" if diverged else "")
+                label=label + ((" (diverged: its summary)" if runinfo.said_diverged(k)
+                                else " (not finite at the end)") if diverged else "")
                 + (_overlap_label(same[0][0], same[0][1] + same[0][2], xs + vs)
                    if same else ""))
         drawn.append((label, (xs, vs)))

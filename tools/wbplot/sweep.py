@@ -14,8 +14,11 @@ SWEEP_COLUMNS = ["scene", "integrator", "dt", "steps", "force_evals", "wall_s", 
 FLOOR_REL = 1e-13    # error below FLOOR_REL * scale: rounding floor, excluded
 CEILING_REL = 0.1    # error at or above CEILING_REL * scale: O(1), not asymptotic
 PLATEAU_SLOPE = 0.5  # smallest-dt points whose local slope is below this: plateau, excluded
-BLOWUP_REL = 1e3    # a finite error past this times the scene size is drawn as a blow-up
-BLOWUP_LABEL = "blew up (top edge): diverged,\nor error > 1000 x scene size"
+BLOWUP_REL = 1e3    # a finite error past this times the scene size is drawn on the top edge
+# What the top edge's marks say: "diverged" only from the run's status column (the run
+# contract's rule); a finite error off the scale is said to be just that.
+DIVERGED_LABEL = "diverged (its status): top edge"
+OFF_SCALE_LABEL = "finite error > 1000 x scene size\n(status ok): top edge"
 MIN_POINTS = 3       # fewer points left in the range: no order is given ("n/a")
 
 
@@ -135,13 +138,36 @@ def measured_order(runs, scale=1.0):
     return fit_slope(pts), pts
 
 
-def _mark_diverged(ax, xs, color, marker_label=False):
-    """Diverged runs as x marks on the top edge of the axes, at their x value."""
+def _mark_diverged(ax, xs, color, off_scale=False):
+    """Runs off the scale as marks on the top edge of the axes, at their x value: an x for
+    a run whose status is diverged, an open triangle for a finite error off the scale."""
     if not xs:
         return
     tr = blended_transform_factory(ax.transData, ax.transAxes)
-    ax.plot(xs, [0.97] * len(xs), ls="", marker="x", color=color, ms=7, mew=1.8,
-            transform=tr, clip_on=False)
+    kw = dict(marker="^", mfc="white", mec=color, ms=6) if off_scale else dict(
+        marker="x", color=color, ms=7, mew=1.8)
+    ax.plot(xs, [0.97] * len(xs), ls="", transform=tr, clip_on=False, **kw)
+
+
+def _top_edge(ax, group, scale, color, x_of):
+    """Marks the group's runs off the scale (see _mark_diverged); which kinds it drew."""
+    div = [r for r in group if r.diverged]
+    off = [r for r in group if not r.diverged and blew_up(r, scale)]
+    for rs, off_scale in ((div, False), (off, True)):
+        xs = [x_of(r) for r in rs]
+        _mark_diverged(ax, [x for x in xs if finite(x) and x > 0], color, off_scale)
+    return {"div": bool(div), "off": bool(off)}
+
+
+def _top_edge_handles(kinds):
+    out = []
+    if any(k["div"] for k in kinds):
+        out.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
+                          label=DIVERGED_LABEL))
+    if any(k["off"] for k in kinds):
+        out.append(Line2D([], [], ls="", marker="^", mfc="white", mec="0.3",
+                          label=OFF_SCALE_LABEL))
+    return out
 
 
 def blew_up(r, scale):
@@ -152,15 +178,12 @@ def blew_up(r, scale):
 def plot_work_precision(runs, scene, out, scale=1.0):
     fig, (a1, a2) = new_figure(1, 2, figsize=(10.0, 4.4))
     names = [n for n, _ in by_integrator(runs)]
-    any_div = False
+    kinds = []
     for name, group in by_integrator(runs):
         color, marker = integrator_style(name, names)
         ok = [r for r in group if not blew_up(r, scale) and r.error > 0]
-        div = [r for r in group if blew_up(r, scale)]
-        any_div = any_div or bool(div)
-        _mark_diverged(a1, [r.wall_s for r in div if finite(r.wall_s) and r.wall_s > 0], color)
-        _mark_diverged(a2, [r.force_evals for r in div if finite(r.force_evals)
-                            and r.force_evals > 0], color)
+        kinds.append(_top_edge(a1, group, scale, color, lambda r: r.wall_s))
+        _top_edge(a2, group, scale, color, lambda r: r.force_evals)
         for ax, attr in ((a1, "wall_s"), (a2, "force_evals")):
             pts = sorted((getattr(r, attr), r.error) for r in ok
                          if finite(getattr(r, attr)) and getattr(r, attr) > 0)
@@ -174,9 +197,7 @@ def plot_work_precision(runs, scene, out, scale=1.0):
     a1.set_title("Error against wall time")
     a2.set_title("Error against force evaluations")
     handles, _ = a2.get_legend_handles_labels()
-    if any_div:
-        handles.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
-                              label=BLOWUP_LABEL))
+    handles += _top_edge_handles(kinds)
     a2.legend(handles=handles, loc="best", framealpha=0.85)
     fig.suptitle(f"Work-precision, scene {scene}: lower left is better", fontsize=11)
     fig.tight_layout()
@@ -188,7 +209,7 @@ def plot_convergence(runs, scene, out, scale=1.0):
     groups = by_integrator(runs)
     names = [n for n, _ in groups]
     all_pts, used_all = [], []
-    any_div = False
+    kinds = []
     for name, group in groups:
         color, marker = integrator_style(name, names)
         order, used = measured_order(group, scale)
@@ -204,10 +225,8 @@ def plot_convergence(runs, scene, out, scale=1.0):
                 ms=5)
         ax.plot([h for h, _ in rest], [e for _, e in rest], ls="", marker=marker, mfc="white",
                 mec=color, ms=5)
-        div = [r.dt for r in group if blew_up(r, scale)]
-        any_div = any_div or bool(div)
-        all_pts += [(h, None) for h in div]
-        _mark_diverged(ax, div, color)
+        all_pts += [(r.dt, None) for r in group if blew_up(r, scale)]
+        kinds.append(_top_edge(ax, group, scale, color, lambda r: r.dt))
     ax.set_xscale("log")
     ax.set_yscale("log")
     hs = [h for h, _ in all_pts]
@@ -229,9 +248,7 @@ def plot_convergence(runs, scene, out, scale=1.0):
     handles, labels = ax.get_legend_handles_labels()
     handles.append(Line2D([], [], ls="", marker="o", mfc="white", mec="0.3",
                           label="not used for the order"))
-    if any_div:
-        handles.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
-                              label=BLOWUP_LABEL))
+    handles += _top_edge_handles(kinds)
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8,
               frameon=False)
     fig.tight_layout()
@@ -242,25 +259,21 @@ def plot_energy_error(runs, scene, out, scale=1.0):
     fig, ax = new_figure(figsize=(8.4, 4.6))
     groups = by_integrator(runs)
     names = [n for n, _ in groups]
-    any_div = False
+    kinds = []
     for name, group in groups:
         color, marker = integrator_style(name, names)
         pts = [(r.dt, r.energy_error) for r in group
                if not blew_up(r, scale) and finite(r.energy_error) and r.energy_error > 0]
         ax.plot([h for h, _ in pts], [e for _, e in pts], marker=marker, color=color, ms=4.5,
                 label=name)
-        div = [r.dt for r in group if blew_up(r, scale)]
-        any_div = any_div or bool(div)
-        _mark_diverged(ax, div, color)
+        kinds.append(_top_edge(ax, group, scale, color, lambda r: r.dt))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time step dt (s)")
     ax.set_ylabel("max relative energy error |E - E0| / |E0|")
     ax.set_title(f"Energy error against step size, scene {scene}")
     handles, _ = ax.get_legend_handles_labels()
-    if any_div:
-        handles.append(Line2D([], [], ls="", marker="x", color="0.3", mew=1.8,
-                              label=BLOWUP_LABEL))
+    handles += _top_edge_handles(kinds)
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
     fig.tight_layout()
     save_figure(fig, out)

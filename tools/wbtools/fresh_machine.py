@@ -10,7 +10,8 @@
 #      docs/report.md checked against the report,
 #      tools/check's stages that need the full build run on the report's build,
 #      and the pack verified without building it, each lab's alone too, each
-#      lab's closure read from the report's build);
+#      lab's closure read from the report's build; then the report's viewer
+#      pages are opened in headless Chromium, tools/view-check);
 #   2. Gradescope: the zip unpacked in /autograder/source of a pristine root,
 #      its setup.sh run there, a submission in /autograder/submission and
 #      /autograder/run_autograder run: results.json must be valid and score the
@@ -315,9 +316,13 @@ def readme_commands(readme):
 BUILD_CHECKS = [
     ("every skeleton run on every default scene warns it is a stub", "tools/pattern stubs"),
     ("no scene lets a do-nothing step score zero error", "tools/pattern periods"),
+    ("a figure of a stub run says so", "tools/pattern stubfigs"),
     ("graded tests against the solutions", "ctest --preset default -L solution --no-tests=error"),
     ("bad input gets one line and exit 2", "ctest --preset default -L badinput --no-tests=error"),
 ]
+
+# The viewer's browser test, on the report's pages and build (it installs chromium itself).
+VIEW_CHECK = ("the report's viewer pages work in a browser (tools/view-check)", "tools/view-check")
 
 
 class Handoff:
@@ -365,6 +370,16 @@ def instructor(args, work, tarball, debs, hand):
         make_pack(args, a, clone, hand)
     except StageError as e:
         raise StageError("\n".join(failed + [str(e)])) from None
+    if args.verify:  # after the pack, beside the student's build of it (docs/view.md)
+        what, cmd = VIEW_CHECK
+        if a.run(what, f"cd {clone} && {cmd}", check=False) != 0:
+            failed.append(f"instructor: {what}: `{cmd}` failed\n"
+                          f"{tail(os.path.join(work, 'logs', 'instructor.log'))}")
+        shots, kept = a.host(f"{clone}/build/view-check"), os.path.join(os.path.dirname(work),
+                                                                        "view-check")
+        if os.path.isdir(shots):  # kept after the work folder goes: build/fresh-machine/
+            shutil.rmtree(kept, ignore_errors=True)
+            shutil.copytree(shots, kept)
     if not args.keep:
         remove_root(a)
     if failed:
@@ -607,8 +622,10 @@ def main(argv):
                     help="in the instructor's root, also check docs/report.md against its report "
                          "(tools/pattern reportdoc), run the stages of tools/check that need the "
                          "full build on the report's build (tools/pattern stubs and periods, "
-                         "ctest -L solution and -L badinput) and verify the pack it makes "
-                         "without building it (tools/pack --verify --no-build --each-lab); in "
+                         "ctest -L solution and -L badinput), verify the pack it makes "
+                         "without building it (tools/pack --verify --no-build --each-lab) and "
+                         "open the report's viewer pages in headless Chromium "
+                         "(tools/view-check); in "
                          "the student's root, which builds the pack, check the rest of "
                          "tools/pack --verify --each-lab: the build used prebuilt/, every "
                          "skeleton scores 0 (tools/grade labs --require-score 0), each lab's "

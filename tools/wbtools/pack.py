@@ -36,8 +36,9 @@ SHIPPED = ["CMakeLists.txt", "CMakePresets.json", ".clang-format", ".gitignore",
 # them), instructor material, CI, build trees.
 NEVER = {"solutions", "mutants", "hostile", "badinput", "bench", "gradescope", "pack.d", ".ci",
          ".git", "__pycache__", "fuzz"}
-STUDENT_TOOLS = {"setup", "lib", "plot", "grade", "grader", "wbplot", "wbgrade_hints.py"}  # the rest stays home
-STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md"}
+STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "wbplot", "wbview",
+                 "wbgrade_hints.py"}  # the rest stays home
+STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md"}
 INSTRUCTOR_BLOCK = re.compile(r"<!--\s*instructor\s*-->.*?<!--\s*/instructor\s*-->\n?", re.S)
 CLAIM_MARKER = re.compile(r" ?<!--\s*(?:not-a-)?claim:.*?-->", re.S)  # claim markers
 REPORT_FIGURE = re.compile(r"\.\./build/report/([A-Za-z0-9_-]+)/([^)\s`'\"]+)")
@@ -159,22 +160,22 @@ def make_readme(labs, order, featured=None):
             .replace("{first_task}", first_task(first)))
 
 
-# The figures of a particle lab's run; a lab whose runs these do not draw (3D bodies,
-# discs to scale) names its own in its report plug-in's PACK_PLOTS.
-GENERIC_PLOTS = [("tools/plot trace out/run.csv -o out/run.png", "trajectories of your run"),
-                 ("tools/plot stats out/run-stats.csv -o out/run-energy.png",
-                  "energy and momentum against time")]
+# Every lab's run plays in the viewer (tools/view, docs/view.md).
+VIEW_COMMAND = ("tools/view out/run.csv --scene {scene}",
+                "watch it move: out/run-view.html, open it in a browser")
 
 
 def plot_commands(lab):
-    """The README's plot lines for `lab`'s run of its first scene (out/run.csv, run-stats.csv):
-    tools/wbplot/labs/<lab>.py's PACK_PLOTS when it has them, else the particle figures."""
-    plots = GENERIC_PLOTS
+    """The README's plot lines for `lab`'s run of its first scene (out/run.csv, run-stats.csv,
+    run-summary.json): tools/wbplot/labs/<lab>.py's PACK_PLOTS when it has them, else the
+    particle figures (wbplot.labs.GENERIC_PLOTS; tools/pattern stubfigs draws the same)."""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    import importlib
+    plots = importlib.import_module("wbplot.labs").GENERIC_PLOTS
     plugin = os.path.join(ROOT, "tools", "wbplot", "labs", f"{lab}.py")
     if os.path.exists(plugin):
-        sys.path.insert(0, os.path.join(ROOT, "tools"))
-        import importlib
         plots = getattr(importlib.import_module(f"wbplot.labs.{lab}"), "PACK_PLOTS", plots)
+    plots = list(plots) + [VIEW_COMMAND]
     lines = [cmd.replace("{scene}", first_scene(lab)) for cmd, _ in plots]
     width = max(len(c) for c in lines) + 2
     return "\n".join(f"{c}{' ' * (width - len(c))}# {why}" for c, (_, why) in zip(lines, plots))
@@ -240,7 +241,7 @@ def copy_tree(dest, labs, labs_all, order, report_dir, featured=None):
                     figures += figs
                 elif rel_dir == "docs" and name.endswith(".md"):
                     with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
-                        text = drop_other_labs(f.read(), labs, labs_all)
+                        text = drop_other_labs(INSTRUCTOR_BLOCK.sub("", f.read()), labs, labs_all)
                     with open(os.path.join(dest, rel), "w", encoding="utf-8") as f:
                         f.write(text)
                 else:

@@ -17,6 +17,8 @@ tests/<lab>/), so a new lab is checked without anyone remembering it:
             wbtest::require_* helper with a message, or an INFO/CAPTURE in scope before it
   reportdoc docs/report.md names every figure the last report drew (build/report), and
             names no figure file the report does not draw
+  stubfigs  the student pack's plot commands, on each lab's skeleton run of its first
+            scene, draw figures that say "STUB RUN" (wbplot/stubfigs.py; a few seconds)
 
 With no stage, all of them. Exit status: 0 every stage passed, 1 a stage found something
 (each finding on one line: file, what, what to do), 2 bad input (a flag, a missing build)."""
@@ -35,7 +37,7 @@ sys.dont_write_bytecode = True
 
 from wbplot import recipes  # noqa: E402
 
-STAGES = ["stubs", "periods", "claims", "asserts", "reportdoc"]
+STAGES = ["stubs", "periods", "claims", "asserts", "reportdoc", "stubfigs"]
 RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
 # The smallest error a skeleton's sweep may show for an integrator, relative to the scene
 # size: a stub that does nothing is off by O(1) of the motion, rounding by 1e-16; a whole
@@ -292,6 +294,15 @@ def stage_claims(build, out, verbose):
                             f"without a claim marker: \"{sent}\": add <!-- claim: ... --> "
                             "(docs/report.md, Claims), or <!-- not-a-claim: why --> when it is "
                             "not about a run")
+        # A sentence about bodies at rest is checked on positions (wbplot/claimrules.py).
+        from wbplot import claimrules
+        stems = {os.path.basename(f)[:-5] for f in glob.glob(os.path.join(ROOT, "scenes", "*",
+                                                                          "*.json"))}
+        for line, sent in claimrules.lint_motion(path, stems):
+            findings.append(f"{rel(path)}:{line}: says bodies rest, stand still or move "
+                            f"without a claim on positions: \"{sent}\": add a claim that reads "
+                            "positions (trace ... move@T, a csv column of distances moved; "
+                            "wbplot/claimrules.py), not only speeds or energies")
         if verbose:
             n = len(CLAIM.findall(open(path, encoding="utf-8").read()))
             print(f"{rel(path)}: {n} claim markers")
@@ -464,6 +475,13 @@ def stage_reportdoc(build, out, verbose):
     return findings
 
 
+def stage_stubfigs(build, out, verbose):
+    from wbplot import stubfigs
+    for lab in labs():
+        skeleton(lab, build)
+    return stubfigs.stage(ROOT, build, labs())
+
+
 # ----------------------------------------------------------------------------
 
 
@@ -503,6 +521,7 @@ def main():
     return 1 if total else 0
 
 
-def run():
-    """The entry tools/pattern calls: main() with the command line, its exit status."""
+def entry():
+    """The entry tools/pattern calls: main() with the command line, its exit status (not named
+    run: that is the subprocess helper above, which the stubs and periods checks call)."""
     sys.exit(main())

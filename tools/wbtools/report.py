@@ -19,6 +19,7 @@ from wbplot import sweep as wsweep  # noqa: E402
 from wbplot import recipes  # noqa: E402
 from wbplot.claims import strip_markers  # noqa: E402
 from wbplot.recipes import fmt_dt, length_scale, offers, oscillator  # noqa: E402
+from wbview.report import view_of_run  # noqa: E402
 
 TARGETS = "1e-2,1e-4,1e-6"  # target errors (m) of the cheapest-method tables
 
@@ -41,6 +42,7 @@ class Report:
         self.failures = []   # one line each
         self.commands = []   # (lab, command line) in the order run
         self.labs = []       # LabSection
+        self.facts = {}      # figure path -> what it shows (wbplot/figfacts.py)
 
     def fail(self, msg):
         self.failures.append(msg)
@@ -134,8 +136,11 @@ def plot(report, lab, args):
     import contextlib
     import io
     err = io.StringIO()
-    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+    from wbplot import figfacts
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()), \
+            figfacts.recording() as seen:
         status = plot_cli.main(args)
+    report.facts.update(seen)  # what each figure shows, for figcheck after the lab
     if status != 0:
         report.fail(f"{line}: {err.getvalue().strip()}")
         return False
@@ -167,6 +172,11 @@ def solution_run(report, lab, exe, argv_tail, what, timeout, save=None):
         return None, "no summary line"
     if save and s is not None:
         write_text_atomic(save, json.dumps(s) + "\n")
+    if s is not None and "--out" in argv_tail:  # its viewer page, linked from the runs table
+        try:
+            s["_view"] = os.path.relpath(view_of_run(argv_tail, s, ROOT), report.out_dir)
+        except InputError as e:
+            report.fail(f"{lab}: {what}: tools/view: {e}")
     return s or {}, ""
 
 
@@ -268,7 +278,8 @@ def do_lab(report, lab, bin_dir, args):
     os.makedirs(out_dir, exist_ok=True)
     # Outputs of an earlier report: a figure this run does not redraw must not linger.
     for f in sorted(os.listdir(out_dir)):
-        if f.endswith((".png", ".csv", ".md", ".json")) and os.path.isfile(os.path.join(out_dir, f)):
+        if f.endswith((".png", ".csv", ".md", ".json", ".html")) and \
+                os.path.isfile(os.path.join(out_dir, f)):
             os.remove(os.path.join(out_dir, f))
 
     for scene_file in scenes:
@@ -367,7 +378,9 @@ def do_scene(report, sec, sc, exe, scene_path, out_dir, integrators, default, re
     sc.runs.append((f"{integ} (scene default)", s, why))
     if s is not None:
         fig = base(out_dir, f"{stem}-trajectory.png")
-        a = ["trace", trace, "-o", fig, "--title", f"{sc.name}: trajectories ({setting})"]
+        summary = base(out_dir, f"{stem}-summary.json")  # what the figures say of the run
+        a = ["trace", trace, "-o", fig, "--title", f"{sc.name}: trajectories ({setting})",
+             "--summary", summary]
         if exact_kind:
             a += ["--exact", scene_path]
         if plot(report, lab, a):
@@ -376,11 +389,14 @@ def do_scene(report, sec, sc, exe, scene_path, out_dir, integrators, default, re
                                + (f"; dashed, the exact motion ({exact_kind})." if exact_kind
                                   else "."), a))
         fig = base(out_dir, f"{stem}-energy.png")
-        a = ["stats", stats, "-o", fig, "--title", f"{sc.name}: energy and momentum ({setting})"]
+        a = ["stats", stats, "-o", fig, "--title", f"{sc.name}: energy and momentum ({setting})",
+             "--summary", summary, "--scene", scene_path]
         if integ in growth:
             a += ["--growth", f"{growth[integ]:.6g}"]
         a += diverged_step(s)
         blew = s.get("status") == "diverged"
+        from wbplot.runs import energy_changers
+        changes = energy_changers(doc)
         if plot(report, lab, a):
             sc.figures.append((fig, (
                 f"The run diverged at step {s.get('steps')} ({s.get('diverged', '')}): |E|, "
@@ -388,10 +404,13 @@ def do_scene(report, sec, sc, exe, scene_path, out_dir, integrators, default, re
                 + (f", beside the predicted growth ×{growth[integ]:.4g} per step "
                    f"({GROWTH_WHY})" if integ in growth else "") + ", and the momentum. "
                 if blew else
+                "Energy (total, kinetic, potential), E - E0 in J: the energy that "
+                + ", ".join(changes) + " change on purpose (not an error), and momentum "
+                "against time. " if changes else
                 "Energy (total, kinetic, potential), the energy error |E - E0|/|E0| (or "
                 "|E - E0| in J when E0 is 0 to rounding, as the panel says), and momentum "
-                "against time. ") + f"{setting}. Damping and driving forces change E on "
-                "purpose; a closed conservative scene should keep it.", a))
+                "against time: a closed conservative scene should keep its energy. ")
+                + f"{setting}.", a))
         if not sec.integrators or len(sec.integrators) < 2:
             forcelaw_figure(report, sec, sc, scene_path, trace, out_dir)
 
@@ -540,8 +559,9 @@ def do_scene(report, sec, sc, exe, scene_path, out_dir, integrators, default, re
                            "log-log, with guide lines of slope 1, 2 and 4. The legend gives "
                            "each integrator's measured order: the least-squares slope over "
                            f"the filled points (errors between 1e-13 and 0.1 times the scene "
-                           f"size {scale:.3g} m, past any rounding plateau; docs/report.md). "
-                           "An x on the top edge is a run that diverged."
+                           f"size {scale:.3g} m, past any rounding plateau; docs/report.md)."
+                           + (" An x on the top edge is a run that diverged." if
+                              isinstance(s.get("diverged"), int) and s["diverged"] > 0 else "")
                            + (f" Ladder: {ladder_why}." if ladder_why else ""), a))
         sc.figures.append((prefix + "-energy-error.png",
                            f"Largest relative energy error over the run against dt on "
@@ -602,12 +622,15 @@ def forcelaw_figure(report, sec, sc, scene_path, trace, out_dir):
         return
     fig = base(out_dir, f"{sc.stem}-forcelaw.png")
     a = ["forcelaw", scene_path, "--trace", trace, "-o", fig]
+    laws = [what for kind, what in (
+        ("vortex", "the vortex's swirl speed against the distance from its centre"),
+        ("spring", "each spring's force against its stretch"),
+        ("attractor", "the attractor's pull against distance")) if kind in kinds]
     if plot(report, sec.lab, a):
-        sc.figures.append((fig, f"The force laws of {sc.name}, from the scene's parameters "
-                           "(lines), with where the run's particles sit on them at its last "
-                           "written step (dots): the vortex's swirl speed against the distance "
-                           "from its centre, each spring's force against its stretch, the "
-                           "attractor's pull against distance.", a))
+        sc.figures.append((fig, f"The force law{'s' if len(laws) > 1 else ''} of {sc.name}, "
+                           "from the scene's parameters (lines), with where the run's "
+                           "particles sit on them at its last written step (dots): "
+                           + "; ".join(laws) + ".", a))
 
 
 def phase_axis(doc, anchor):
@@ -625,19 +648,20 @@ def phase_axis(doc, anchor):
 
 
 def summary_table(sc):
-    rows = ["| run | status | steps | t (s) | energy0 (J) | energy (J) | force_evals | wall (s) |",
-            "|---|---|---|---|---|---|---|---|"]
+    rows = ["| run | status | steps | t (s) | energy0 (J) | energy (J) | force_evals | wall (s) "
+            "| viewer |", "|---|---|---|---|---|---|---|---|---|"]
     for label, s, why in sc.runs:
         if s is None:
-            rows.append(f"| {label} | FAILED: {why} | | | | | | |")
+            rows.append(f"| {label} | FAILED: {why} | | | | | | | |")
         elif "sweep" in s:  # a sweep's summary: how many runs, how many diverged
             rows.append(f"| {label} | {s.get('status', '?')}: {fmt(s.get('runs'))} runs, "
-                        f"{fmt(s.get('diverged'))} diverged | | | | | | |")
+                        f"{fmt(s.get('diverged'))} diverged | | | | | | | |")
         elif s:
             rows.append("| " + " | ".join([
                 label, str(s.get("status", "?")), fmt(s.get("steps")), fmt(s.get("t")),
                 fmt(s.get("energy0"), 10), fmt(s.get("energy"), 10), fmt(s.get("force_evals")),
-                fmt(s.get("wall_s"), 3)]) + " |")
+                fmt(s.get("wall_s"), 3),
+                f"[play]({s['_view']})" if s.get("_view") else ""]) + " |")
     return "\n".join(rows) + "\n"
 
 
@@ -679,7 +703,8 @@ def md_table_to_html(table):
     lines = [ln for ln in table.strip().splitlines() if ln.strip()]
     if len(lines) < 2:
         return ""
-    cells = [[html.escape(c.strip()) for c in ln.strip().strip("|").split("|")] for ln in lines]
+    cells = [[re.sub(r"\[([^\]]+)\]\(([^)\s]+)\)", r'<a href="\2">\1</a>', html.escape(c.strip()))
+              for c in ln.strip().strip("|").split("|")] for ln in lines]
     head, body = cells[0], cells[2:]
     h = "<table><thead><tr>" + "".join(f"<th>{c}</th>" for c in head) + "</tr></thead><tbody>"
     for row in body:
@@ -848,6 +873,9 @@ def main():
         t0 = time.monotonic()
         n_fail = len(report.failures)
         do_lab(report, lab, bin_dir, args)
+        from wbplot import figcheck  # what the figures say and show (docs/report.md)
+        for f in figcheck.check_section(report.labs[-1], report.facts):
+            report.fail(f"figure: {f}")
         save_section(report, report.labs[-1], report.failures[n_fail:])
         log(f"report: {lab} done in {time.monotonic() - t0:.1f} s")
     check_claims(report)

@@ -452,6 +452,18 @@ void ContactWorld::push_apart(Mat2X& x) const {
 
 std::vector<std::string> ContactWorld::warnings(const Mat2X& x, const Mat2X& v) const {
   std::vector<std::string> out = forces_.warnings(x, v);
+  // With the forces lab's stubs, gravity pulls nothing down: a ball floats above its
+  // floor, no contact ever happens, and the collision functions are never called. Say
+  // so, or a student who starts with this lab reads only about the forces lab.
+  const bool touched = plane_hits_.seen + pair_hits_.seen + solver_hits_.seen > 0;
+  if (!out.empty() && !touched && (!planes_.empty() || x.cols() >= 2)) {
+    out.push_back(
+        "no particle reached a plane or another particle, so the collision functions "
+        "(C1-C5) were never called and this run tests none of them: the scene's forces "
+        "gave no force (the warning above), so nothing moved the particles into contact. "
+        "Write the forces lab's gravity (F1) and accumulate_forces first, or start a "
+        "particle moving towards a plane (its \"v\")");
+  }
   auto unanswered = [&](const Answered& a, const std::string& what) {
     if (a.seen > 0 && a.answered == 0) {
       out.push_back(std::to_string(a.seen) + " times " + what +

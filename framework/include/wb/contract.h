@@ -79,7 +79,7 @@ struct Summary {
   std::vector<double> momentum0, momentum;  // 2 or 3 components
   long unconverged = -1;                    // < 0: the lab has no solver to report
   ordered_json extra;                       // lab keys after the momenta (object or null)
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings;        // what stubs do; non-empty: "stub": true too
 };
 
 // The summary line's JSON object, keys in the documented order. The status

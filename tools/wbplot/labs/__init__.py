@@ -14,3 +14,11 @@ It may also add tools/plot subcommands (so that a student plots their own run):
     def add_commands(sub): ...   # sub.add_parser("bodies", ...) on tools/plot's subparsers
     def run(args) -> bool: ...   # True when args.command is one of its own
 """
+
+# The pack README's plot commands for a lab's run when its plug-in names none (PACK_PLOTS):
+# the particle figures of out/run.csv and out/run-stats.csv, with the run's summary
+# (out/run-summary.json, the run's stdout) so that a stub's run says so on the figure.
+GENERIC_PLOTS = [("tools/plot trace out/run.csv --summary out/run-summary.json -o out/run.png",
+                  "trajectories of your run"),
+                 ("tools/plot stats out/run-stats.csv --summary out/run-summary.json "
+                  "--scene {scene} -o out/run-energy.png", "energy and momentum against time")]

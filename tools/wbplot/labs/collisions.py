@@ -19,10 +19,10 @@ from ..runs import choose_ids, read_trace
 REPLACES_GENERIC = True  # discs to scale replace the generic dot trajectories
 
 # The pack README's plot commands for a run of this lab (tools/pack): out/run.csv, its stats.
-PACK_PLOTS = [("tools/plot discs out/run.csv --scene {scene} -o out/run.png",
-               "the discs to scale, with the planes"),
-              ("tools/plot stats out/run-stats.csv -o out/run-energy.png",
-               "energy and momentum against time")]
+PACK_PLOTS = [("tools/plot discs out/run.csv --scene {scene} --summary out/run-summary.json "
+               "-o out/run.png", "the discs to scale, with the planes"),
+              ("tools/plot stats out/run-stats.csv --scene {scene} --summary "
+               "out/run-summary.json -o out/run-energy.png", "energy and momentum against time")]
 
 MAX_PATHS = 60        # particle paths drawn under the discs
 MAX_FRAMES = 80       # frames of an animation
@@ -78,6 +78,9 @@ def state_at(data, ids, k):
 
 
 def _limits(data, planes, radii):
+    """The view: the discs' extent over the run (paths and radii), with a margin; a plane
+    within the discs' own span of it (a floor they rest on or float above, a wall they
+    reach) is brought into view, one farther away is not allowed to shrink them to specks."""
     xs = [x for d in data.values() for x in d["x"] if math.isfinite(x)]
     ys = [y for d in data.values() for y in d["y"] if math.isfinite(y)]
     if not xs:
@@ -85,9 +88,17 @@ def _limits(data, planes, radii):
     r = max(radii) if radii else 0.0
     lo_x, hi_x = min(xs) - r, max(xs) + r
     lo_y, hi_y = min(ys) - r, max(ys) + r
-    for (px, py), _, _ in planes:
-        lo_x, hi_x = min(lo_x, px), max(hi_x, px)
-        lo_y, hi_y = min(lo_y, py), max(hi_y, py)
+    span = max(hi_x - lo_x, hi_y - lo_y, 1e-9)
+    near = span  # a floor the discs float above (a stub's run) stays in view too
+    cx, cy = (lo_x + hi_x) / 2, (lo_y + hi_y) / 2
+    for (px, py), (nx, ny), _ in planes:
+        # The point of the plane nearest the discs' centre.
+        d = (cx - px) * nx + (cy - py) * ny
+        qx, qy = cx - d * nx, cy - d * ny
+        gap = max(lo_x - qx, qx - hi_x, lo_y - qy, qy - hi_y, 0.0)
+        if gap <= near:
+            lo_x, hi_x = min(lo_x, qx), max(hi_x, qx)
+            lo_y, hi_y = min(lo_y, qy), max(hi_y, qy)
     span = max(hi_x - lo_x, hi_y - lo_y, 1e-9)
     pad = 0.05 * span
     return lo_x - pad, hi_x + pad, lo_y - pad, hi_y + pad
@@ -95,27 +106,40 @@ def _limits(data, planes, radii):
 
 def _draw_planes(ax, planes, lims):
     """Each plane as a line across the view, its solid side shaded (a band for a thin wall)."""
+    from ..figfacts import tag
     lo_x, hi_x, lo_y, hi_y = lims
     big = 4 * max(hi_x - lo_x, hi_y - lo_y)
-    for (px, py), (nx, ny), thick in planes:
+    for k, ((px, py), (nx, ny), thick) in enumerate(planes):
         tx, ty = -ny, nx
-        a = (px - big * tx, py - big * ty)
-        b = (px + big * tx, py + big * ty)
+        # Centred on the point of the plane nearest the view's centre, so that the line
+        # crosses the whole view wherever the scene put the plane's point.
+        cx, cy = (lo_x + hi_x) / 2, (lo_y + hi_y) / 2
+        d = (cx - px) * nx + (cy - py) * ny
+        ox, oy = cx - d * nx, cy - d * ny
+        a = (ox - big * tx, oy - big * ty)
+        b = (ox + big * tx, oy + big * ty)
         depth = float(thick) if thick is not None else big
         poly = [a, b, (b[0] - depth * nx, b[1] - depth * ny), (a[0] - depth * nx, a[1] - depth * ny)]
         ax.fill(*zip(*poly), color="0.75", alpha=0.6, lw=0, zorder=1)
-        ax.plot([a[0], b[0]], [a[1], b[1]], color="0.2", lw=1.2, zorder=2)
+        (line,) = ax.plot([a[0], b[0]], [a[1], b[1]], color="0.2", lw=1.2, zorder=2)
+        tag(line, "plane", [a, b], index=k, point=(px, py), normal=(nx, ny))
     ax.set_xlim(lo_x, hi_x)
     ax.set_ylim(lo_y, hi_y)
 
 
-def _discs(ax, xs, ys, radii, color, alpha, zorder):
+def _discs(ax, xs, ys, radii, color, alpha, zorder, cmap=None, values=None):
     from matplotlib.collections import EllipseCollection
+    from ..figfacts import tag
     d = [2 * r for r in radii]
+    kw = dict(facecolors=color) if values is None else dict(array=values, cmap=cmap)
     coll = EllipseCollection(d, d, [0.0] * len(d), units="xy", offsets=list(zip(xs, ys)),
-                             offset_transform=ax.transData, facecolors=color, edgecolors="k",
-                             linewidths=0.3 if len(d) < 500 else 0.0, alpha=alpha, zorder=zorder)
+                             offset_transform=ax.transData, edgecolors="k",
+                             linewidths=0.3 if len(d) < 500 else 0.0, alpha=alpha,
+                             zorder=zorder, **kw)
     ax.add_collection(coll)
+    pts = [(x + s * r, y + s * r) for x, y, r in zip(xs, ys, radii)
+           if math.isfinite(x) and math.isfinite(y) for s in (-1, 1)]
+    tag(coll, "body", pts)
     return coll
 
 
@@ -131,7 +155,18 @@ def _check(data, radii, path):
         raise InputError(f"{path}: particles have different numbers of rows")
 
 
+MANY = 200  # more discs than this: no start circles; the end coloured by starting height
+
+
+def _not_finite_note(n_bad, t_end):
+    """A disc the figure cannot draw: 'diverged' only when the run's summary says so."""
+    from .. import runinfo
+    why = "diverged, as the run's summary says" if runinfo.said_diverged(0) else "not finite"
+    return f"{n_bad} particle(s) not drawn at t = {t_end:g} s ({why})"
+
+
 def plot_discs(trace, scene, out, title=None):
+    import matplotlib
     data = read_trace(trace)
     doc, planes, radii = read_scene(scene)
     _check(data, radii, trace)
@@ -144,16 +179,24 @@ def plot_discs(trace, scene, out, title=None):
     # Paths of a few particles, the start faded, the end solid.
     for i in choose_ids(ids, MAX_PATHS):
         ax.plot(data[i]["x"], data[i]["y"], lw=0.6, color="C0", alpha=0.5, zorder=3)
-    if len(ids) <= 200:
+    if len(ids) <= MANY:
         xs, ys = state_at(data, ids, 0)
         _discs(ax, xs, ys, r, "none", 0.5, 4)
     xs, ys = state_at(data, ids, rows - 1)
     ok = [k for k in range(len(ids)) if math.isfinite(xs[k]) and math.isfinite(ys[k])]
-    _discs(ax, [xs[k] for k in ok], [ys[k] for k in ok], [r[k] for k in ok], "C1", 0.85, 5)
+    if len(ids) > MANY:
+        # Thousands of discs at the end are one orange band: coloured by the height each
+        # started from, the band shows how the discs settled (who landed first, who mixed).
+        y0 = [data[ids[k]]["y"][0] for k in ok]
+        coll = _discs(ax, [xs[k] for k in ok], [ys[k] for k in ok], [r[k] for k in ok], None,
+                      0.9, 5, cmap=matplotlib.colormaps["viridis"], values=y0)
+        fig.colorbar(coll, ax=ax, shrink=0.8, pad=0.02, label="height y at t = 0 (m)")
+    else:
+        _discs(ax, [xs[k] for k in ok], [ys[k] for k in ok], [r[k] for k in ok], "C1", 0.85, 5)
     t_end = data[ids[0]]["t"][-1]
     if len(ok) < len(ids):
-        ax.text(0.02, 0.96, f"{len(ids) - len(ok)} particle(s) not finite at t = {t_end:g} s "
-                "(diverged): not drawn", transform=ax.transAxes, color="C3", va="top")
+        ax.text(0.02, 0.96, _not_finite_note(len(ids) - len(ok), t_end), transform=ax.transAxes,
+                color="C3", va="top")
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
@@ -163,6 +206,7 @@ def plot_discs(trace, scene, out, title=None):
 
 def plot_animation(trace, scene, out, fps=20, title=None):
     import matplotlib.animation as animation
+    from ..common import finish_frame
     try:
         import PIL  # noqa: F401  (PillowWriter needs it)
     except ImportError:
@@ -177,21 +221,35 @@ def plot_animation(trace, scene, out, fps=20, title=None):
     frames = list(range(0, rows, step))
     if frames[-1] != rows - 1:
         frames.append(rows - 1)
-    fig, ax = new_figure(figsize=(5.6, 4.2))
     lims = _limits(data, planes, radii)
+    # The frame takes the view's shape, so that the discs fill it (at 80 dpi: 640 px on
+    # the long side).
+    aspect = (lims[3] - lims[2]) / max(lims[1] - lims[0], 1e-12)
+    w, h = (8.0, max(2.4, 8.0 * aspect + 0.9)) if aspect < 1 else (max(3.0, 8.0 / aspect + 0.6), 8.0)
+    fig, ax = new_figure(figsize=(w, h))
     _draw_planes(ax, planes, lims)
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     xs, ys = state_at(data, ids, 0)
-    coll = _discs(ax, xs, ys, [radii[i] for i in ids], "C1", 0.9, 5)
-    label = ax.set_title("")
+    many = len(ids) > MANY
+    import matplotlib
+    coll = _discs(ax, xs, ys, [radii[i] for i in ids], None if many else "C1", 0.9, 5,
+                  cmap=matplotlib.colormaps["viridis"] if many else None,
+                  values=[data[i]["y"][0] for i in ids] if many else None)
+    if many:
+        fig.colorbar(coll, ax=ax, shrink=0.8, pad=0.02, label="height y at t = 0 (m)")
+    label = ax.set_title(f"{title or os.path.basename(trace)}: t = 0.000 s")  # for the layout
+    fig.tight_layout()
 
     def draw(k):
         xs, ys = state_at(data, ids, k)
         coll.set_offsets([(x if math.isfinite(x) else 1e30, y if math.isfinite(y) else 1e30)
                           for x, y in zip(xs, ys)])
-        label.set_text(f"{title or os.path.basename(trace)}: t = {data[ids[0]]['t'][k]:.3f} s")
+        bad = sum(1 for x, y in zip(xs, ys) if not (math.isfinite(x) and math.isfinite(y)))
+        label.set_text(f"{title or os.path.basename(trace)}: t = {data[ids[0]]['t'][k]:.3f} s"
+                       + (f"; {_not_finite_note(bad, data[ids[0]]['t'][k])}" if bad else ""))
+        finish_frame(fig, out, inside=True)
         return coll, label
 
     anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
@@ -343,18 +401,18 @@ def scene_figures(ctx):
     if s is None:
         return
     setting = f"semi-implicit Euler, dt = {fmt_dt(doc.get('dt'))} s"
+    summary = ctx.path(f"{ctx.stem}-summary.json")  # what the figures say of the run
     fig = ctx.path(f"{ctx.stem}-discs.png")
     a = ["discs", trace, "--scene", ctx.scene_path, "-o", fig, "--title",
-         f"{ctx.stem}: discs at the end ({setting})"]
+         f"{ctx.stem}: discs at the end ({setting})", "--summary", summary]
     if ctx.plot(a):
-        extra = " Open circles are the starts." if n <= 200 else ""
-        ctx.figure(fig, f"{desc} Discs to scale at the end of the run (orange), paths of up "
-                   f"to {MAX_PATHS} particles (blue), planes with their solid side shaded."
-                   + extra, a)
+        ctx.figure(fig, f"{desc} Discs to scale at the end of the run ("
+                   + ("orange; open circles are the starts" if n <= MANY else
+                      "coloured by the height each started from") + f"), paths of up to "
+                   f"{MAX_PATHS} particles (blue), planes with their solid side shaded.", a)
     fig = ctx.path(f"{ctx.stem}-energy.png")
-    a = ["stats", stats, "-o", fig, "--title", f"{ctx.stem}: energy and momentum ({setting})"]
-    if s.get("status") == "diverged":  # the step the run contract says it diverged at
-        a += ["--diverged", str(s["steps"])]
+    a = ["stats", stats, "-o", fig, "--title", f"{ctx.stem}: energy and momentum ({setting})",
+         "--summary", summary, "--scene", ctx.scene_path]
     if ctx.plot(a):
         e0, e1 = s.get("energy0"), s.get("energy")
         trend = ""
@@ -369,10 +427,12 @@ def scene_figures(ctx):
                    "impulses from planes change the momentum." + trend, a)
     if ctx.stem in ANIMATED:
         gif = ctx.path(f"{ctx.stem}.gif")
-        a = ["animate", trace, "--scene", ctx.scene_path, "-o", gif, "--title", ctx.stem]
+        a = ["animate", trace, "--scene", ctx.scene_path, "-o", gif, "--title", ctx.stem,
+             "--summary", summary]
         if ctx.plot(a):
             ctx.figure(gif, f"Animation of {ctx.stem} (every recorded frame up to "
-                       f"{MAX_FRAMES}).", a)
+                       f"{MAX_FRAMES})." + (" Each disc is coloured by the height it started "
+                                            "from." if n > MANY else ""), a)
     if ctx.stem == "pile":
         _pile_table(ctx, trace, doc)
     if ctx.stem == "bounce":
@@ -399,9 +459,10 @@ def _pile_table(ctx, trace, doc):
     t = next(iter(data.values()))["t"][-1]
     md = ("| quantity | value |\n|---|---|\n"
           f"| particles | {len(last)} |\n"
-          f"| particles more than 1 % of their radius into a wall at t = {t:g} s | "
-          f"{outside} |\n"
-          f"| deepest overlap with a wall at t = {t:g} s (radii) | {deepest:.3g} |\n"
+          f"| particles deeper into a wall than the slop the solver leaves on purpose (1 % of "
+          f"their radius) at t = {t:g} s | {outside} |\n"
+          f"| deepest overlap with a wall at t = {t:g} s, in radii (1: the disc's centre on "
+          f"the wall) | {deepest:.3g} |\n"
           f"| median speed at t = {t:g} s (m/s) | {speeds[len(speeds) // 2]:.3g} |\n"
           f"| largest speed at t = {t:g} s (m/s) | {speeds[-1]:.3g} |\n")
     ctx.table("pile: containment and rest (from the run's trace)", md)
@@ -442,24 +503,38 @@ def _bounce_figures(ctx):
                        a)
 
 
+def _column_solver(doc, solver):
+    doc["contact"]["solver"] = solver
+    doc["contact"]["iterations"] = 10
+
+
+COLUMN_AFTER = 1.0  # s: the column has landed (handouts/collisions.md#c5)
+
+
 def _creep_figure(ctx):
-    """The column with both solvers: the largest disc speed against time."""
+    """The column with both solvers: the largest disc speed, and the largest distance any
+    disc moved since 1 s, against time; column-rest.csv for the handout's claims."""
     traces = []
-    for solver in ("passes", "accumulated"):
-        def change(doc, solver=solver):
-            doc["contact"]["solver"] = solver
-            doc["contact"]["iterations"] = 10
-        scene = _variant(ctx, f"column-{solver}.json", change)
+    for solver, scene in creep.solver_scenes(ctx.doc, ctx.out_dir, "column",
+                                             _column_solver).items():
         trace = ctx.path(f"column-{solver}.csv")
         s = ctx.run(["--scene", scene, "--out", trace, "--every", "10"],
                     f"column with solver {solver}", solver)
         if s is None:
             return
         traces.append(trace)
+    creep.write_rest(ctx.path("column-rest.csv"), traces, list(creep.SOLVERS), COLUMN_AFTER)
     fig = ctx.path("column-creep.png")
     a = ["creep"] + traces + ["--labels", "passes (one-shot: 10 per step),accumulated (10 "
-                              "iterations)", "--after", "1", "-o", fig]
+                              "iterations)", "--after", f"{COLUMN_AFTER:g}", "-o", fig]
     if ctx.plot(a):
-        ctx.figure(fig, "The largest speed of any disc of the column against time (log "
-                   "scale), solved by one-shot passes and by accumulated, warm-started "
-                   "impulses (C5), 10 of each per step.", a)
+        ctx.figure(fig, "The column solved by one-shot passes and by accumulated, "
+                   "warm-started impulses (C5), 10 of each per step: on top the largest speed "
+                   "of any disc (the velocities the solver keeps), below the largest distance "
+                   "any disc has moved since 1 s (what one sees of the column). The numbers "
+                   "are in column-rest.csv.", a)
+
+
+# tools/claims makes this file itself when build/report has none (docs/report.md, Claims).
+CLAIM_FILES = {"column-rest.csv": lambda exe, out: creep.make_rest_file(
+    exe, out, "collisions", "column", _column_solver, "column-{solver}.csv", COLUMN_AFTER)}

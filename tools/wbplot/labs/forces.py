@@ -268,7 +268,11 @@ def plot_smoke(trace, scene, out, fps=20, title=None):
         frames.append(rows - 1)
     x0, x1, y0, y1 = _bounds_of_trace(data)
     pad = 0.05 * max(x1 - x0, y1 - y0, 1e-6)
-    fig, ax = new_figure(figsize=(5.0, 5.0))
+    # The frame takes the flow's shape (6.4 in on its long side, at 90 dpi 576 px), so that
+    # the particles fill it instead of a narrow strip in a square.
+    aspect = (y1 - y0 + 2 * pad) / max(x1 - x0 + 2 * pad, 1e-12)
+    size = (6.4, max(2.4, 6.4 * aspect)) if aspect < 1 else (max(2.6, 6.4 / aspect + 0.9), 6.4)
+    fig, ax = new_figure(figsize=size)
     from matplotlib.patches import Circle
     for cx, cy, r in ds:
         ax.add_patch(Circle((cx, cy), r, facecolor="0.55", edgecolor="0.2", lw=1.0, zorder=3))
@@ -279,13 +283,18 @@ def plot_smoke(trace, scene, out, fps=20, title=None):
     ax.set_ylabel("y (m)")
     dots = ax.scatter([data[i]["x"][0] for i in ids], [data[i]["y"][0] for i in ids], s=4,
                       color="0.15", alpha=0.4, lw=0, zorder=2)
-    label = ax.set_title("")
+    label = ax.set_title(f"{title or os.path.basename(trace)}: t = 0.00 s")  # for the layout
+    fig.tight_layout()
+    from ..common import finish_frame
+    from ..figfacts import tag
 
     def draw(k):
-        dots.set_offsets([(data[i]["x"][k] if math.isfinite(data[i]["x"][k]) else 1e30,
-                           data[i]["y"][k] if math.isfinite(data[i]["y"][k]) else 1e30)
-                          for i in ids])
+        pts = [(data[i]["x"][k], data[i]["y"][k]) for i in ids]
+        dots.set_offsets([(x if math.isfinite(x) else 1e30, y if math.isfinite(y) else 1e30)
+                          for x, y in pts])
+        tag(dots, "body", [p for p in pts if all(math.isfinite(c) for c in p)])
         label.set_text(f"{title or os.path.basename(trace)}: t = {data[ids[0]]['t'][k]:.2f} s")
+        finish_frame(fig, out, inside=True)
         return dots, label
 
     anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
@@ -294,7 +303,7 @@ def plot_smoke(trace, scene, out, fps=20, title=None):
         raise InputError(f"{out}: folder {folder} does not exist")
     tmp = os.path.join(folder, f".{os.path.basename(out)}.tmp-{os.getpid()}.gif")
     try:
-        anim.save(tmp, writer=animation.PillowWriter(fps=fps), dpi=72)
+        anim.save(tmp, writer=animation.PillowWriter(fps=fps), dpi=90)
         os.replace(tmp, out)
     finally:
         import matplotlib.pyplot as plt
@@ -386,7 +395,8 @@ def scene_figures(ctx):
                    "fourfold when the step is halved; a wrong curl would leave a divergence as "
                    "large as the vorticity.", a)
     gif = ctx.path(f"{ctx.stem}.gif")
-    a = ["smoke", trace, "--scene", ctx.scene_path, "-o", gif, "--title", ctx.stem]
+    a = ["smoke", trace, "--scene", ctx.scene_path, "-o", gif, "--title", ctx.stem,
+         "--summary", ctx.path(f"{ctx.stem}-summary.json")]
     if ctx.plot(a):
         ctx.figure(gif, f"Animation of {ctx.stem}: every particle as a grey dot (every "
                    f"recorded frame, at most {MAX_FRAMES + 1}).", a)

@@ -1,0 +1,1 @@
+"""The interactive viewer of a run (tools/view) and its browser test (tools/view-check)."""

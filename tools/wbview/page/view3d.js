@@ -1,0 +1,371 @@
+// tools/view's page, part 3 of 5: the rigid lab's view, in 3D (flat-shaded faces, far to
+// near).
+// ---------------------------------------------------------------- 3D view
+function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
+function add3(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
+function mul3(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
+function dot3(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+function cross3(a, b) {
+  return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+}
+function pathThrough(pts) {  // a closed path through screen points [x, y, ...]
+  pts.forEach(function (p, j) {
+    if (j === 0) ctx.moveTo(p[0], p[1]); else ctx.lineTo(p[0], p[1]);
+  });
+  ctx.closePath();
+}
+function fillDot(c, r) {  // a filled dot of radius r at screen point c
+  ctx.beginPath(); ctx.arc(c[0], c[1], r, 0, 2 * Math.PI); ctx.fill();
+}
+function norm3(a) { const n = Math.hypot(a[0], a[1], a[2]); return n > 0 ? mul3(a, 1 / n) : a; }
+function rot(q) {  // rotation matrix (rows) of a quaternion [w, x, y, z], normalised
+  const n = Math.hypot(q[0], q[1], q[2], q[3]);
+  if (!(n > 0) || !isFinite(n)) return null;
+  const w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+  return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]];
+}
+function apply(R, p) {
+  return [R[0][0] * p[0] + R[0][1] * p[1] + R[0][2] * p[2],
+    R[1][0] * p[0] + R[1][1] * p[1] + R[1][2] * p[2],
+    R[2][0] * p[0] + R[2][1] * p[1] + R[2][2] * p[2]];
+}
+function applyT(R, p) {
+  return [R[0][0] * p[0] + R[1][0] * p[1] + R[2][0] * p[2],
+    R[0][1] * p[0] + R[1][1] * p[1] + R[2][1] * p[2],
+    R[0][2] * p[0] + R[1][2] * p[1] + R[2][2] * p[2]];
+}
+function pose(run, k, i) {
+  const x = [value(run, k, i, 0), value(run, k, i, 1), value(run, k, i, 2)];
+  const q = [value(run, k, i, 3), value(run, k, i, 4), value(run, k, i, 5), value(run, k, i, 6)];
+  const R = rot(q);
+  if (!R || !isFinite(x[0] + x[1] + x[2])) return null;
+  return { x: x, R: R };
+}
+const UP = RIGID && SCENE ? SCENE.up : [0, 0, 1];
+const E1 = (function () {
+  const a = Math.abs(UP[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+  return norm3(sub3(a, mul3(UP, dot3(a, UP))));
+})();
+const E2 = cross3(UP, E1);
+
+function shapeSize(i) {
+  const s = SCENE ? SCENE.shapes[i] : null;
+  if (!s || s.shape === "unknown") return 0.2;
+  if (s.shape === "box") return Math.max(s.size[0], s.size[1], s.size[2]);
+  if (s.shape === "sphere") return 2 * s.radius;
+  return Math.max(2 * s.radius, s.length);
+}
+let BIG = 0;
+function fit3(frameOnly) {
+  let lo, hi;
+  if (frameOnly || !META.box) {
+    lo = [Infinity, Infinity, Infinity]; hi = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < N; i++) for (let d = 0; d < 3; d++) {
+      const v = value(R1, S.frame, i, d);
+      if (isFinite(v)) { lo[d] = Math.min(lo[d], v); hi[d] = Math.max(hi[d], v); }
+    }
+    if (!isFinite(lo[0])) { lo = [-1, -1, -1]; hi = [1, 1, 1]; }
+  } else { lo = META.box.lo.slice(); hi = META.box.hi.slice(); }
+  BIG = 0;
+  for (let i = 0; i < N; i++) BIG = Math.max(BIG, shapeSize(i));
+  if (SCENE) SCENE.hinges.forEach(function (h) {
+    for (let d = 0; d < 3; d++) {
+      lo[d] = Math.min(lo[d], h.anchor[d]); hi[d] = Math.max(hi[d], h.anchor[d]);
+    }
+  });
+  const target = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
+  const half = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2;
+  const radius = Math.max(half + BIG * 0.75, 1e-6);
+  const keep = S.cam || { yaw: -Math.PI / 2 + 0.6, pitch: 0.35 };
+  const fov = 40 * Math.PI / 180;
+  const aspect = Math.min(1, W / H);
+  S.cam = { target: target, yaw: keep.yaw, pitch: keep.pitch, fov: fov,
+    dist: radius / Math.sin(fov / 2 * aspect) * 1.05, radius: radius };
+  S.dirty = true;
+}
+function camera() {
+  const c = S.cam;
+  const flat = add3(mul3(E1, Math.cos(c.yaw)), mul3(E2, Math.sin(c.yaw)));
+  const dir = add3(mul3(flat, Math.cos(c.pitch)),
+    mul3(UP, Math.sin(c.pitch)));
+  const eye = add3(c.target, mul3(dir, c.dist));
+  const f = norm3(sub3(c.target, eye));
+  let r = cross3(f, UP);
+  r = Math.hypot(r[0], r[1], r[2]) > 1e-9 ? norm3(r) : E1;
+  const u = cross3(r, f);
+  return { eye: eye, f: f, r: r, u: u, F: (H / 2) / Math.tan(c.fov / 2),
+    light: norm3(add3(add3(UP, mul3(f, -1.0)), mul3(r, 0.4))) };
+}
+function project(cam, p) {
+  const d = sub3(p, cam.eye);
+  const z = dot3(d, cam.f);
+  if (!(z > 1e-6 * cam.F / 1000 + 1e-9)) return null;
+  return [W / 2 + cam.F * dot3(d, cam.r) / z, H / 2 - cam.F * dot3(d, cam.u) / z, z];
+}
+function shade(hex, k) {
+  const v = parseInt(hex.slice(1), 16);
+  const r = (v >> 16) & 255, g = (v >> 8) & 255, b = v & 255;
+  const c = function (x) { return Math.min(255, Math.round(x * k)); };
+  return "rgb(" + c(r) + "," + c(g) + "," + c(b) + ")";
+}
+function boxCorners(size) {
+  const out = [];
+  for (let k = 0; k < 8; k++) {  // bit 0: x, bit 1: y, bit 2: z (set: +), as the lab's
+    out.push([(k & 1 ? 0.5 : -0.5) * size[0], (k & 2 ? 0.5 : -0.5) * size[1],
+      (k & 4 ? 0.5 : -0.5) * size[2]]);
+  }
+  return out;
+}
+const BOX_FACES = [  // corners (counter-clockwise seen from outside) and the outward normal
+  [[0, 2, 6, 4], [-1, 0, 0]], [[1, 5, 7, 3], [1, 0, 0]], [[0, 4, 5, 1], [0, -1, 0]],
+  [[2, 3, 7, 6], [0, 1, 0]], [[0, 1, 3, 2], [0, 0, -1]], [[4, 6, 7, 5], [0, 0, 1]]];
+const CYL_N = 24;
+function bodyFaces(i, P) {  // [{pts: world points, n: world normal}]
+  const s = SCENE ? SCENE.shapes[i] : null;
+  const faces = [];
+  const W_ = function (p) { return add3(P.x, apply(P.R, p)); };
+  if (s && s.shape === "box") {
+    const c = boxCorners(s.size).map(W_);
+    BOX_FACES.forEach(function (f) {
+      faces.push({ pts: f[0].map(function (j) { return c[j]; }), n: apply(P.R, f[1]) });
+    });
+  } else if (s && s.shape === "cylinder") {
+    const h = s.length / 2, r = s.radius;
+    const top = [], bot = [];
+    for (let k = 0; k < CYL_N; k++) {
+      const a = 2 * Math.PI * k / CYL_N;
+      top.push(W_([r * Math.cos(a), r * Math.sin(a), h]));
+      bot.push(W_([r * Math.cos(a), r * Math.sin(a), -h]));
+    }
+    for (let k = 0; k < CYL_N; k++) {
+      const k1 = (k + 1) % CYL_N, a = 2 * Math.PI * (k + 0.5) / CYL_N;
+      faces.push({ pts: [bot[k], bot[k1], top[k1], top[k]],
+        n: apply(P.R, [Math.cos(a), Math.sin(a), 0]), seam: true });
+    }
+    faces.push({ pts: top.slice().reverse(), n: apply(P.R, [0, 0, 1]) });
+    faces.push({ pts: bot, n: apply(P.R, [0, 0, -1]) });
+  }
+  return faces;
+}
+function contactPoints(i, P) {  // the rigid lab's candidates (framework/drivers/rigid)
+  const s = SCENE.shapes[i], out = [];
+  SCENE.planes.forEach(function (pl) {
+    let cand = [];
+    if (s.shape === "sphere") cand = [sub3(P.x, mul3(pl.normal, s.radius))];
+    else if (s.shape === "box") {
+      cand = boxCorners(s.size).map(function (p) { return add3(P.x, apply(P.R, p)); });
+    }
+    else if (s.shape === "cylinder") {
+      for (let e = -1; e <= 1; e += 2) for (let k = 0; k < 16; k++) {
+        const a = 2 * Math.PI * k / 16;
+        const p = [s.radius * Math.cos(a), s.radius * Math.sin(a), 0.5 * e * s.length];
+        cand.push(add3(P.x, apply(P.R, p)));
+      }
+    }
+    cand.forEach(function (p) {
+      if (dot3(sub3(p, pl.point), pl.normal) < SCENE.contact_slop) out.push(p);
+    });
+  });
+  return out;
+}
+
+function drawFloor3(cam) {
+  if (!SCENE) return;
+  const c = S.cam;
+  SCENE.planes.forEach(function (pl) {
+    const n = pl.normal;
+    const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    const u = norm3(sub3(a, mul3(n, dot3(a, n)))), w = cross3(n, u);
+    const centre = sub3(c.target, mul3(n, dot3(sub3(c.target, pl.point), n)));
+    const half = Math.max(c.radius * 1.6, BIG * 2);
+    const step = niceStep(2 * half, 10);
+    const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(function (q) {
+      return project(cam, add3(centre, add3(mul3(u, q[0] * half), mul3(w, q[1] * half))));
+    });
+    const above = dot3(sub3(cam.eye, pl.point), n) > 0;
+    if (corners.every(function (q) { return q; })) {
+      ctx.fillStyle = above ? "rgba(200,184,138,0.35)" : "rgba(200,184,138,0.12)";
+      ctx.beginPath(); pathThrough(corners); ctx.fill();
+    }
+    ctx.strokeStyle = "rgba(127,106,60,0.35)"; ctx.lineWidth = 1;
+    ctx.beginPath();
+    const m = Math.floor(half / step);
+    for (let j = -m; j <= m; j++) {
+      [[u, w], [w, u]].forEach(function (ax) {
+        const p0 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], -half))));
+        const p1 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], half))));
+        if (p0 && p1) { ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); }
+      });
+    }
+    ctx.stroke();
+  });
+}
+
+function draw3() {
+  if (!S.cam || S.follow) fit3(S.follow);
+  const cam = camera();
+  ctx.setTransform(DPR, 0, 0, DPR, 0, 0);
+  ctx.fillStyle = "#ffffff"; ctx.fillRect(0, 0, W, H);
+  drawFloor3(cam);
+  const k = S.frame;
+  const k2 = R2 && S.run2 ? frameAt(R2, R1.t[k]) : null;
+  // Bodies: every face of every body, far to near (painter's order), back faces culled.
+  const items = [];
+  const poses = [];
+  for (let i = 0; i < N; i++) {
+    const P = pose(R1, k, i);
+    poses.push(P);
+    if (!P) continue;
+    const s = SCENE ? SCENE.shapes[i] : null;
+    const col = BODY_COLORS[i % BODY_COLORS.length];
+    if (s && s.shape === "sphere") {
+      const c = project(cam, P.x);
+      if (c) items.push({ z: c[2], sphere: true, c: c, P: P, r: s.radius, col: col });
+      continue;
+    }
+    bodyFaces(i, P).forEach(function (f) {
+      let cx = 0, cy = 0, cz = 0;
+      f.pts.forEach(function (p) { cx += p[0]; cy += p[1]; cz += p[2]; });
+      const m = [cx / f.pts.length, cy / f.pts.length, cz / f.pts.length];
+      if (dot3(f.n, sub3(cam.eye, m)) <= 0) return;
+      const pp = f.pts.map(function (p) { return project(cam, p); });
+      if (pp.some(function (p) { return !p; })) return;
+      const z = pp.reduce(function (a, p) { return a + p[2]; }, 0) / pp.length;
+      const lit = 0.5 + 0.6 * Math.max(0, dot3(f.n, cam.light));
+      items.push({ z: z, pp: pp, seam: f.seam, col: shade(col, lit) });
+    });
+  }
+  items.sort(function (a, b) { return b.z - a.z; });
+  items.forEach(function (it) {
+    if (it.sphere) { drawSphere(cam, it); return; }
+    ctx.fillStyle = it.col; ctx.lineWidth = 1;
+    ctx.strokeStyle = it.seam ? it.col : "rgba(0,0,0,0.45)";  // no seams inside a cylinder
+    ctx.beginPath(); pathThrough(it.pp); ctx.fill(); ctx.stroke();
+  });
+  // The second run: edges only.
+  if (k2 !== null) for (let i = 0; i < N; i++) {
+    const P = pose(R2, k2, i);
+    if (!P) continue;
+    ctx.strokeStyle = COLORS.run2; ctx.lineWidth = 1.5; ctx.setLineDash([5, 3]);
+    const s = SCENE ? SCENE.shapes[i] : null;
+    ctx.beginPath();
+    if (s && s.shape === "sphere") {
+      const c = project(cam, P.x);
+      if (c) {
+        const r = cam.F * s.radius / c[2];
+        ctx.moveTo(c[0] + r, c[1]); ctx.arc(c[0], c[1], r, 0, 2 * Math.PI);
+      }
+    } else bodyFaces(i, P).forEach(function (f) {
+      const pp = f.pts.map(function (p) { return project(cam, p); });
+      if (pp.some(function (p) { return !p; })) return;
+      pathThrough(pp);
+    });
+    ctx.stroke(); ctx.setLineDash([]);
+    const c = project(cam, P.x);
+    if (c) { ctx.fillStyle = COLORS.run2; fillDot(c, 3); }
+  }
+  // Hinges: anchor, the body point pinned to it, a revolute hinge's axis.
+  if (SCENE) SCENE.hinges.forEach(function (h) {
+    const a = project(cam, h.anchor);
+    const P0 = pose(R1, 0, h.body), P = poses[h.body];
+    if (h.axis) {
+      const L = Math.max(shapeSize(h.body), S.cam.radius * 0.3);
+      const p0 = project(cam, sub3(h.anchor, mul3(h.axis, L)));
+      const p1 = project(cam, add3(h.anchor, mul3(h.axis, L)));
+      if (p0 && p1) {
+        ctx.strokeStyle = "#7b3294"; ctx.lineWidth = 2.5;
+        ctx.beginPath(); ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); ctx.stroke();
+      }
+    }
+    if (P0 && P) {
+      const rb = applyT(P0.R, sub3(h.anchor, P0.x));
+      const pin = project(cam, add3(P.x, apply(P.R, rb)));
+      if (a && pin) {
+        ctx.strokeStyle = "#000"; ctx.lineWidth = 1;
+        ctx.beginPath(); ctx.moveTo(a[0], a[1]); ctx.lineTo(pin[0], pin[1]); ctx.stroke();
+      }
+    }
+    if (a) {
+      ctx.fillStyle = "#000";
+      ctx.beginPath();
+      pathThrough([[a[0], a[1] - 6], [a[0] + 6, a[1]], [a[0], a[1] + 6], [a[0] - 6, a[1]]]);
+      ctx.fill();
+    }
+  });
+  // Trails of the centres of mass, over the bodies (a body hides its own short path).
+  if (S.trails) [[R1, k, COLORS.trail], [R2, k2, COLORS.trail2]].forEach(function (a) {
+    if (!a[0] || a[1] === null) return;
+    ctx.strokeStyle = a[2]; ctx.lineWidth = 2; ctx.globalAlpha = 0.8;
+    ctx.beginPath();
+    for (let i = 0; i < N; i++) {
+      let started = false;
+      for (let q = 0; q <= a[1]; q++) {
+        const p = project(cam, [value(a[0], q, i, 0), value(a[0], q, i, 1), value(a[0], q, i, 2)]);
+        if (!p || !isFinite(p[0] + p[1])) { started = false; continue; }
+        if (!started) { ctx.moveTo(p[0], p[1]); started = true; } else ctx.lineTo(p[0], p[1]);
+      }
+    }
+    ctx.stroke(); ctx.globalAlpha = 1;
+  });
+  // Contacts, axes, centres of mass: on top.
+  const drawn = [];
+  for (let i = 0; i < N; i++) {
+    const P = poses[i];
+    if (!P) { drawn.push(null); continue; }
+    if (SCENE && S.contacts && SCENE.planes.length && SCENE.shapes[i].shape !== "unknown") {
+      ctx.fillStyle = COLORS.pick;
+      contactPoints(i, P).forEach(function (p) {
+        const q = project(cam, p);
+        if (q) fillDot(q, 3.5);
+      });
+    }
+    const c = project(cam, P.x);
+    drawn.push(c);
+    if (!c) continue;
+    const L = 0.5 * shapeSize(i) + 0.15 * shapeSize(i);
+    for (let d = 0; d < 3; d++) {
+      const e = [0, 0, 0]; e[d] = L;
+      const q = project(cam, add3(P.x, apply(P.R, e)));
+      if (!q) continue;
+      ctx.strokeStyle = AXIS_COLORS[d]; ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.moveTo(c[0], c[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
+    }
+    ctx.fillStyle = COLORS.com;
+    fillDot(c, 3.5);
+    if (S.pick === i) {
+      ctx.strokeStyle = COLORS.pick; ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.arc(c[0], c[1], 9, 0, 2 * Math.PI); ctx.stroke();
+      ctx.fillStyle = COLORS.pick; ctx.font = "12px sans-serif";
+      ctx.fillText("#" + i, c[0] + 11, c[1] - 9);
+    }
+  }
+  S.lastDrawn = { frame: k, frame2: k2, screen: drawn };
+}
+function drawSphere(cam, it) {
+  const r = cam.F * it.r / it.c[2];
+  const lp = [it.c[0] - 0.35 * r, it.c[1] - 0.35 * r];
+  const g = ctx.createRadialGradient(lp[0], lp[1], r * 0.1, it.c[0], it.c[1], r);
+  g.addColorStop(0, it.col); g.addColorStop(1, shade(it.col, 0.45));
+  ctx.fillStyle = g;
+  ctx.beginPath(); ctx.arc(it.c[0], it.c[1], r, 0, 2 * Math.PI); ctx.fill();
+  ctx.strokeStyle = "rgba(0,0,0,0.45)"; ctx.lineWidth = 1; ctx.stroke();
+  // Three great circles of the body frame, front halves only: the spin shows.
+  for (let d = 0; d < 3; d++) {
+    ctx.strokeStyle = AXIS_COLORS[d]; ctx.globalAlpha = 0.7; ctx.lineWidth = 1.2;
+    ctx.beginPath();
+    let started = false;
+    for (let k = 0; k <= 48; k++) {
+      const a = 2 * Math.PI * k / 48;
+      const p = [0, 0, 0];
+      p[(d + 1) % 3] = it.r * Math.cos(a); p[(d + 2) % 3] = it.r * Math.sin(a);
+      const w = add3(it.P.x, apply(it.P.R, p));
+      const front = dot3(sub3(w, it.P.x), sub3(cam.eye, it.P.x)) > 0;
+      const q = project(cam, w);
+      if (!front || !q) { started = false; continue; }
+      if (!started) { ctx.moveTo(q[0], q[1]); started = true; } else ctx.lineTo(q[0], q[1]);
+    }
+    ctx.stroke(); ctx.globalAlpha = 1;
+  }
+}
