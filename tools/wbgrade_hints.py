@@ -239,27 +239,35 @@ def units(probe, got):
     flags = {str(o.get("name")): o for o in (probe.get("out") or []) if isinstance(o, dict)}
     each = {n for n, o in flags.items() if o.get("each")}
     group = {n: str(o["group"]) for n, o in flags.items() if o.get("group")}
+    asis = {}  # unit: every output of it is the skeleton's (a group is "none" only then)
     for name, (rows, cols, ev) in exp.items():
         unit = group.get(name, name)
         if name not in g or g[name][:2] != (rows, cols) or len(g[name][2]) != len(ev):
             out[(pid, unit, 0)] = "shape"
+            asis[(pid, unit, 0)] = False
             continue
         gv = g[name][2]
         sv = skel[name][2] if skel and name in skel and skel[name][:2] == (rows, cols) else None
         per = name in each and cols > 1
         for c in range(cols if per else 1):
             idx = range(c * rows, (c + 1) * rows) if per else range(len(ev))
+            same_as_skel = sv is not None and all(_close(gv[i], sv[i], rel, ab) for i in idx)
             if all(_close(gv[i], ev[i], rel, ab) for i in idx):
                 k = "ok"
             elif any(not math.isfinite(gv[i]) for i in idx):
                 k = "nan"
-            elif sv is not None and all(_close(gv[i], sv[i], rel, ab) for i in idx):
+            elif same_as_skel:
                 k = "none"
             else:
                 k = "wrong"
-            prev = out.get((pid, unit, c), "ok")  # a group: "none" only if all of it is
+            key = (pid, unit, c)
+            asis[key] = asis.get(key, True) and same_as_skel
+            prev = out.get(key, "ok")
             if prev == "ok" or (prev == "none" and k != "ok"):
-                out[(pid, unit, c)] = k
+                out[key] = k
+    for key, k in out.items():  # a group goes wrong as "nothing done" only if all of it is
+        if k == "none" and not asis.get(key, False):
+            out[key] = "wrong"
     return out
 
 
