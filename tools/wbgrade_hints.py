@@ -289,7 +289,7 @@ def part_key(name, m):
 
 
 REACH_LEVEL = "unit"   # what a part's mistakes must explain: every wrong particle, body, output
-CORE_LEVEL = "unit"   # what a submission must share with every mistake of the part: the probes
+CORE_LEVEL = "output"  # what a submission must share with every mistake of the part: outputs
 NEAR = 0.8  # another part that explains this share of the wrong units makes the naming unsure
 
 
@@ -326,12 +326,15 @@ def part_of(cat, task, outputs, exclude=()):
 
     B is what goes wrong for the submission, for each part k (the catalogued mistakes of one
     file and '# kind:', those in `exclude` left out) reach_k is what any of its mistakes gets
-    wrong, core_k the probes every one of them gets wrong. k fits when B is within reach_k,
-    unit by unit (each particle, body and output of each probe: a mistake of k explains every
-    wrong value) and B's probes include core_k (what every mistake of k gives away shows). The
-    one part that fits is named, unless another part explains NEAR of B as well; a submission
-    whose wrong probes could come from two parts, or from none, gets no part named (its
-    counterexample still says what is wrong)."""
+    wrong, core_k the outputs every one of them gets wrong. k fits when B is within reach_k,
+    unit by unit and alike (each output of each probe, or its particles apart: some mistake of
+    k gets it wrong the same way, "nothing done" or a wrong value) and B's outputs include
+    core_k (what every mistake of k gives away shows). The one part that fits is named, unless
+    another part explains NEAR of B as well; a submission whose wrong outputs could come from
+    two parts, or from none, gets no part named (its counterexample still says what is wrong).
+    The probes written as details (P.simple) are left out. The levels and NEAR were chosen on
+    the catalogue itself (docs/grading.md, "leave-one-out"), so its figures are somewhat
+    optimistic."""
     probes = task_probes(cat, task)
     B = bad_units(probes, outputs, classes=True)
     if not B:
