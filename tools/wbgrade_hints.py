@@ -400,6 +400,7 @@ class Diagnosis:
         self.failed, self.total = 0, 0   # tests of the task
         self.notes = []           # lines about other tasks this one builds on
         self.test_message = ""    # the first failed test's own message (status "tests")
+        self.handout = ""         # the task's handout section (handouts/<lab>.md#<task>)
 
     def headline(self):
         head = f"{self.task}{' ' + self.title if self.title else ''}"
@@ -424,7 +425,8 @@ class Diagnosis:
         elif self.part:
             fname, kind = self.part
             out.append(f"  The wrong probes point at the {kind} in {fname}.cpp "
-                       f"(handout §{self.task}); it is none of the known mistakes exactly.")
+                       f"({self.handout or 'handout §' + self.task}); it is none of the known "
+                       "mistakes exactly.")
         out += ["  " + l for l in self.counterexample]
         if self.right and self.wrong:
             out.append("  Right on: " + "; ".join(self.right[:MAX_LIST]) +
@@ -452,6 +454,7 @@ def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
              running anything)
     exclude  catalogued mistakes to leave out (leave-one-out)"""
     d = Diagnosis(task, title)
+    d.handout = str(((cat or {}).get("tasks") or {}).get(task, {}).get("handout") or "")
     d.total = len(tests)
     d.failed = sum(1 for t in tests if not t[1])
     if tests and not d.failed:

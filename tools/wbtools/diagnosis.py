@@ -29,7 +29,7 @@ def lab_tasks(repo, lab):
         if not name.endswith(".h"):
             continue
         with open(os.path.join(d, name), encoding="utf-8") as f:
-            head = f.read(600)
+            head = re.sub(r"\n//\s*", " ", f.read(600))  # the opening comment on one line
         m = re.search(r"TODO\((\w+)\)\s*([^:.]*)", head)
         if not m:
             continue

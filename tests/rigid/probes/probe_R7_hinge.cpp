@@ -39,6 +39,13 @@ WB_PROBE("R7", "ball-simple", "apply_hinge: a unit body at rest at the origin pi
   b.v = Vec3(0, -1, 0);
   hinge(P, b, Vec3(1, 0, 0), Vec3(1, 0, 0), 0.1, 0.2);
 }
+// The same body not turned (q = 1): what is right here and wrong above is a frame (body or
+// world) mistake, not the effective mass.
+WB_PROBE("R7", "ball-unturned", "apply_hinge: the body not turned (q = 1), spinning, pinned where it is") {
+  rigid::Body b = rbprobe::body();
+  b.q = Eigen::Quaterniond::Identity();
+  hinge(P, b, kR, pinned(b), 0.05, 0.2);
+}
 WB_PROBE("R7", "ball", "apply_hinge: a turned, spinning body pinned where it is (no drift)") {
   const rigid::Body b = rbprobe::body();
   hinge(P, b, kR, pinned(b), 0.05, 0.2);
