@@ -126,6 +126,22 @@ def probe_inputs_digest(repo, lab):
 
 # ----------------------------------------------------------------- the file
 
+# A list whose items are each a number (or "nan", "inf", "-inf") or such a list on one line.
+_ITEM = r'(?:-?[0-9.eE+-]+|"-?(?:nan|inf)"|true|false|null)'
+_FLAT = re.compile(r"\[\n((?:[ ]*(?:" + _ITEM + r"|\[[^\[\]{}\n\"]*(?:\"-?(?:nan|inf)\"[^\[\]{}\n\"]*)*\]),?\n)+)[ ]*\]")
+
+
+def dumps(data):
+    """The catalogue's text: indented, but a list of numbers (or of such lists) on one line (the
+    probe outputs are thousands of short lists)."""
+    text = json.dumps(data, indent=1, ensure_ascii=False, sort_keys=False)
+    while True:
+        flat = _FLAT.sub(lambda m: "[" + ", ".join(
+            x.strip().rstrip(",") for x in m.group(1).strip("\n").split("\n")) + "]", text)
+        if flat == text:
+            return text + "\n"
+        text = flat
+
 def probe_entry(rec, skeleton):
     e = {"probe": rec["probe"], "task": rec.get("task", ""), "title": rec.get("title", "")}
     for k in ("call", "notes", "tol", "in"):

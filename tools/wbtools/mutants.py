@@ -388,7 +388,7 @@ def write_json_atomic(path, data):
     tmp = path + f".tmp-{os.getpid()}"
     try:
         with open(tmp, "w", encoding="utf-8") as f:
-            f.write(json.dumps(data, indent=1, ensure_ascii=False, sort_keys=False) + "\n")
+            f.write(diag.dumps(data))
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
