@@ -8,7 +8,8 @@
 // first probe whose output differs is the counterexample the student reads, and the outputs
 // that go wrong point at the part of the computation the mistake is in.
 //
-//   WB_PROBE("F3", "pull", "a particle of mass 2 at distance 5 from the centre, a massless one") {
+//   WB_PROBE("F3", "pull", "a particle of mass 2 at distance 5 from the centre, a massless one")
+//   {
 //     ...
 //     P.call("add_attractor");
 //     P.in("x", x), P.in("m", m), P.in("center", c), P.in("GM", GM), P.in("f", f);
@@ -63,7 +64,7 @@ namespace wbprobe {
 
 struct Value {
   std::string name;
-  long rows = 1, cols = 1;  // a scalar is 1 x 1
+  long rows = 1, cols = 1;   // a scalar is 1 x 1
   std::vector<double> data;  // column-major
   bool integer = false;      // shown without decimals
   bool each = false;         // its columns are told apart (Probe::out_each)
@@ -215,8 +216,8 @@ inline std::string values(const std::vector<Value>& vs) {
   std::string out = "[";
   for (std::size_t k = 0; k < vs.size(); ++k) {
     const Value& v = vs[k];
-    out += (k ? ",{" : "{") + std::string("\"name\":") + quoted(v.name) +
-           ",\"shape\":[" + std::to_string(v.rows) + "," + std::to_string(v.cols) + "]";
+    out += (k ? ",{" : "{") + std::string("\"name\":") + quoted(v.name) + ",\"shape\":[" +
+           std::to_string(v.rows) + "," + std::to_string(v.cols) + "]";
     if (v.integer) out += ",\"integer\":true";
     if (v.each) out += ",\"each\":true";
     if (!v.group.empty()) out += ",\"group\":" + quoted(v.group);
@@ -228,8 +229,8 @@ inline std::string values(const std::vector<Value>& vs) {
 }
 
 inline std::string head(const Entry& e) {
-  return "{\"probe\":" + quoted(std::string(e.task) + "/" + e.id) + ",\"task\":" +
-         quoted(e.task) + ",\"title\":" + quoted(e.title);
+  return "{\"probe\":" + quoted(std::string(e.task) + "/" + e.id) +
+         ",\"task\":" + quoted(e.task) + ",\"title\":" + quoted(e.title);
 }
 
 }  // namespace detail
@@ -277,10 +278,10 @@ inline int main(int argc, char** argv) {
 
 #define WB_PROBE_CAT2(a, b) a##b
 #define WB_PROBE_CAT(a, b) WB_PROBE_CAT2(a, b)
-#define WB_PROBE_IMPL(task, id, title, n)                                                    \
-  static void WB_PROBE_CAT(wb_probe_fn_, n)(wbprobe::Probe & P);                             \
-  static const wbprobe::Register WB_PROBE_CAT(wb_probe_reg_, n)(                             \
-      task, id, title, &WB_PROBE_CAT(wb_probe_fn_, n));                                      \
+#define WB_PROBE_IMPL(task, id, title, n)                                                        \
+  static void WB_PROBE_CAT(wb_probe_fn_, n)(wbprobe::Probe & P);                                 \
+  static const wbprobe::Register WB_PROBE_CAT(wb_probe_reg_, n)(task, id, title,                 \
+                                                                &WB_PROBE_CAT(wb_probe_fn_, n)); \
   static void WB_PROBE_CAT(wb_probe_fn_, n)(wbprobe::Probe & P)
 // WB_PROBE(task, id, title) { ... uses P ... }: one probe (ids unique within the task).
 #define WB_PROBE(task, id, title) WB_PROBE_IMPL(task, id, title, __COUNTER__)

@@ -31,7 +31,8 @@ inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& w
   wb::Scratch s;
   s.resize(x.cols());
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  for (wb::Mat2X* m : {&s.a0, &s.a1, &s.a2, &s.a3, &s.x1, &s.v1, &s.xs, &s.vs}) m->setConstant(nan);
+  for (wb::Mat2X* m : {&s.a0, &s.a1, &s.a2, &s.a3, &s.x1, &s.v1, &s.xs, &s.vs})
+    m->setConstant(nan);
   P.call(name);
   P.note("dyn: a(x, v) = " + words);
   P.in("h", h), P.in("x", x), P.in("v", v);
@@ -92,36 +93,39 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
     wbprobe::step(P, &fn, name, "(0, -10)", wbprobe::constant(wbprobe::cols({{0, -10}})),        \
                   wbprobe::cols({{1, 2}}), wbprobe::cols({{0, 0}}), 0.1);                        \
   }                                                                                              \
-  WB_PROBE(task, "drift", "three particles moving with no force, h = 0.25") {                   \
+  WB_PROBE(task, "drift", "three particles moving with no force, h = 0.25") {                    \
     wbprobe::step(P, &fn, name, "0", wbprobe::no_force(),                                        \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25,                        \
-                  wbprobe::kState);                                                              \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
-  WB_PROBE(task, "kick", "three particles at rest under constant forces, h = 0.25") {           \
+  WB_PROBE(task, "kick", "three particles at rest under constant forces, h = 0.25") {            \
     const wb::Mat2X g = wbprobe::cols({{0, -10}, {2, 1}, {-3, 0.5}});                            \
     wbprobe::step(P, &fn, name, "a constant per particle: (0, -10), (2, 1), (-3, 0.5)",          \
                   wbprobe::constant(g), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),             \
                   wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}), 0.25, wbprobe::kState);               \
   }                                                                                              \
-  WB_PROBE(task, "spring", "three moving particles on springs to the origin, a = -4 x, h = 0.25") { \
-    wbprobe::step(P, &fn, name, "-4 x", wbprobe::spring(4), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}), \
+  WB_PROBE(task, "spring",                                                                       \
+           "three moving particles on springs to the origin, a = -4 x, h = 0.25") {              \
+    wbprobe::step(P, &fn, name, "-4 x", wbprobe::spring(4),                                      \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
-  WB_PROBE(task, "drag", "three moving particles under a drag, a = -3 v, h = 0.25") {           \
-    wbprobe::step(P, &fn, name, "-3 v", wbprobe::drag(3), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}), \
+  WB_PROBE(task, "drag", "three moving particles under a drag, a = -3 v, h = 0.25") {            \
+    wbprobe::step(P, &fn, name, "-3 v", wbprobe::drag(3),                                        \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
   WB_PROBE(task, "general", "three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") {     \
-    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)",                                         \
-                  wbprobe::mixed(4, 3, wb::Vec2(0, -10)),                                        \
+    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
-  WB_PROBE(task, "evaluations", "where the forces are evaluated: three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") { \
-    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)",                                         \
-                  wbprobe::mixed(4, 3, wb::Vec2(0, -10)),                                        \
+  WB_PROBE(task, "evaluations",                                                                  \
+           "where the forces are evaluated: three moving particles, a = -4 x - 3 v + (0, -10), " \
+           "h = 0.25") {                                                                         \
+    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kEvaluations); \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25,                        \
+                  wbprobe::kEvaluations);                                                        \
   }
 }  // namespace wbprobe

@@ -50,7 +50,8 @@ WB_PROBE("C1", "floor", "a ball of mass 1 sinking 0.05 into a floor at 2 m/s, e 
   run(P, Vec2(0, 0), Vec2(0, 1), 0.1, 1, 0.5, 0.01, Vec2(0, 0.05), Vec2(0, -2));
 }
 // The impact: impulse and push-out.
-WB_PROBE("C1", "impact", "mass 2 sinking 0.05 into a tilted plane, approaching fast and sliding, e = 0.6") {
+WB_PROBE("C1", "impact",
+         "mass 2 sinking 0.05 into a tilted plane, approaching fast and sliding, e = 0.6") {
   run(P, kP, kN, 0.25, 2, 0.6, 0.1, kP + 0.2 * kN + 1.5 * Vec2(-0.8, 0.6),
       -3 * kN + 1.25 * Vec2(-0.8, 0.6));
 }
@@ -71,7 +72,8 @@ WB_PROBE("C1", "deep", "the centre 0.35 below a floor (radius 0.1), approaching"
 }
 // Resting: the approach is slower than rest_speed, the sliding is not.
 // A resting contact alone (an impulse that only stops the approach, e or not).
-WB_PROBE("C1", "resting", "sinking into a floor, approaching at 0.05 m/s (rest_speed 0.1), sliding at 2 m/s") {
+WB_PROBE("C1", "resting",
+         "sinking into a floor, approaching at 0.05 m/s (rest_speed 0.1), sliding at 2 m/s") {
   run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.2), Vec2(2, -0.05));
 }
 // The approach at exactly rest_speed bounces.
@@ -80,7 +82,9 @@ WB_PROBE("C1", "threshold", "approaching a floor at exactly rest_speed = 0.25: i
   run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.5, 0.25, Vec2(0.5, 0.2), Vec2(0, -0.25));
 }
 // When there is a contact: clear, just touching, receding, the centre below the plane.
-WB_PROBE("C1", "contact", "four situations: 0.3 above, just touching, sinking in but receding, the centre 0.35 below (radius 0.1)") {
+WB_PROBE("C1", "contact",
+         "four situations: 0.3 above, just touching, sinking in but receding, the centre 0.35 "
+         "below (radius 0.1)") {
   const Vec2 o(0, 0), up(0, 1);
   cases(P, {{o, up, 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.55), Vec2(0.5, -2)},
             {o, up, 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.25), Vec2(0.5, -2)},
@@ -88,7 +92,9 @@ WB_PROBE("C1", "contact", "four situations: 0.3 above, just touching, sinking in
             {o, up, 0.1, 2, 0.6, 0.1, Vec2(0.5, -0.35), Vec2(0.5, -2)}});
 }
 // When a contact rests: approaching slower than rest_speed (sliding fast), at rest_speed, faster.
-WB_PROBE("C1", "rest", "three approaches to a floor (rest_speed 0.25): at 0.05 m/s sliding at 2 m/s, at exactly 0.25, at 0.5") {
+WB_PROBE("C1", "rest",
+         "three approaches to a floor (rest_speed 0.25): at 0.05 m/s sliding at 2 m/s, at "
+         "exactly 0.25, at 0.5") {
   const Vec2 o(0, 0), up(0, 1);
   cases(P, {{o, up, 0.25, 2, 0.6, 0.25, Vec2(0.5, 0.2), Vec2(2, -0.05)},
             {o, up, 0.25, 2, 0.5, 0.25, Vec2(0.5, 0.2), Vec2(0, -0.25)},

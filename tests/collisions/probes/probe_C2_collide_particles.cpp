@@ -48,7 +48,8 @@ WB_PROBE("C2", "head-on", "two equal discs (radius 0.5) meeting head-on at 1 m/s
   run(P, 1, 0.5, 1, 0.5, 1, Vec2(-0.45, 0), Vec2(1, 0), Vec2(0.45, 0), Vec2(-1, 0));
 }
 // The impact: masses 1.5 and 0.5, radii 0.45, 0.1 of overlap, oblique.
-WB_PROBE("C2", "impact", "discs of masses 1.5 and 0.5 overlapping 0.1 in an oblique impact, e = 0.6") {
+WB_PROBE("C2", "impact",
+         "discs of masses 1.5 and 0.5 overlapping 0.1 in an oblique impact, e = 0.6") {
   run(P, 1.5, 0.45, 0.5, 0.45, 0.6, Vec2(0.48, 0.64), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1));
 }
 // The pair closes although particle 1 moves away from particle 2.
@@ -68,12 +69,15 @@ WB_PROBE("C2", "receding", "overlapping 0.1 but moving apart: separated, no impu
 }
 // When there is a contact and an impulse: closing while one particle moves away, radii that
 // differ, receding, apart.
-WB_PROBE("C2", "contact", "five situations: both moving the same way but closing, radii 0.2 and 0.6 touching, receding, apart, radii 0.6 and 0.3 overlapping") {
-  cases(P, {{1.5, 0.3, 0.5, 0.6, 0.6, Vec2(0.48, 0.64), Vec2(0.3, 0.4), Vec2(0, 0), Vec2(1.2, 1.6)},
-            {1.5, 0.6, 0.5, 0.3, 0.6, Vec2(0.48, 0.64), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1)},
-            {1.5, 0.2, 0.5, 0.6, 0.6, Vec2(0.42, 0.56), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1)},
-            {1.5, 0.3, 0.5, 0.6, 0.6, Vec2(0.48, 0.64), Vec2(0.3, 0.4), Vec2(0, 0), Vec2(-0.5, 0.2)},
-            {1.5, 0.3, 0.5, 0.6, 0.6, Vec2(0.72, 0.96), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1)}});
+WB_PROBE("C2", "contact",
+         "five situations: both moving the same way but closing, radii 0.2 and 0.6 touching, "
+         "receding, apart, radii 0.6 and 0.3 overlapping") {
+  cases(P,
+        {{1.5, 0.3, 0.5, 0.6, 0.6, Vec2(0.48, 0.64), Vec2(0.3, 0.4), Vec2(0, 0), Vec2(1.2, 1.6)},
+         {1.5, 0.6, 0.5, 0.3, 0.6, Vec2(0.48, 0.64), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1)},
+         {1.5, 0.2, 0.5, 0.6, 0.6, Vec2(0.42, 0.56), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1)},
+         {1.5, 0.3, 0.5, 0.6, 0.6, Vec2(0.48, 0.64), Vec2(0.3, 0.4), Vec2(0, 0), Vec2(-0.5, 0.2)},
+         {1.5, 0.3, 0.5, 0.6, 0.6, Vec2(0.72, 0.96), Vec2(-1, -0.5), Vec2(0, 0), Vec2(0.5, 1)}});
 }
 // Coincident centres: the fallback normal (0, 1).
 WB_PROBE("C2", "coincident", "both centres at one point, approaching along y") {

@@ -32,14 +32,16 @@ WB_PROBE("C3", "two", "two overlapping discs of radius 0.5") {
   run(P, cols({{0, 0}, {0.8, 0}}), vec({0.5, 0.5}), {});
 }
 // Pairs in neighbouring cells, along the sides and across the corners (both diagonals).
-WB_PROBE("C3", "cluster", "nine discs of radius 0.3 on a 0.55 lattice: every neighbour, diagonals included") {
+WB_PROBE("C3", "cluster",
+         "nine discs of radius 0.3 on a 0.55 lattice: every neighbour, diagonals included") {
   wb::Mat2X x(2, 9);
   for (int i = 0; i < 9; ++i) x.col(i) = wb::Vec2(0.55 * (i % 3), 0.55 * (i / 3));
   run(P, x, wb::VecX::Constant(9, 0.3), {});
 }
-WB_PROBE("C3", "diagonal", "discs overlapping across both diagonals of a 2 x 2 block, far apart otherwise") {
-  run(P, cols({{0, 0}, {0.7, 0.7}, {2.6, 0.1}, {1.9, 0.8}, {5, 5}}), vec({0.5, 0.5, 0.5, 0.5, 0.5}),
-      {});
+WB_PROBE("C3", "diagonal",
+         "discs overlapping across both diagonals of a 2 x 2 block, far apart otherwise") {
+  run(P, cols({{0, 0}, {0.7, 0.7}, {2.6, 0.1}, {1.9, 0.8}, {5, 5}}),
+      vec({0.5, 0.5, 0.5, 0.5, 0.5}), {});
 }
 // Touching exactly (|dx| = r_i + r_j) counts.
 WB_PROBE("C3", "touching", "discs of radius 0.25 exactly 0.5 apart along x and along y") {
@@ -51,7 +53,8 @@ WB_PROBE("C3", "large", "one disc of radius 1.5 among discs of radius 0.1") {
       vec({1.5, 0.1, 0.1, 0.1, 0.1, 0.1}), {});
 }
 // A list that holds old pairs.
-WB_PROBE("C3", "stale", "two overlapping discs, the list coming in with old pairs (0, 5) and (2, 3)") {
+WB_PROBE("C3", "stale",
+         "two overlapping discs, the list coming in with old pairs (0, 5) and (2, 3)") {
   run(P, cols({{0, 0}, {0.8, 0}, {3, 3}}), vec({0.5, 0.5, 0.5}), {{0, 5}, {2, 3}});
 }
 

@@ -39,10 +39,16 @@ WB_PROBE("C4", "edge", "mass 2 sliding at 0.5 m/s on a floor, mu jn = 1 exactly:
   run(P, Vec2(0, 1), 2, 0.5, 2, Vec2(0.5, 0.25));
 }
 // The cone, in one output: inside it, outside it, on its edge (each column: the impulse and v).
-WB_PROBE("C4", "cone", "three contacts on a tilted plane: m |v_t| inside, outside and on the edge of the cone mu jn") {
+WB_PROBE("C4", "cone",
+         "three contacts on a tilted plane: m |v_t| inside, outside and on the edge of the cone "
+         "mu jn") {
   P.call("friction_impulse");
-  struct Case { double jn, mu, m; Vec2 v; };
-  const Case cs[] = {{2, 0.5, 0.5, 1.5 * kT + 0.3 * kN}, {1, 0.5, 4, 0.2 * kT + 0.3 * kN},
+  struct Case {
+    double jn, mu, m;
+    Vec2 v;
+  };
+  const Case cs[] = {{2, 0.5, 0.5, 1.5 * kT + 0.3 * kN},
+                     {1, 0.5, 4, 0.2 * kT + 0.3 * kN},
                      {2, 0.5, 2, 0.5 * kT + 0.25 * kN}};
   Eigen::MatrixXd in(5, 3), out(3, 3);
   for (int k = 0; k < 3; ++k) {

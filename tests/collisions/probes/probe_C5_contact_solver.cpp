@@ -20,7 +20,8 @@ void contact_in(wbprobe::Probe& P, const Contact& c) {
 void contact_out(wbprobe::Probe& P, const Contact& c) {
   P.out("c.Pn", c.Pn), P.out("c.Pt", c.Pt), P.out("c.mass_n", c.mass_n), P.out("c.bias", c.bias);
 }
-Contact contact(int a, int b, Vec2 n, double mu, double Pn, double Pt, double mass_n, double bias) {
+Contact contact(int a, int b, Vec2 n, double mu, double Pn, double Pt, double mass_n,
+                double bias) {
   Contact c;
   c.a = a, c.b = b, c.n = n, c.mu = mu, c.Pn = Pn, c.Pt = Pt, c.mass_n = mass_n, c.bias = bias;
   return c;
@@ -52,34 +53,43 @@ const wb::VecX kW = vec({2.0 / 3, 2.0});  // masses 1.5 and 0.5
 const wb::Mat2X kV = cols({{-0.9, -1.2}, {0.3, 0.4}});
 }  // namespace
 
-WB_PROBE("C5", "prepare-floor", "prepare_contact: a particle of mass 1 hitting a floor at 2 m/s, e = 0.5") {
+WB_PROBE("C5", "prepare-floor",
+         "prepare_contact: a particle of mass 1 hitting a floor at 2 m/s, e = 0.5") {
   P.simple();
   prepare(P, vec({1}), cols({{0, -2}}), 0.5, 0.1, contact(0, -1, Vec2(0, 1), 0, 0, 0, 0, 0));
 }
 // The effective mass and the restitution target.
-WB_PROBE("C5", "prepare-pair", "prepare_contact: a pair of masses 1.5 and 0.5 closing at 1.5 m/s, e = 0.6, threshold 1") {
+WB_PROBE(
+    "C5", "prepare-pair",
+    "prepare_contact: a pair of masses 1.5 and 0.5 closing at 1.5 m/s, e = 0.6, threshold 1") {
   prepare(P, kW, kV, 0.6, 1.0, contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0));
 }
-WB_PROBE("C5", "prepare-plane", "prepare_contact: particle 1 (mass 0.5) on a plane, closing at 1.5 m/s, e = 0.6") {
+WB_PROBE("C5", "prepare-plane",
+         "prepare_contact: particle 1 (mass 0.5) on a plane, closing at 1.5 m/s, e = 0.6") {
   prepare(P, kW, cols({{0, 0}, {-0.9, -1.2}}), 0.6, 1.0, contact(1, -1, kN, 0.4, 0.7, 0.1, 0, 0));
 }
-WB_PROBE("C5", "prepare-slow", "prepare_contact: the pair closing at 1.5 m/s, below the threshold 2: no bounce") {
+WB_PROBE("C5", "prepare-slow",
+         "prepare_contact: the pair closing at 1.5 m/s, below the threshold 2: no bounce") {
   prepare(P, kW, kV, 0.6, 2.0, contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0));
 }
 // Warm starting: the stored totals applied again.
-WB_PROBE("C5", "warm-start", "warm_start_contact: the pair with stored totals Pn = 0.7, Pt = 0.1") {
+WB_PROBE("C5", "warm-start",
+         "warm_start_contact: the pair with stored totals Pn = 0.7, Pt = 0.1") {
   warm(P, kW, contact(0, 1, kN, 0.4, 0.7, 0.1, 0.375, 0.9), kV);
 }
 // One iteration from a closing contact with nothing stored.
-WB_PROBE("C5", "solve-closing", "solve_contact: the pair closing at 1.5 m/s, nothing stored, mu = 0.4") {
+WB_PROBE("C5", "solve-closing",
+         "solve_contact: the pair closing at 1.5 m/s, nothing stored, mu = 0.4") {
   solve(P, kW, contact(0, 1, kN, 0.4, 0, 0, 0.375, 0.9), kV);
 }
 // Stored totals larger than needed: the total is partly taken back, and stays >= 0.
-WB_PROBE("C5", "solve-take-back", "solve_contact: the pair separating at 0.5 m/s with Pn = 0.3 stored") {
+WB_PROBE("C5", "solve-take-back",
+         "solve_contact: the pair separating at 0.5 m/s with Pn = 0.3 stored") {
   solve(P, kW, contact(0, 1, kN, 0, 0.3, 0, 0.375, 0), cols({{0.2, 0.2}, {-0.1, -0.2}}));
 }
 // Friction on stored totals: the bound is mu times the total, on the total.
-WB_PROBE("C5", "solve-friction", "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = 0.15 stored, mu = 0.4") {
+WB_PROBE("C5", "solve-friction",
+         "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = 0.15 stored, mu = 0.4") {
   solve(P, kW, contact(0, 1, kN, 0.4, 0.5, 0.15, 0.375, 0), cols({{2.0, -1.2}, {0.3, 0.4}}));
 }
 

@@ -51,7 +51,9 @@ WB_PROBE("F2", "four", "four bodies of different masses, no softening") {
 }
 // The pairs: three equal bodies equally spaced on a line. The middle one feels nothing from a
 // pair force of any form, as long as every pair is visited once and acts on both bodies.
-WB_PROBE("F2", "symmetric", "three bodies of mass 2 at (-1.5, 0.5), (0.5, 1), (2.5, 1.5): the middle one feels no force") {
+WB_PROBE("F2", "symmetric",
+         "three bodies of mass 2 at (-1.5, 0.5), (0.5, 1), (2.5, 1.5): the middle one feels no "
+         "force") {
   run(P, cols({{-1.5, 0.5}, {0.5, 1}, {2.5, 1.5}}), vec({2, 2, 2}), 0.8, 0.0,
       cols({{0, 0}, {0, 0}, {0, 0}}), true);
 }

@@ -21,7 +21,8 @@ void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& m, const wb::Vec
 }
 }  // namespace
 
-WB_PROBE("F3", "unit", "one particle of mass 1 at distance 1 on the x axis, centre at the origin") {
+WB_PROBE("F3", "unit",
+         "one particle of mass 1 at distance 1 on the x axis, centre at the origin") {
   P.simple();
   run(P, cols({{1, 0}}), vec({1}), wb::Vec2(0, 0), 1.0, cols({{0, 0}}));
 }
@@ -30,7 +31,8 @@ WB_PROBE("F3", "distance", "one particle of mass 1 at distance 2, centre at the 
   run(P, cols({{0, 2}}), vec({1}), wb::Vec2(0, 0), 1.0, cols({{0, 0}}));
 }
 // The pull formula.
-WB_PROBE("F3", "pull", "a particle of mass 2 at distance 5 from the centre (1, -3), a massless one") {
+WB_PROBE("F3", "pull",
+         "a particle of mass 2 at distance 5 from the centre (1, -3), a massless one") {
   run(P, cols({{4, 1}, {0, 3}}), vec({2, 0}), wb::Vec2(1, -3), 1.5, cols({{0, 0}, {0, 0}}));
 }
 // A particle on the centre.

@@ -81,7 +81,8 @@ WB_PROBE("F6", "no-terms", "no terms at all, f holding old forces: f must come o
   P.out("f", f);
 }
 // Clearing f: old forces in an f of the wrong size.
-WB_PROBE("F6", "two-terms", "two terms (masses, positions and velocities), f holding old forces for two particles") {
+WB_PROBE("F6", "two-terms",
+         "two terms (masses, positions and velocities), f holding old forces for two particles") {
   run(P, true, cols({{0.5, -1}, {2, 0.25}, {-1, 1}}), cols({{1, 0}, {0, -2}, {0.5, 0.5}}),
       vec({1, 2, 0.5}), cols({{5, 5}, {-3, 1}}));
 }

@@ -50,7 +50,9 @@ WB_PROBE("F7", "separation-two", "separation alone: two boids 0.5 apart, every r
   run(P, cols({{0, 0}, {0.5, 0}}), zeros(2), vec({1, 1}), rules(1, 0, 0, 1), zeros(2));
 }
 // One rule at a time.
-WB_PROBE("F7", "separation", "separation alone, radius 2 (cohesion's 6, its weight 0): two boids and their midpoint (last); farther, two boids at one point and a third 0.5 from them") {
+WB_PROBE("F7", "separation",
+         "separation alone, radius 2 (cohesion's 6, its weight 0): two boids and their midpoint "
+         "(last); farther, two boids at one point and a third 0.5 from them") {
   BoidsParams p = rules(0.7, 0, 0, 2);
   p.cohesion.radius = 6;
   run(P, cols({{0.4, 0.7}, {1.6, 1.3}, {5, 5}, {5, 5}, {5.5, 5}, {1, 1}}), zeros(6),
@@ -64,14 +66,18 @@ WB_PROBE("F7", "cohesion", "cohesion alone: two boids and their midpoint") {
   run(P, kTrio, zeros(3), vec({1, 1, 1}), rules(0, 0, 0.6, 2), zeros(3));
 }
 // Who counts in a mean: three boids near each other, one alone (last).
-WB_PROBE("F7", "means", "alignment (radius 1.5) and cohesion (radius 2.5): two neighbours of the first boid, one boid far from all") {
+WB_PROBE("F7", "means",
+         "alignment (radius 1.5) and cohesion (radius 2.5): two neighbours of the first boid, "
+         "one boid far from all") {
   BoidsParams p = rules(0, 0.9, 0.6, 1.5);
   p.cohesion.radius = 2.5;
   run(P, cols({{0, 0}, {1, 0}, {0, 1.2}, {5, 5}}), cols({{1, 0}, {0, 1}, {-1, 0.5}, {0.3, 0.3}}),
       vec({1, 1, 1, 1}), p, zeros(4));
 }
 // Each rule its own radius; a boid far from all last (no neighbour: nothing).
-WB_PROBE("F7", "radii", "every rule on, radii 0.9, 1.6 and 2.6: boids 0.8 and 2.06 from the first, one far from all") {
+WB_PROBE("F7", "radii",
+         "every rule on, radii 0.9, 1.6 and 2.6: boids 0.8 and 2.06 from the first, one far from "
+         "all") {
   BoidsParams p = rules(0.7, 0.9, 0.6, 0.9);
   p.alignment.radius = 1.6, p.cohesion.radius = 2.6;
   run(P, cols({{0, 0}, {0.8, 0}, {2, 0.5}, {8, -8}}), cols({{0, 0}, {1, 0}, {0, 1}, {0.5, 0.5}}),
@@ -103,10 +109,11 @@ WB_PROBE("F7", "flock", "four boids, every rule, f holding forces, and a boid fa
       cols({{1, 0}, {0, 1}, {-1, 0}, {0.5, 0.5}, {0, 0}}));
 }
 // Every boid: all within every radius, so that only the boid a loop misses goes wrong alone.
-WB_PROBE("F7", "every", "four boids all within every radius (3), every rule, masses 1, 2, 0.5 and 1.5") {
+WB_PROBE("F7", "every",
+         "four boids all within every radius (3), every rule, masses 1, 2, 0.5 and 1.5") {
   run(P, cols({{0, 0}, {0.7, 0.2}, {1.5, -0.5}, {-0.9, 1.1}}),
-      cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 2, 0.5, 1.5}), rules(0.5, 0.8, 0.3, 3),
-      zeros(4), true);
+      cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 2, 0.5, 1.5}),
+      rules(0.5, 0.8, 0.3, 3), zeros(4), true);
 }
 
 }  // namespace probe_F7_boids

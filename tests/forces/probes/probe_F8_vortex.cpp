@@ -35,11 +35,13 @@ void drag(wbprobe::Probe& P, const wb::Mat2X& x, const wb::Mat2X& v, const Vorte
 const VortexParams kVortex = vortex(Vec2(1, -1), 0.8, 2.5, 1.5);
 }  // namespace
 
-WB_PROBE("F8", "flow-core", "vortex_flow inside the core: r = 0.5, core 1, omega 1, centre at the origin") {
+WB_PROBE("F8", "flow-core",
+         "vortex_flow inside the core: r = 0.5, core 1, omega 1, centre at the origin") {
   P.simple();
   flow(P, Vec2(0.5, 0), vortex(Vec2(0, 0), 1, 1, 1));
 }
-WB_PROBE("F8", "flow-outside", "vortex_flow outside the core: r = 2, core 1, omega 1, centre at the origin") {
+WB_PROBE("F8", "flow-outside",
+         "vortex_flow outside the core: r = 2, core 1, omega 1, centre at the origin") {
   P.simple();
   flow(P, Vec2(0, 2), vortex(Vec2(0, 0), 1, 1, 1));
 }

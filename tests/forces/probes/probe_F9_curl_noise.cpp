@@ -15,7 +15,9 @@ namespace {
 using wb::Vec2;
 CurlNoiseParams field(std::vector<Disc> obstacles, double ramp, double b) {
   CurlNoiseParams p;
-  p.psi = [](const Vec2& x) { return x.x() * x.y() + 0.5 * x.y() * x.y() + 0.25 * x.x() * x.x(); };
+  p.psi = [](const Vec2& x) {
+    return x.x() * x.y() + 0.5 * x.y() * x.y() + 0.25 * x.x() * x.x();
+  };
   p.b = b, p.h = 0.1, p.obstacles = std::move(obstacles), p.ramp = ramp;
   return p;
 }
@@ -49,11 +51,13 @@ WB_PROBE("F9", "potential-free", "curl_noise_potential with no obstacle: psi its
   potential(P, Vec2(1, 2), field({}, 1, 1));
 }
 // The ramp of the potential.
-WB_PROBE("F9", "potential-near", "curl_noise_potential 1.3 from a disc's edge, ramp distance 2.5") {
+WB_PROBE("F9", "potential-near",
+         "curl_noise_potential 1.3 from a disc's edge, ramp distance 2.5") {
   P.simple();
   potential(P, Vec2(3, -0.5), field({kDisc}, 2.5, 1));
 }
-WB_PROBE("F9", "potential-far", "curl_noise_potential 2.8 from a disc's edge, beyond the ramp 2.5") {
+WB_PROBE("F9", "potential-far",
+         "curl_noise_potential 2.8 from a disc's edge, beyond the ramp 2.5") {
   P.simple();
   potential(P, Vec2(4.5, -0.5), field({kDisc}, 2.5, 1));
 }
@@ -63,7 +67,9 @@ WB_PROBE("F9", "potential-two", "curl_noise_potential between two discs, nearer 
 }
 // The obstacles, in one output: the potential within the ramp of a disc, beyond it, between two
 // discs, and the flow within the ramp.
-WB_PROBE("F9", "obstacles", "curl_noise_potential 1.3 and 2.8 from a disc's edge (ramp 2.5) and between two discs; curl_noise_flow 1.3 from the edge") {
+WB_PROBE("F9", "obstacles",
+         "curl_noise_potential 1.3 and 2.8 from a disc's edge (ramp 2.5) and between two discs; "
+         "curl_noise_flow 1.3 from the edge") {
   P.call("curl_noise_potential, curl_noise_flow");
   const CurlNoiseParams one = field({kDisc}, 2.5, 1);
   const CurlNoiseParams two = field({kDisc, Disc{Vec2(4, 0.5), 0.5}}, 2.5, 1);
@@ -85,7 +91,9 @@ WB_PROBE("F9", "flow-near", "curl_noise_flow 1.3 from a disc's edge, ramp distan
   flow(P, Vec2(3, -0.5), field({kDisc}, 2.5, 1));
 }
 // The drag: the first and last particles move with the flow.
-WB_PROBE("F9", "drag", "add_curl_noise, no obstacle, b = 2: a particle at rest between two that move with the flow") {
+WB_PROBE("F9", "drag",
+         "add_curl_noise, no obstacle, b = 2: a particle at rest between two that move with the "
+         "flow") {
   drag(P, cols({{1, 2}, {-1, 0.5}, {2, -1}}), cols({{3, -2.5}, {0, 0}, {1, 0}}), field({}, 1, 2),
        cols({{0, 0}, {0, 0}, {0, 0}}));
 }

@@ -19,7 +19,8 @@ void run(wbprobe::Probe& P, double m, double k, double b, const Vec2& c, const V
 }
 }  // namespace
 
-WB_PROBE("I1", "unit", "m = 1, k = 1, no drag, anchor at the origin, from x = (1, 0) at rest, h = 1") {
+WB_PROBE("I1", "unit",
+         "m = 1, k = 1, no drag, anchor at the origin, from x = (1, 0) at rest, h = 1") {
   P.simple();
   run(P, 1, 1, 0, Vec2(0, 0), Vec2(0, 0), 1, Vec2(1, 0), Vec2(0, 0));
 }

@@ -10,8 +10,8 @@ namespace probe_I3_assemble_system {
 
 namespace {
 using improbe::Mat2X;
-using improbe::Vec2;
 using improbe::spring;
+using improbe::Vec2;
 
 void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
          const Mat2X& xl, const Mat2X& vl, const Mat2X& f_ext, double h, bool definite) {
@@ -37,7 +37,8 @@ const Mat2X kX = wbprobe::cols({{0, 0}, {3, 4}});
 const Mat2X kV = wbprobe::cols({{0.5, -1}, {-0.5, 0.25}});
 }  // namespace
 
-WB_PROBE("I3", "one-anchored", "one particle of mass 1 on a spring to an anchor, at rest, h = 0.1") {
+WB_PROBE("I3", "one-anchored",
+         "one particle of mass 1 on a spring to an anchor, at rest, h = 0.1") {
   P.simple();
   SpringNetwork net;
   net.m = Eigen::VectorXd::Constant(1, 1.0);
@@ -46,7 +47,8 @@ WB_PROBE("I3", "one-anchored", "one particle of mass 1 on a spring to an anchor,
   run(P, net, x, v, x, v, wbprobe::cols({{0, 0}}), 0.1, true);
 }
 // The matrix and b at a Newton iterate (x_l = x0 + h v_l).
-WB_PROBE("I3", "iterate", "two free particles on a stretched spring, drag 0.5, at a Newton iterate") {
+WB_PROBE("I3", "iterate",
+         "two free particles on a stretched spring, drag 0.5, at a Newton iterate") {
   const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
   run(P, pair(2), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, -1.5}, {0.5, 0}}), 0.1, true);
 }
@@ -55,16 +57,19 @@ WB_PROBE("I3", "start", "the same pair linearised at the start (x_l = x0, v_l = 
   run(P, pair(2), kX, kV, kX, kV, wbprobe::cols({{0, -1.5}, {0.5, 0}}), 0.1, true);
 }
 // A compressed spring: the clamp (definite) matters.
-WB_PROBE("I3", "compressed-exact", "the pair compressed to half its rest length, definite = false") {
+WB_PROBE("I3", "compressed-exact",
+         "the pair compressed to half its rest length, definite = false") {
   const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
   run(P, pair(10), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, 0}, {0, 0}}), 0.1, false);
 }
-WB_PROBE("I3", "compressed-clamped", "the pair compressed to half its rest length, definite = true") {
+WB_PROBE("I3", "compressed-clamped",
+         "the pair compressed to half its rest length, definite = true") {
   const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
   run(P, pair(10), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, 0}, {0, 0}}), 0.1, true);
 }
 // A pinned particle between two free ones.
-WB_PROBE("I3", "pinned", "three particles in a chain, the middle one pinned, at a Newton iterate") {
+WB_PROBE("I3", "pinned",
+         "three particles in a chain, the middle one pinned, at a Newton iterate") {
   SpringNetwork net;
   net.m = Eigen::Vector3d(1.5, 2, 0.5);
   net.drag = 0.5;

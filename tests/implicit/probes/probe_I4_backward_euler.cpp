@@ -10,8 +10,8 @@ namespace probe_I4_backward_euler {
 
 namespace {
 using improbe::Mat2X;
-using improbe::Vec2;
 using improbe::spring;
+using improbe::Vec2;
 
 NewtonOptions options() {
   NewtonOptions o;
@@ -37,7 +37,8 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
 }  // namespace
 
 // A linear spring: the first solve is exact, so only the updates around Newton's iteration show.
-WB_PROBE("I4", "linear", "one particle on a zero-rest-length spring to the origin, moving, h = 0.1") {
+WB_PROBE("I4", "linear",
+         "one particle on a zero-rest-length spring to the origin, moving, h = 0.1") {
   SpringNetwork net;
   net.m = Eigen::VectorXd::Constant(1, 2.0);
   net.springs = {spring(0, -1, 50, 0)};
@@ -74,7 +75,9 @@ WB_PROBE("I4", "capped", "the same network, at most 2 solves") {
 }
 // Newton's iteration, in one output: the same network capped at 2 solves, then with
 // one_iteration.
-WB_PROBE("I4", "iteration", "the network capped at 2 solves, then with one_iteration: states and reports in one output") {
+WB_PROBE(
+    "I4", "iteration",
+    "the network capped at 2 solves, then with one_iteration: states and reports in one output") {
   SpringNetwork net;
   Mat2X x, v;
   improbe::small_network(net, x, v);
@@ -97,7 +100,8 @@ WB_PROBE("I4", "iteration", "the network capped at 2 solves, then with one_itera
         improbe::report(r2, true));
 }
 // The scale, one term at a time.
-WB_PROBE("I4", "gliding", "two particles gliding with their spring at rest length, no force: scale |M v|") {
+WB_PROBE("I4", "gliding",
+         "two particles gliding with their spring at rest length, no force: scale |M v|") {
   P.simple();
   SpringNetwork net;
   net.m = Eigen::Vector2d(1.5, 0.5);
@@ -105,7 +109,8 @@ WB_PROBE("I4", "gliding", "two particles gliding with their spring at rest lengt
   run(P, net, Mat2X::Zero(2, 2), 0.1, options(), wbprobe::cols({{0, 0}, {3, 4}}),
       wbprobe::cols({{0.5, -1}, {0.5, -1}}), false);
 }
-WB_PROBE("I4", "released", "two particles released from rest on a stretched spring: scale |b_0|") {
+WB_PROBE("I4", "released",
+         "two particles released from rest on a stretched spring: scale |b_0|") {
   P.simple();
   SpringNetwork net;
   net.m = Eigen::Vector2d(1.5, 0.5);
@@ -129,8 +134,8 @@ WB_PROBE("I4", "pinned", "a chain of three, the middle one pinned and arriving w
   net.pinned = {0, 1, 0};
   net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
   run(P, net, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1, options(),
-      wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}), wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}),
-      false);
+      wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}),
+      wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}), false);
 }
 // A failed solve: with the exact block (definite = false) of a spring compressed to half its
 // rest length across x, and m = h^2 k, A has an exact zero pivot.
@@ -142,8 +147,8 @@ WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, 
   NewtonOptions o = options();
   o.definite = false;
   run(P, net, wbprobe::cols({{0, 0}, {0, 0}, {0, -1}}), 1.0, o,
-      wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}), wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}),
-      true, true);
+      wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}),
+      wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}), true, true);
 }
 
 }  // namespace probe_I4_backward_euler

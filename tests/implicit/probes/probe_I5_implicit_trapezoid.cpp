@@ -9,8 +9,8 @@ namespace probe_I5_implicit_trapezoid {
 
 namespace {
 using improbe::Mat2X;
-using improbe::Vec2;
 using improbe::spring;
+using improbe::Vec2;
 
 void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double h, Mat2X x,
          Mat2X v) {
@@ -28,7 +28,8 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
 }  // namespace
 
 // The half steps alone: no external force, nothing pinned.
-WB_PROBE("I5", "linear", "one particle on a zero-rest-length spring to the origin, moving, h = 0.1") {
+WB_PROBE("I5", "linear",
+         "one particle on a zero-rest-length spring to the origin, moving, h = 0.1") {
   SpringNetwork net;
   net.m = Eigen::VectorXd::Constant(1, 2.0);
   net.springs = {spring(0, -1, 50, 0)};
@@ -51,10 +52,13 @@ WB_PROBE("I5", "pinned", "a chain of three, the middle one pinned and arriving w
   net.pinned = {0, 1, 0};
   net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
   run(P, net, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1,
-      wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}), wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}));
+      wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}),
+      wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}));
 }
 // The explicit half: external forces, and a pinned particle that arrives moving, in one group.
-WB_PROBE("I5", "explicit-half", "two free particles under external forces only, then a chain of three whose middle one is pinned and arriving with a velocity") {
+WB_PROBE("I5", "explicit-half",
+         "two free particles under external forces only, then a chain of three whose middle one "
+         "is pinned and arriving with a velocity") {
   P.call("implicit_trapezoid_step (twice)");
   NewtonOptions o;
   o.tol = 1e-9;
@@ -68,7 +72,8 @@ WB_PROBE("I5", "explicit-half", "two free particles under external forces only, 
   chain.drag = 0.5;
   chain.pinned = {0, 1, 0};
   chain.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
-  Mat2X x2 = wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}), v2 = wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}});
+  Mat2X x2 = wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}),
+        v2 = wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}});
   const Mat2X f2 = wbprobe::cols({{0, -1}, {0, -1}, {0, -1}});
   improbe::network_in(P, free);
   P.in("f_ext", f1), P.in("x", x1), P.in("v", v1);
@@ -80,10 +85,12 @@ WB_PROBE("I5", "explicit-half", "two free particles under external forces only, 
   P.out("free: x", x1), P.out("free: v", v1);
   P.out("free: report (iterations, converged, solver_failed, scale)", improbe::report(r1, false));
   P.out("chain: x", x2), P.out("chain: v", v2);
-  P.out("chain: report (iterations, converged, solver_failed, scale)", improbe::report(r2, false));
+  P.out("chain: report (iterations, converged, solver_failed, scale)",
+        improbe::report(r2, false));
 }
 // The half steps on a nonlinear network, one particle of it pinned and moving.
-WB_PROBE("I5", "network", "a small nonlinear network with drag and gravity, particle 1 pinned, h = 0.05") {
+WB_PROBE("I5", "network",
+         "a small nonlinear network with drag and gravity, particle 1 pinned, h = 0.05") {
   SpringNetwork net;
   Mat2X x, v;
   improbe::small_network(net, x, v);

@@ -1,7 +1,7 @@
 // Diagnosis probes of R2 (tests/common/wb_probe.h): the world inertia and its inverse of a body
 // turned away from the world frame, the parallel axis theorem along a generic offset.
-#include "world_inertia.h"
 #include "rigid_probes.h"
+#include "world_inertia.h"
 
 // The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
 // namespace of its own.
@@ -22,7 +22,8 @@ void world(wbprobe::Probe& P, const Mat3& R, const Mat3& I) {
 
 WB_PROBE("R2", "quarter-turn", "a quarter turn about z, I_body = diag(1, 2, 3)") {
   P.simple();
-  world(P, rbprobe::turn(1.5707963267948966, Vec3(0, 0, 1)).toRotationMatrix(), Vec3(1, 2, 3).asDiagonal());
+  world(P, rbprobe::turn(1.5707963267948966, Vec3(0, 0, 1)).toRotationMatrix(),
+        Vec3(1, 2, 3).asDiagonal());
 }
 WB_PROBE("R2", "turned", "a body turned 0.7 rad about (1, 2, 2), I_body = diag(0.5, 1.25, 2)") {
   world(P, rbprobe::turn(0.7, Vec3(1, 2, 2)).toRotationMatrix(), Vec3(0.5, 1.25, 2).asDiagonal());

@@ -22,7 +22,8 @@ WB_PROBE("R3", "push", "a body at rest at the origin pushed along x at the point
   rigid::Body b;
   force(P, b, Vec3(1, 0, 0), Vec3(0, 1, 0));
 }
-WB_PROBE("R3", "centre", "a force through the centre of a moving body holding a force and torque") {
+WB_PROBE("R3", "centre",
+         "a force through the centre of a moving body holding a force and torque") {
   const rigid::Body b = rbprobe::body();
   force(P, b, Vec3(1.5, -0.5, 2), b.x);
 }

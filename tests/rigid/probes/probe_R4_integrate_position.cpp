@@ -56,13 +56,15 @@ WB_PROBE("R4", "unnormalised", "a turned body whose q has drifted to |q| = 1.01,
 
 // The orientation update: a turned body spinning about a tilted axis whose q has drifted to
 // |q| = 1.01.
-WB_PROBE("R4", "orientation", "a turned body spinning at 1.4 rad/s about a tilted axis, |q| = 1.01, h = 0.1") {
+WB_PROBE("R4", "orientation",
+         "a turned body spinning at 1.4 rad/s about a tilted axis, |q| = 1.01, h = 0.1") {
   rigid::Body b = rbprobe::body();
   b.q.coeffs() *= 1.01;
   run(P, b, 0.1);
 }
 // The zero-spin guard: a body that does not spin and one that spins at 1e-9 rad/s, together.
-WB_PROBE("R4", "zero-spin", "two turned bodies, one not spinning, one spinning at 1e-9 rad/s about x, h = 1") {
+WB_PROBE("R4", "zero-spin",
+         "two turned bodies, one not spinning, one spinning at 1e-9 rad/s about x, h = 1") {
   rigid::Body a = rbprobe::body(), b = rbprobe::body();
   a.omega.setZero();
   b.omega = Vec3(1e-9, 0, 0);
@@ -72,7 +74,8 @@ WB_PROBE("R4", "zero-spin", "two turned bodies, one not spinning, one spinning a
   integrate_position(a, 1.0);
   integrate_position(b, 1.0);
   P.group("both bodies");
-  P.out("first b.x", a.x), P.out("first b.q", a.q), P.out("second b.x", b.x), P.out("second b.q", b.q);
+  P.out("first b.x", a.x), P.out("first b.q", a.q), P.out("second b.x", b.x),
+      P.out("second b.q", b.q);
 }
 
 }  // namespace probe_R4_integrate_position

@@ -34,7 +34,8 @@ rigid::Body gyro() {
 }
 }  // namespace
 
-WB_PROBE("R5", "fall", "integrate_velocity_explicit: a body of mass 2 at rest, f = (0, -19.6, 0), h = 0.1") {
+WB_PROBE("R5", "fall",
+         "integrate_velocity_explicit: a body of mass 2 at rest, f = (0, -19.6, 0), h = 0.1") {
   P.simple();
   rigid::Body b;
   b.m = 2, b.f = Vec3(0, -19.6, 0);
@@ -44,12 +45,15 @@ WB_PROBE("R5", "explicit-linear", "integrate_velocity_explicit: force only, no s
   P.simple();
   run(P, &integrate_velocity_explicit, "integrate_velocity_explicit", linear(), 0.1);
 }
-WB_PROBE("R5", "explicit-torque", "integrate_velocity_explicit: torque only, no spin, turned body") {
+WB_PROBE("R5", "explicit-torque",
+         "integrate_velocity_explicit: torque only, no spin, turned body") {
   P.simple();
   run(P, &integrate_velocity_explicit, "integrate_velocity_explicit", torque(), 0.1);
 }
 // The linear part, both updates in one group: a force, no spin, no torque.
-WB_PROBE("R5", "linear", "integrate_velocity_explicit, then integrate_velocity_implicit: a force, no spin, no torque") {
+WB_PROBE("R5", "linear",
+         "integrate_velocity_explicit, then integrate_velocity_implicit: a force, no spin, no "
+         "torque") {
   const rigid::Body b0 = linear();
   rigid::Body a = b0, b = b0;
   P.call("integrate_velocity_explicit, integrate_velocity_implicit"), rbprobe::body_in(P, b0);
@@ -58,7 +62,8 @@ WB_PROBE("R5", "linear", "integrate_velocity_explicit, then integrate_velocity_i
   integrate_velocity_implicit(b, 0.1);
   P.group("both bodies");
   P.out("explicit: b.v", a.v), P.out("explicit: b.omega", a.omega), P.out("explicit: b.f", a.f);
-  P.out("explicit: b.tau", a.tau), P.out("implicit: b.v", b.v), P.out("implicit: b.omega", b.omega);
+  P.out("explicit: b.tau", a.tau), P.out("implicit: b.v", b.v),
+      P.out("implicit: b.omega", b.omega);
   P.out("implicit: b.f", b.f), P.out("implicit: b.tau", b.tau);
 }
 WB_PROBE("R5", "explicit-gyro", "integrate_velocity_explicit: spinning, no torque, turned body") {
@@ -68,7 +73,8 @@ WB_PROBE("R5", "implicit-linear", "integrate_velocity_implicit: force only, no s
   P.simple();
   run(P, &integrate_velocity_implicit, "integrate_velocity_implicit", linear(), 0.1);
 }
-WB_PROBE("R5", "implicit-torque", "integrate_velocity_implicit: torque only, no spin, turned body") {
+WB_PROBE("R5", "implicit-torque",
+         "integrate_velocity_implicit: torque only, no spin, turned body") {
   P.simple();
   run(P, &integrate_velocity_implicit, "integrate_velocity_implicit", torque(), 0.1);
 }

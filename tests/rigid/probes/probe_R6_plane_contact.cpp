@@ -63,7 +63,9 @@ void solve(wbprobe::Probe& P, rigid::Body b, Contact c, double mu) {
 }
 }  // namespace
 
-WB_PROBE("R6", "prepare-cube", "prepare_contact: a unit cube of mass 1 falling flat at 2 m/s, its corner on the floor, e = 0.5") {
+WB_PROBE("R6", "prepare-cube",
+         "prepare_contact: a unit cube of mass 1 falling flat at 2 m/s, its corner on the floor, "
+         "e = 0.5") {
   P.simple();
   rigid::Body b;
   b.I_body = Vec3(1.0 / 6, 1.0 / 6, 1.0 / 6).asDiagonal();
@@ -73,10 +75,13 @@ WB_PROBE("R6", "prepare-cube", "prepare_contact: a unit cube of mass 1 falling f
   prepare(P, b, 0.5, 0.1, c);
 }
 // The effective mass and the restitution target.
-WB_PROBE("R6", "prepare", "prepare_contact: a turned, spinning body falling at 2 m/s onto the floor, e = 0.6, threshold 1") {
+WB_PROBE("R6", "prepare",
+         "prepare_contact: a turned, spinning body falling at 2 m/s onto the floor, e = 0.6, "
+         "threshold 1") {
   prepare(P, falling(), 0.6, 1.0, corner(0.7, Vec3(0.1, 0, -0.05)));
 }
-WB_PROBE("R6", "prepare-slow", "prepare_contact: the same body, threshold 5 (above its approach speed): no bounce") {
+WB_PROBE("R6", "prepare-slow",
+         "prepare_contact: the same body, threshold 5 (above its approach speed): no bounce") {
   prepare(P, falling(), 0.6, 5.0, corner(0.7, Vec3(0.1, 0, -0.05)));
 }
 // Warm starting.
@@ -93,25 +98,30 @@ WB_PROBE("R6", "solve-closing", "solve_contact: closing, nothing stored, mu = 0.
   const rigid::Body b = falling();
   solve(P, b, prepared(b, 1.2, corner(0, Vec3::Zero())), 0.5);
 }
-WB_PROBE("R6", "solve-take-back", "solve_contact: separating slowly with Pn = 0.5 stored: partly taken back") {
+WB_PROBE("R6", "solve-take-back",
+         "solve_contact: separating slowly with Pn = 0.5 stored: partly taken back") {
   rigid::Body b = falling();
   b.v = Vec3(0, 0.2, 0), b.omega.setZero();
   solve(P, b, prepared(b, 0, corner(0.5, Vec3::Zero())), 0);
 }
-WB_PROBE("R6", "solve-friction", "solve_contact: sliding fast with Pn = 0.5 and Pt = (0.1, 0, -0.05) stored, mu = 0.4") {
+WB_PROBE("R6", "solve-friction",
+         "solve_contact: sliding fast with Pn = 0.5 and Pt = (0.1, 0, -0.05) stored, mu = 0.4") {
   rigid::Body b = falling();
   b.v = Vec3(3.0, -0.1, 1.0);
   solve(P, b, prepared(b, 0, corner(0.5, Vec3(0.1, 0, -0.05))), 0.4);
 }
 // The whole solver on two corners.
-WB_PROBE("R6", "solve-plane", "solve_plane_contacts: two corners, stored totals, e = 0.6, mu = 0.5, 8 iterations") {
+WB_PROBE("R6", "solve-plane",
+         "solve_plane_contacts: two corners, stored totals, e = 0.6, mu = 0.5, 8 iterations") {
   rigid::Body b = falling();
   std::vector<Contact> cs = {corner(0.3, Vec3(0.05, 0, 0)), corner(0.2, Vec3::Zero())};
   cs[1].p = Vec3(0.9, 0, -0.6);
   P.call("solve_plane_contacts"), rbprobe::body_in(P, b), P.in("n", kN), P.in("e", 0.6);
   P.in("threshold", 1.0), P.in("mu", 0.5), P.in("iterations", 8);
-  P.in("contacts[0].p", cs[0].p), P.in("contacts[0].Pn", cs[0].Pn), P.in("contacts[0].Pt", cs[0].Pt);
-  P.in("contacts[1].p", cs[1].p), P.in("contacts[1].Pn", cs[1].Pn), P.in("contacts[1].Pt", cs[1].Pt);
+  P.in("contacts[0].p", cs[0].p), P.in("contacts[0].Pn", cs[0].Pn),
+      P.in("contacts[0].Pt", cs[0].Pt);
+  P.in("contacts[1].p", cs[1].p), P.in("contacts[1].Pn", cs[1].Pn),
+      P.in("contacts[1].Pt", cs[1].Pt);
   const double total = solve_plane_contacts(b, cs, kN, 0.6, 1.0, 0.5, 8);
   P.out("returned", total), rbprobe::body_out(P, b);
   if (cs.size() == 2) P.out("contacts[0].Pn", cs[0].Pn), P.out("contacts[1].Pn", cs[1].Pn);

@@ -33,7 +33,8 @@ const Vec3 kR(0.5, -0.25, 0.75);  // the pinned point, body frame
 Vec3 pinned(const rigid::Body& b) { return b.x + b.q.toRotationMatrix() * kR; }
 }  // namespace
 
-WB_PROBE("R7", "ball-simple", "apply_hinge: a unit body at rest at the origin pinned at (1, 0, 0), moving down") {
+WB_PROBE("R7", "ball-simple",
+         "apply_hinge: a unit body at rest at the origin pinned at (1, 0, 0), moving down") {
   P.simple();
   rigid::Body b;
   b.v = Vec3(0, -1, 0);
@@ -41,7 +42,8 @@ WB_PROBE("R7", "ball-simple", "apply_hinge: a unit body at rest at the origin pi
 }
 // The same body not turned (q = 1): what is right here and wrong above is a frame (body or
 // world) mistake, not the effective mass.
-WB_PROBE("R7", "ball-unturned", "apply_hinge: the body not turned (q = 1), spinning, pinned where it is") {
+WB_PROBE("R7", "ball-unturned",
+         "apply_hinge: the body not turned (q = 1), spinning, pinned where it is") {
   rigid::Body b = rbprobe::body();
   b.q = Eigen::Quaterniond::Identity();
   hinge(P, b, kR, pinned(b), 0.05, 0.2);
@@ -50,14 +52,17 @@ WB_PROBE("R7", "ball", "apply_hinge: a turned, spinning body pinned where it is 
   const rigid::Body b = rbprobe::body();
   hinge(P, b, kR, pinned(b), 0.05, 0.2);
 }
-WB_PROBE("R7", "ball-drift", "apply_hinge: the same body, the anchor 0.1 away from the pinned point") {
+WB_PROBE("R7", "ball-drift",
+         "apply_hinge: the same body, the anchor 0.1 away from the pinned point") {
   P.simple();
   const rigid::Body b = rbprobe::body();
   hinge(P, b, kR, pinned(b) + Vec3(0.06, -0.08, 0), 0.05, 0.2);
 }
 // The drift correction, in one group: apply_hinge with the anchor off, apply_revolute with the
 // anchor and the axis off.
-WB_PROBE("R7", "drift", "apply_hinge with the anchor 0.1 off, then apply_revolute with the axis 0.1 rad off as well") {
+WB_PROBE("R7", "drift",
+         "apply_hinge with the anchor 0.1 off, then apply_revolute with the axis 0.1 rad off as "
+         "well") {
   const rigid::Body b0 = rbprobe::body();
   const Vec3 axis_body(0, 0, 1);
   const Vec3 axis =
@@ -75,13 +80,15 @@ WB_PROBE("R7", "drift", "apply_hinge with the anchor 0.1 off, then apply_revolut
   P.out("apply_revolute: returned.M", J.M), P.out("apply_revolute: b.v", b2.v);
   P.out("apply_revolute: b.omega", b2.omega);
 }
-WB_PROBE("R7", "revolute", "apply_revolute: a turned, spinning body, its axis along the hinge, no drift") {
+WB_PROBE("R7", "revolute",
+         "apply_revolute: a turned, spinning body, its axis along the hinge, no drift") {
   const rigid::Body b = rbprobe::body();
   const Vec3 axis_body(0, 0, 1);
   const Vec3 axis = b.q.toRotationMatrix() * axis_body;
   revolute(P, b, kR, pinned(b), axis_body, axis, 0.05, 0.2);
 }
-WB_PROBE("R7", "revolute-drift", "apply_revolute: the body's axis 0.1 rad off the hinge axis, the anchor off too") {
+WB_PROBE("R7", "revolute-drift",
+         "apply_revolute: the body's axis 0.1 rad off the hinge axis, the anchor off too") {
   P.simple();
   const rigid::Body b = rbprobe::body();
   const Vec3 axis_body(0, 0, 1);
