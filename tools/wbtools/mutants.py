@@ -613,7 +613,10 @@ def main(argv):
                         "of the mutants that have a peer of their part")
     p.add_argument("--max-wrong", type=float, metavar="PCT",
                    help="with --leave-one-out: exit 1 unless the part is wrong for at most PCT %% "
-                        "of them, and never for a mutant alone in its part")
+                        "of them")
+    p.add_argument("--max-wrong-alone", type=int, metavar="N",
+                   help="with --leave-one-out: exit 1 if more than N mutants alone in their part "
+                        "get another part named")
     p.add_argument("--mid-lab", action="store_true",
                    help="grade, through the grader, two submissions per lab with every other task "
                         "at its skeleton and one catalogued mistake in each of the others: each "
@@ -631,7 +634,7 @@ def main(argv):
     labs = args.lab or [l for l in known if os.path.isdir(os.path.join(repo, "tests", "mutants", l))]
     if args.leave_one_out:
         return diag.loo_table(repo, labs, args.markdown, args.verbose, args.min_right,
-                              args.max_wrong)
+                              args.max_wrong, args.max_wrong_alone)
     if args.mid_lab:
         return mid_lab(repo, labs, args)
     if args.refresh_hints:
