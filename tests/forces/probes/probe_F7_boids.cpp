@@ -65,11 +65,12 @@ WB_PROBE("F7", "alignment", "alignment alone: two boids and their midpoint, movi
 WB_PROBE("F7", "cohesion", "cohesion alone: two boids and their midpoint") {
   run(P, kTrio, zeros(3), vec({1, 1, 1}), rules(0, 0, 0.6, 2), zeros(3));
 }
-// Who counts in a mean: three boids near each other, one alone (last).
+// Who counts in a mean (cohesion), and who is a neighbour (each rule its radius): three boids
+// near each other, one alone (last). No alignment: its mistakes do not reach here.
 WB_PROBE("F7", "means",
-         "cohesion alone (radius 2.5, alignment's 1.5): two neighbours of the first boid, "
-         "one boid far from all") {
-  BoidsParams p = rules(0, 0, 0.6, 1.5);
+         "separation (radius 1.5) and cohesion (radius 2.5), no alignment: two neighbours of the "
+         "first boid, one boid far from all") {
+  BoidsParams p = rules(0.5, 0, 0.6, 1.5);
   p.cohesion.radius = 2.5;
   run(P, cols({{0, 0}, {1, 0}, {0, 1.2}, {5, 5}}), cols({{1, 0}, {0, 1}, {-1, 0.5}, {0.3, 0.3}}),
       vec({1, 1, 1, 1}), p, zeros(4));
@@ -108,14 +109,12 @@ WB_PROBE("F7", "flock", "four boids, every rule, f holding forces, and a boid fa
       cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}, {0.2, 0.1}}), vec({1, 2, 0.5, 1.5, 1}), p,
       cols({{1, 0}, {0, 1}, {-1, 0}, {0.5, 0.5}, {0, 0}}));
 }
-// Every boid: all within every radius, so that only the boid a loop misses goes wrong alone;
-// the first two at one point.
+// Every boid: all within every radius, so that only the boid a loop misses goes wrong alone.
 WB_PROBE("F7", "every",
-         "five boids all within every radius (3), the first two at one point, every rule, "
-         "masses 1, 1, 2, 0.5 and 1.5") {
-  run(P, cols({{0, 0}, {0, 0}, {0.7, 0.2}, {1.5, -0.5}, {-0.9, 1.1}}),
-      cols({{1, 0}, {0.2, -0.4}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 1, 2, 0.5, 1.5}),
-      rules(0.5, 0.8, 0.3, 3), zeros(5), true);
+         "four boids all within every radius (3), every rule, masses 1, 2, 0.5 and 1.5") {
+  run(P, cols({{0, 0}, {0.7, 0.2}, {1.5, -0.5}, {-0.9, 1.1}}),
+      cols({{1, 0}, {0.5, 0.5}, {0, -1}, {-0.3, 0.2}}), vec({1, 2, 0.5, 1.5}),
+      rules(0.5, 0.8, 0.3, 3), zeros(4), true);
 }
 
 }  // namespace probe_F7_boids
