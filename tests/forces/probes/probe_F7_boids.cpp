@@ -51,12 +51,10 @@ WB_PROBE("F7", "separation-two", "separation alone: two boids 0.5 apart, every r
 }
 // One rule at a time.
 WB_PROBE("F7", "separation",
-         "separation alone, radius 2 (cohesion's 6, its weight 0): two boids and their midpoint "
-         "(last); farther, two boids at one point and a third 0.5 from them") {
-  BoidsParams p = rules(0.7, 0, 0, 2);
-  p.cohesion.radius = 6;
+         "separation alone, every radius 2: two boids and their midpoint (last); far away, two "
+         "boids at one point and a third 0.5 from them") {
   run(P, cols({{0.4, 0.7}, {1.6, 1.3}, {5, 5}, {5, 5}, {5.5, 5}, {1, 1}}), zeros(6),
-      vec({1, 1, 1, 1, 1, 1}), p, zeros(6));
+      vec({1, 1, 1, 1, 1, 1}), rules(0.7, 0, 0, 2), zeros(6));
 }
 WB_PROBE("F7", "alignment", "alignment alone: two boids and their midpoint, moving differently") {
   run(P, kTrio, cols({{1, 0}, {-0.2, 0.8}, {0.4, 0.4}}), vec({1, 1, 1}), rules(0, 0.9, 0, 2),
@@ -65,13 +63,11 @@ WB_PROBE("F7", "alignment", "alignment alone: two boids and their midpoint, movi
 WB_PROBE("F7", "cohesion", "cohesion alone: two boids and their midpoint") {
   run(P, kTrio, zeros(3), vec({1, 1, 1}), rules(0, 0, 0.6, 2), zeros(3));
 }
-// Who counts in a mean (cohesion), and who is a neighbour (each rule its radius): three boids
-// near each other, one alone (last). No alignment: its mistakes do not reach here.
+// Who counts in a mean (cohesion alone: an alignment mistake does not reach here): three boids
+// near each other, one alone (last).
 WB_PROBE("F7", "means",
-         "separation (radius 1.5) and cohesion (radius 2.5), no alignment: two neighbours of the "
-         "first boid, one boid far from all") {
-  BoidsParams p = rules(0.5, 0, 0.6, 1.5);
-  p.cohesion.radius = 2.5;
+         "cohesion alone, radius 2.5: two neighbours of the first boid, one boid far from all") {
+  const BoidsParams p = rules(0, 0, 0.6, 2.5);
   run(P, cols({{0, 0}, {1, 0}, {0, 1.2}, {5, 5}}), cols({{1, 0}, {0, 1}, {-1, 0.5}, {0.3, 0.3}}),
       vec({1, 1, 1, 1}), p, zeros(4));
 }
