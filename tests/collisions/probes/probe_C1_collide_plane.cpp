@@ -55,6 +55,13 @@ WB_PROBE("C1", "impact",
   run(P, kP, kN, 0.25, 2, 0.6, 0.1, kP + 0.2 * kN + 1.5 * Vec2(-0.8, 0.6),
       -3 * kN + 1.25 * Vec2(-0.8, 0.6));
 }
+// The same impact with e = 0: every mistake of the impulse formula shows, none in the choice
+// of e (resting or bouncing) can, so a mistake in that choice is not taken for the impulse's.
+WB_PROBE("C1", "impact-inelastic",
+         "the same impact with e = 0: the normal velocity stops, the sliding goes on") {
+  run(P, kP, kN, 0.25, 2, 0, 0.1, kP + 0.2 * kN + 1.5 * Vec2(-0.8, 0.6),
+      -3 * kN + 1.25 * Vec2(-0.8, 0.6));
+}
 // Receding: pushed out, no impulse.
 WB_PROBE("C1", "receding", "sinking 0.05 into the tilted plane but moving away from it") {
   P.simple();
