@@ -5,9 +5,29 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <string>
 
+#include "wb/cost.h"
+
 namespace fuzzcheck {
+
+// The fuzzers skip what the cost model says is slow (a run of `steps` steps of
+// `c`, at the iteration caps, above `seconds` of an optimised build): so every
+// input they run is cheap, and one the model wrongly calls cheap times out
+// (-timeout), a finding.
+inline bool too_slow(const wb::StepCost& c, double steps, double seconds) {
+  return c.once.cap_seconds() + steps * c.step.cap_seconds() > seconds;
+}
+
+// Warnings go to std::cerr (wb::say): not while fuzzing (findings use stderr).
+inline void quiet() {
+  static const bool done = [] {
+    std::cerr.setstate(std::ios::badbit);
+    return true;
+  }();
+  (void)done;
+}
 
 [[noreturn]] inline void finding(const char* target, const char* what,
                                  const std::string& detail) {

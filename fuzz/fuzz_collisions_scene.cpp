@@ -28,10 +28,9 @@ namespace {
 
 constexpr double kFuzzMaxParticles = 2000;
 constexpr int kFuzzSteps = 3;
-// Work of one step (particle-plane and pair tests, times the passes) above
-// which an accepted scene is not stepped: 1000 passes over 2000 particles
-// would take seconds per input.
-constexpr double kFuzzMaxStepWork = 1e6;
+// The cost model's estimate of the steps (an optimised build's CPU time) above
+// which an accepted scene is not stepped.
+constexpr double kFuzzMaxSeconds = 2e-3;
 constexpr double kFuzzDefaultDt = 1e-2;
 
 constexpr const char* kFuzzTarget = "fuzz_collisions_scene";
@@ -43,6 +42,7 @@ constexpr const char* kFuzzTarget = "fuzz_collisions_scene";
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  fuzzcheck::quiet();
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     wb::json doc = wb::parse_json(text, "fuzz.json");
@@ -58,11 +58,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     }
     wb::check_initial_state(scene, world);
-    const double passes = world.settings().iterations + 3;
-    const double work = (double(scene.n()) * double(world.planes().size()) +
-                         wb::candidate_pairs_estimate(scene.x, scene.radius)) *
-                        passes;
-    if (work > kFuzzMaxStepWork) return 0;
+    wb::StepCost cost;
+    wb::contact_step_cost(scene, wb::semi_implicit_euler_integrator(), cost);
+    if (fuzzcheck::too_slow(cost, kFuzzSteps, kFuzzMaxSeconds)) return 0;
+    wb::Mat2X a(2, scene.n());
+    world.dynamics().acceleration(scene.x, scene.v, a);
+    if (!a.allFinite())
+      finding("accepted a scene whose initial accelerations are not finite", "");
     const double h = scene.dt.value_or(kFuzzDefaultDt);
     wb::Mat2X x = scene.x, v = scene.v;
     wb::Scratch s;

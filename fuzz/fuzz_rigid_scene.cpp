@@ -95,6 +95,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (declared_bodies(doc) > kFuzzMaxBodies) return 0;
     const rigid::Scene scene = rigid::scene_from_json("fuzz.json", doc);
     check_scene(scene);
+    wb::StepCost cost;
+    rigid::step_cost(scene, cost);
+    if (fuzzcheck::too_slow(cost, kFuzzSteps, 2e-3)) return 0;
     const rigid::Integrator integ{"implicit-gyroscopic", integrate_velocity_implicit, ""};
     const double h = scene.dt.value_or(kFuzzDefaultDt);
     std::vector<rigid::Body> bodies;

@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "wb/contract.h"
+#include "wb/output.h"
 #include "wb/run.h"
 
 namespace wb {
@@ -31,45 +33,39 @@ double parse_number(const std::string& flag, const std::string& text,
   return d;
 }
 
-// Two outputs given the same file would mix their rows: refused, unless the
-// file is a character device (writing both to /dev/null is fine).
-void check_distinct(const std::string& flag_a, const std::string& a, const std::string& flag_b,
-                    const std::string& b) {
-  namespace fs = std::filesystem;
-  if (a.empty() || b.empty()) return;
-  std::error_code ec;
-  const fs::path pa = fs::weakly_canonical(a, ec);
-  const fs::path pb = ec ? fs::path() : fs::weakly_canonical(b, ec);
-  const bool same = ec ? a == b : pa == pb;
-  if (same && !fs::is_character_file(a, ec)) {
-    throw InputError(flag_a + " and " + flag_b + ": both got \"" + a +
-                     "\", expected two different files");
-  }
-}
-
 }  // namespace
 
-std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& spec,
-                                        int& status) {
+RunFlags read_run_flags(int argc, const char* const* argv, const FlagSpec& spec,
+                        std::string& help) {
   CLI::App app(spec.summary, spec.exe);
   RunFlags f;
+  help.clear();
   // Whole numbers are read as text and parsed strictly (parse_whole).
   std::optional<std::string> steps_in, every_in, seed_in, repeats_in, dt_in, t_end_in;
+  std::optional<std::string> max_time_in, max_memory_in;
   std::vector<std::string> dts_in;
   app.add_option("--scene", f.scene_file, "Scene file (JSON)")->required();
   auto* o_integrator =
       app.add_option("--integrator", f.integrator, "Integrator name (overrides the scene's)");
-  app.add_option("--dt", dt_in,
-                 "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
+  auto* o_dt = app.add_option(
+      "--dt", dt_in,
+      "Step size H > 0 (overrides the scene's dt; with --sweep, the ladder's base)");
   auto* o_steps = app.add_option("--steps", steps_in, "Take exactly N steps (at most 1e8)");
   auto* o_tend = app.add_option("--t-end", t_end_in, "Simulate to time T: steps = round(T/H)");
   o_steps->excludes(o_tend);
   auto* o_out = app.add_option("--out", f.out, "Write a CSV trace " + spec.trace_columns);
   auto* o_stats = app.add_option("--stats", f.stats, "Write a CSV of " + spec.stats_columns);
-  auto* o_every =
-      app.add_option("--every", every_in, "Write every K-th step (step 0 and the last always)");
+  auto* o_every = app.add_option("--every", every_in,
+                                 "With --out or --stats: write every K-th step (step 0 and the "
+                                 "last always)");
   if (spec.seed)
     app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
+  app.add_option("--max-time", max_time_in,
+                 "Refuse a run (or sweep) estimated above S seconds of CPU (default 3600)");
+  app.add_option("--max-memory", max_memory_in,
+                 "Refuse a run (or sweep) estimated above M MiB of memory (default 2048)");
+  app.add_flag("--estimate", f.estimate,
+               "Print the cost model's estimate as one JSON line and run nothing");
   CLI::Option *o_sweep = nullptr, *o_integrators = nullptr, *o_dts = nullptr;
   if (spec.sweep) {
     o_sweep = app.add_option("--sweep", f.sweep_csv, spec.sweep_help);
@@ -77,9 +73,12 @@ std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& s
                                    "Sweep: only these integrators (comma-separated; default all)")
                         ->delimiter(',')
                         ->needs(o_sweep);
-    o_dts = app.add_option("--dts", dts_in, "Sweep: these step sizes (comma-separated)")
+    o_dts = app.add_option("--dts", dts_in,
+                           "Sweep: these step sizes (comma-separated; instead of --dt's ladder)")
                 ->delimiter(',')
                 ->needs(o_sweep);
+    // --dt is the base of the default ladder: beside --dts it would be ignored.
+    o_dts->excludes(o_dt);
     app.add_option("--repeats", repeats_in,
                    "Sweep: wall_s is the fastest of R timed step loops (default 3)")
         ->needs(o_sweep);
@@ -88,59 +87,80 @@ std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& s
   app.footer(spec.footer);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    status = app.exit(e);
-    return std::nullopt;
+  } catch (const CLI::CallForHelp&) {
+    help = app.help();
+    return RunFlags{};
   } catch (const CLI::ParseError& e) {
-    std::cerr << spec.exe << ": error: " << one_line(e.what()) << " (see " << spec.exe
-              << " --help)\n";
-    status = 2;
-    return std::nullopt;
+    throw InputError(std::string(e.what()) + " (see " + spec.exe + " --help)");
   }
 
+  // A flag given an empty value is refused, never taken as not given.
+  for (CLI::Option* o : {o_integrator, o_out, o_stats, o_sweep}) {
+    if (o && o->count() > 0 && o->as<std::string>().empty()) {
+      throw flag_error(o->get_name(), "an empty value", "a non-empty value");
+    }
+  }
+  for (CLI::Option* o : {o_integrators, o_dts}) {
+    if (!o || o->count() == 0) continue;
+    const auto items = o->as<std::vector<std::string>>();
+    bool empty = items.empty();
+    for (const auto& it : items) empty = empty || it.empty();
+    if (empty) {
+      throw flag_error(o->get_name(), "an empty entry", "a comma-separated list of values");
+    }
+  }
+  if (dt_in) f.dt = parse_number("--dt", *dt_in, "a finite number > 0");
+  if (f.dt && !(*f.dt > 0)) throw flag_error("--dt", num(*f.dt), "a finite number > 0");
+  if (t_end_in) f.t_end = parse_number("--t-end", *t_end_in, "a finite number >= 0");
+  if (f.t_end && !(*f.t_end >= 0)) {
+    throw flag_error("--t-end", num(*f.t_end), "a finite number >= 0");
+  }
+  for (const auto& d : dts_in) {
+    f.sweep_dts.push_back(parse_number("--dts", d, "finite step sizes > 0"));
+  }
+  if (steps_in) f.steps = long(parse_whole("--steps", *steps_in, 0, kMaxSteps));
+  if (every_in) f.every = long(parse_whole("--every", *every_in, 1, INT64_MAX));
+  if (seed_in) f.seed = std::uint64_t(parse_whole("--seed", *seed_in, 0, INT64_MAX));
+  if (repeats_in) f.repeats = int(parse_whole("--repeats", *repeats_in, 1, 1000));
+  // A flag the run would not read is refused, never ignored.
+  if (every_in && f.out.empty() && f.stats.empty()) {
+    throw flag_error("--every", "\"" + *every_in + "\" without --out or --stats",
+                     "--every only beside an output it thins (--out, --stats)");
+  }
+  // The budget: seconds and MiB, from a second up to a year and a terabyte.
+  if (max_time_in) {
+    f.max_time = double(parse_whole("--max-time", *max_time_in, 1, 366 * 86400));
+  }
+  if (max_memory_in) {
+    f.max_memory_mib = double(parse_whole("--max-memory", *max_memory_in, 1, 1 << 20));
+  }
+  if (!f.out.empty()) check_output_path("--out", f.out);
+  if (!f.stats.empty()) check_output_path("--stats", f.stats);
+  if (!f.sweep_csv.empty()) check_output_path("--sweep", f.sweep_csv);
+  check_distinct("--out", f.out, "--stats", f.stats);
+  check_distinct("--scene", f.scene_file, "--out", f.out);
+  check_distinct("--scene", f.scene_file, "--stats", f.stats);
+  check_distinct("--scene", f.scene_file, "--sweep", f.sweep_csv);
+  return f;
+}
+
+std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& spec,
+                                        int& status) {
+  std::string help;
   try {
-    // A flag given an empty value is refused, never taken as not given.
-    for (CLI::Option* o : {o_integrator, o_out, o_stats, o_sweep}) {
-      if (o && o->count() > 0 && o->as<std::string>().empty()) {
-        throw flag_error(o->get_name(), "an empty value", "a non-empty value");
-      }
+    RunFlags f = read_run_flags(argc, argv, spec, help);
+    if (!help.empty()) {
+      std::cout << help;
+      status = 0;
+      return std::nullopt;
     }
-    for (CLI::Option* o : {o_integrators, o_dts}) {
-      if (!o || o->count() == 0) continue;
-      const auto items = o->as<std::vector<std::string>>();
-      bool empty = items.empty();
-      for (const auto& it : items) empty = empty || it.empty();
-      if (empty) {
-        throw flag_error(o->get_name(), "an empty entry", "a comma-separated list of values");
-      }
-    }
-    if (dt_in) f.dt = parse_number("--dt", *dt_in, "a finite number > 0");
-    if (f.dt && !(*f.dt > 0)) throw flag_error("--dt", num(*f.dt), "a finite number > 0");
-    if (t_end_in) f.t_end = parse_number("--t-end", *t_end_in, "a finite number >= 0");
-    if (f.t_end && !(*f.t_end >= 0)) {
-      throw flag_error("--t-end", num(*f.t_end), "a finite number >= 0");
-    }
-    for (const auto& d : dts_in) {
-      f.sweep_dts.push_back(parse_number("--dts", d, "finite step sizes > 0"));
-    }
-    if (steps_in) f.steps = long(parse_whole("--steps", *steps_in, 0, kMaxSteps));
-    if (every_in) f.every = long(parse_whole("--every", *every_in, 1, INT64_MAX));
-    if (seed_in) f.seed = std::uint64_t(parse_whole("--seed", *seed_in, 0, INT64_MAX));
-    if (repeats_in) f.repeats = int(parse_whole("--repeats", *repeats_in, 1, 1000));
-    if (!f.out.empty()) check_output_path("--out", f.out);
-    if (!f.stats.empty()) check_output_path("--stats", f.stats);
-    if (!f.sweep_csv.empty()) check_output_path("--sweep", f.sweep_csv);
-    check_distinct("--out", f.out, "--stats", f.stats);
-    check_distinct("--scene", f.scene_file, "--out", f.out);
-    check_distinct("--scene", f.scene_file, "--stats", f.stats);
-    check_distinct("--scene", f.scene_file, "--sweep", f.sweep_csv);
+    status = 0;
+    return f;
   } catch (const InputError& e) {
-    std::cerr << spec.exe << ": error: " << e.what() << "\n";
+    say(spec.exe, "error", e.what());
     status = 2;
     return std::nullopt;
   }
-  status = 0;
-  return f;
 }
 
 double step_size(const RunFlags& flags, std::optional<double> scene_dt,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <ctime>
 #include <iostream>
+#include <limits>
 
 #include "wb/output.h"
 
@@ -119,14 +120,22 @@ ordered_json summary_json(const Summary& s) {
   return j;
 }
 
+void print_summary(const ordered_json& j) {
+  std::cout << j.dump(-1, ' ', false, ordered_json::error_handler_t::replace) << std::endl;
+}
+
+void say(const std::string& exe, const char* kind, const std::string& text) {
+  std::cerr << one_line(exe + ": " + kind + ": " + text, kMaxMessageBytes + 100) << std::endl;
+}
+
 int guarded_main(const std::string& exe, const std::function<int()>& body) {
   try {
     return body();
   } catch (const InputError& e) {
-    std::cerr << exe << ": error: " << e.what() << "\n";
+    say(exe, "error", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << exe << ": internal error: " << e.what() << "\n";
+    say(exe, "internal error", e.what());
     return 1;
   }
 }
@@ -151,6 +160,13 @@ std::string sweep_help(const std::string& what) {
          "energy_error,reference,status. " +
          what + " A run that diverges (docs/run-contract.md) has status diverged. See\n" +
          "docs/sweep.md.\n";
+}
+
+std::string budget_help() {
+  return "\nCost (docs/scenes.md, \"Cost\"): every run and sweep is estimated before it starts.\n"
+         "Above --max-time (default 3600 s of CPU, with every iteration at its cap) or\n"
+         "--max-memory (default 2048 MiB) it is refused; above a minute or half the memory it\n"
+         "warns. --estimate prints the estimate as JSON and runs nothing.\n";
 }
 
 SweepPlan plan_sweep(const std::vector<std::string>& names,
@@ -193,8 +209,9 @@ SweepPlan plan_sweep(const std::vector<std::string>& names,
     for (int k = 3; k >= -6; --k) p.dts.push_back(std::ldexp(dt ? *dt : *scene_dt, k));
   }
   // Who chose the step sizes, for the messages below.
-  const std::string ladder =
+  p.ladder =
       dts.empty() ? (dt ? std::string("--dt") : scene_file + ": dt") : std::string("--dts");
+  const std::string& ladder = p.ladder;
   for (double h : p.dts) {
     if (!(std::isfinite(h) && h > 0.0)) {
       throw InputError("--dts: got " + fmt(h) + ", expected step sizes > 0");
@@ -210,10 +227,13 @@ SweepPlan plan_sweep(const std::vector<std::string>& names,
   return p;
 }
 
+std::string sweep_columns() {
+  return "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status";
+}
+
 std::string sweep_table(const std::string& scene, const std::vector<std::string>& names,
-                        const std::vector<SweepRow>& rows) {
-  std::string out =
-      "scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status\n";
+                        const std::vector<SweepRow>& rows, bool header) {
+  std::string out = header ? sweep_columns() + "\n" : "";
   for (const SweepRow& row : rows) {
     out += csv_field(scene) + ',' + csv_field(names.at(row.integrator)) + ',';
     append_number(out, row.dt);
@@ -238,6 +258,57 @@ ordered_json sweep_summary(const std::string& csv, const std::vector<SweepRow>& 
   j["diverged"] =
       std::count_if(rows.begin(), rows.end(), [](const SweepRow& r) { return r.diverged; });
   return j;
+}
+
+std::vector<SweepRow> sweep_rows(const SweepPlan& plan, const std::vector<std::string>& names,
+                                 const SweepHooks& h, const std::string& exe, int repeats) {
+  std::vector<SweepRow> rows;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t i : plan.integrators) {
+    for (std::size_t d = 0; d < plan.dts.size(); ++d) {
+      SweepRow row;
+      row.integrator = i;
+      row.dt = plan.dts[d];
+      row.steps = plan.steps[d];
+      row.reference = h.reference;
+
+      // Untimed run: divergence (the run contract's rule), the largest energy error.
+      h.reset();
+      double energy_error = 0;
+      for (long k = 0; k < row.steps; ++k) {
+        h.steps(i, row.dt, 1);
+        const bool finite = h.finite();
+        const double E = finite ? h.energy() : NAN;
+        if (!divergence(finite, E, h.blowup_scale, k + 1).empty()) {
+          row.diverged = true;
+          break;
+        }
+        energy_error = std::max(energy_error, std::abs(E - h.energy0) / h.energy_scale);
+      }
+      row.diverged = row.diverged || !unconverged_divergence(row.steps, h.unconverged()).empty();
+      if (row.steps > 0 && !row.diverged && !h.moved()) {
+        say(exe, "warning",
+            names.at(i) + " at dt=" + fmt(row.dt) + ": the state never changed in " +
+                std::to_string(row.steps) + " steps: " + h.unmoved);
+      }
+      row.energy_error = row.diverged ? inf : energy_error;
+      row.error = row.diverged ? inf : h.error(double(row.steps) * row.dt);
+
+      // Timed runs: the pure step loop, the fastest of `repeats`.
+      row.wall_s = inf;
+      for (int r = 0; r < repeats; ++r) {
+        h.reset();
+        const auto start = std::chrono::steady_clock::now();
+        h.steps(i, row.dt, row.steps);
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        row.wall_s = std::min(row.wall_s, wall);
+        row.force_evals = h.evals();
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
 }
 
 }  // namespace wb

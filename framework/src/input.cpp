@@ -1,7 +1,9 @@
 // Typed, path-aware reading of JSON scene files.
 #include "wb/input.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -205,14 +207,11 @@ std::string JsonObject::string_or(const char* key, const std::string& def) const
 
 namespace {
 
-// A whole number in [min, max] from `v`, or nothing. Whole numbers written as
-// such are read exactly (no trip through a double, which rounds above 2^53); a
-// number written with a fraction or an exponent is accepted only where a
-// double holds every whole number (|x| <= 2^53): `beyond` then says so.
-std::optional<std::int64_t> whole_number(const json& v, std::int64_t min, std::int64_t max,
-                                         bool& beyond) {
-  constexpr double kExactDouble = 9007199254740992.0;  // 2^53
-  beyond = false;
+// A whole number in [min, max] from `v`, or nothing. Every number whose text is
+// exactly a whole number that fits 64 bits (5, 5.0, 1e3, 9007199254740993.0) was
+// stored as an integer by the parser (parse_json), exactly as written: a number
+// still stored as a double is not whole (0.5, 1e-400) or does not fit (1e300).
+std::optional<std::int64_t> whole_number(const json& v, std::int64_t min, std::int64_t max) {
   if (v.is_number_unsigned()) {
     const std::uint64_t u = v.get<std::uint64_t>();
     if (max < 0 || u > static_cast<std::uint64_t>(max) ||
@@ -226,31 +225,20 @@ std::optional<std::int64_t> whole_number(const json& v, std::int64_t min, std::i
     if (i < min || i > max) return std::nullopt;
     return i;
   }
-  if (!v.is_number()) return std::nullopt;
-  const double d = v.get<double>();
-  if (!std::isfinite(d) || d != std::floor(d)) return std::nullopt;
-  if (std::abs(d) > kExactDouble) {
-    beyond = true;
-    return std::nullopt;
-  }
-  const auto i = static_cast<std::int64_t>(d);  // exact: |d| <= 2^53
-  if (i < min || i > max) return std::nullopt;
-  return i;
+  return std::nullopt;
 }
 
-std::string whole_expected(std::int64_t min, std::int64_t max, bool beyond) {
-  return "a whole number from " + std::to_string(min) + " to " + std::to_string(max) +
-         (beyond ? " (beyond 2^53, write it without a fraction or an exponent)" : "");
+std::string whole_expected(std::int64_t min, std::int64_t max) {
+  return "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
 }
 
 }  // namespace
 
 std::int64_t JsonObject::integer(const char* key, std::int64_t min, std::int64_t max) const {
-  if (!j_.contains(key)) fail(key, nullptr, whole_expected(min, max, false));
+  if (!j_.contains(key)) fail(key, nullptr, whole_expected(min, max));
   const json& v = j_.at(key);
-  bool beyond = false;
-  const std::optional<std::int64_t> i = whole_number(v, min, max, beyond);
-  if (!i) fail(key, &v, whole_expected(min, max, beyond));
+  const std::optional<std::int64_t> i = whole_number(v, min, max);
+  if (!i) fail(key, &v, whole_expected(min, max));
   return *i;
 }
 
@@ -258,10 +246,9 @@ std::int64_t JsonObject::integer_in(const char* key, std::size_t i, std::int64_t
                                     std::int64_t max, const std::string& note) const {
   const json& a = array_or_empty(key);
   const std::string at = std::string(key) + "[" + std::to_string(i) + "]";
-  if (i >= a.size()) fail(at, nullptr, whole_expected(min, max, false) + note);
-  bool beyond = false;
-  const std::optional<std::int64_t> w = whole_number(a[i], min, max, beyond);
-  if (!w) fail(at, &a[i], whole_expected(min, max, beyond) + note);
+  if (i >= a.size()) fail(at, nullptr, whole_expected(min, max) + note);
+  const std::optional<std::int64_t> w = whole_number(a[i], min, max);
+  if (!w) fail(at, &a[i], whole_expected(min, max) + note);
   return *w;
 }
 
@@ -356,6 +343,70 @@ void render(const json& v, std::string& out, int depth) {
   }
 }
 
+// What the text of a JSON number is exactly (its digits, not the double they
+// round to): not 0, a whole number, and that whole number when it fits 64 bits.
+struct ExactNumber {
+  bool nonzero = false, whole = false, negative = false;
+  bool fits_signed = false, fits_unsigned = false;
+  std::uint64_t magnitude = 0;
+};
+
+ExactNumber exact_number(const std::string& text) {
+  ExactNumber e;
+  std::size_t i = 0;
+  if (i < text.size() && text[i] == '-') e.negative = true, ++i;
+  std::string digits;  // integer and fraction digits, the point removed
+  long exponent = 0;   // value = digits x 10^exponent
+  for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
+    digits += text[i];
+  }
+  if (i < text.size() && text[i] == '.') {
+    for (++i; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
+      digits += text[i];
+      --exponent;
+    }
+  }
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    bool minus = false;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) minus = text[i++] == '-';
+    long x = 0;
+    for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
+      x = std::min(x * 10 + (text[i] - '0'), 100000L);  // beyond, nothing fits anyway
+    }
+    exponent += minus ? -x : x;
+  }
+  // Drop leading zeros, then trailing zeros into the exponent.
+  const std::size_t first = digits.find_first_not_of('0');
+  if (first == std::string::npos) {  // 0, -0.0, 0e5
+    e.whole = e.fits_signed = e.fits_unsigned = true;
+    e.negative = false;
+    return e;
+  }
+  digits = digits.substr(first);
+  while (digits.back() == '0') digits.pop_back(), ++exponent;
+  e.nonzero = true;
+  e.whole = exponent >= 0;
+  if (!e.whole || double(digits.size()) + double(exponent) > 20) return e;
+  digits.append(std::size_t(exponent), '0');
+  std::uint64_t m = 0;
+  for (char c : digits) {
+    const std::uint64_t d = std::uint64_t(c - '0');
+    if (m > (UINT64_MAX - d) / 10) return e;  // more than 64 bits
+    m = m * 10 + d;
+  }
+  e.magnitude = m;
+  e.fits_unsigned = true;
+  e.fits_signed = m <= (e.negative ? std::uint64_t(INT64_MAX) + 1 : std::uint64_t(INT64_MAX));
+  return e;
+}
+
+// The signed whole number of an ExactNumber that fits_signed.
+std::int64_t signed_value(const ExactNumber& e) {
+  if (!e.negative) return std::int64_t(e.magnitude);
+  return e.magnitude == std::uint64_t(INT64_MAX) + 1 ? INT64_MIN : -std::int64_t(e.magnitude);
+}
+
 // Builds the document as the parser reads it (nlohmann's SAX interface),
 // keeping the JSON path of the value being read for messages, refusing a key
 // given twice in one object and nesting deeper than kMaxJsonDepth. Every event
@@ -371,7 +422,21 @@ class DomBuilder {
   bool boolean(bool b) { return value(json(b)); }
   bool number_integer(json::number_integer_t i) { return value(json(i)); }
   bool number_unsigned(json::number_unsigned_t u) { return value(json(u)); }
-  bool number_float(json::number_float_t d, const std::string&) { return value(json(d)); }
+  // A number written with a fraction or an exponent: stored as the integer it
+  // exactly is when its text is a whole number that fits 64 bits (so 5.0 and
+  // 9007199254740993.0 are whole numbers, read exactly), else as the double; a
+  // number whose text is not 0 but that reads as 0 (1e-400) is refused.
+  bool number_float(json::number_float_t d, const std::string& text) {
+    const ExactNumber e = exact_number(text);
+    if (e.nonzero && d == 0.0) {
+      throw InputError(file_ + ": " + path() + ": got " + text +
+                       ", a number too small for a double (it reads as 0), expected 0 or a "
+                       "number of at least 4.9e-324 in size (the smallest double)");
+    }
+    if (e.whole && e.fits_signed) return value(json(signed_value(e)));
+    if (e.whole && e.fits_unsigned && !e.negative) return value(json(e.magnitude));
+    return value(json(d));
+  }
   bool string(std::string& s) { return value(json(std::move(s))); }
   bool binary(json::binary_t& b) { return value(json(std::move(b))); }
   bool start_object(std::size_t) { return open(json::value_t::object); }

@@ -1,6 +1,7 @@
 // Atomic output files and exact number formatting.
 #include "wb/output.h"
 
+#include <limits.h>
 #include <unistd.h>
 
 #include <charconv>
@@ -55,30 +56,124 @@ void unregister_tmp(int slot) {
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The longest file name the folder of `p` takes (NAME_MAX, 255 on Linux).
+std::size_t name_max(const fs::path& p) {
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  const long n = ::pathconf(dir.c_str(), _PC_NAME_MAX);
+  return n > 0 ? std::size_t(n) : 255;
+}
+
+// The longest prefix of `s` of at most `max` bytes that does not cut a UTF-8 sequence.
+std::string cut_utf8(const std::string& s, std::size_t max) {
+  if (s.size() <= max) return s;
+  std::size_t k = max;
+  while (k > 0 && (static_cast<unsigned char>(s[k]) & 0xC0) == 0x80) --k;
+  return s.substr(0, k);
+}
+
+std::string label(const std::string& flag, const std::string& path) {
+  return (flag.empty() ? "" : flag + ": ") + path;
+}
+
+// The file a write to `path` replaces: symbolic links followed (a dangling one
+// to the file it names), the rest made absolute and normal.
+fs::path output_target(const std::string& path) {
+  std::error_code ec;
+  fs::path p(path);
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    const fs::path to = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  const fs::path w = fs::weakly_canonical(p, ec);
+  return ec ? p : w;
+}
+
+}  // namespace
+
+void check_output_path(const std::string& flag, const std::string& path) {
+  std::error_code ec;
+  const fs::path p(path);
+  if (path.empty()) throw InputError(flag + ": got an empty path, expected a file name");
+  if (path.size() > std::size_t(PATH_MAX) - 32) {
+    throw InputError(flag + ": got a path of " + std::to_string(path.size()) +
+                     " bytes, expected at most " + std::to_string(PATH_MAX - 32) +
+                     " (the system's PATH_MAX, less room for the temporary's suffix)");
+  }
+  if (fs::is_directory(p, ec)) {
+    throw InputError(flag + ": got \"" + path + "\", a folder, expected a file name");
+  }
+  const fs::file_status st = fs::status(p, ec);
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st)) {  // /dev/null, a FIFO: written through
+    if (::access(path.c_str(), W_OK) != 0) {
+      throw InputError(flag + ": got \"" + path + "\", expected a file you can write");
+    }
+    return;
+  }
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec)) {
+    throw InputError(flag + ": got \"" + path + "\", expected a file in an existing folder (\"" +
+                     dir.string() + "\" does not exist)");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw InputError(flag + ": got \"" + path +
+                     "\", expected a file in a folder you can write (\"" + dir.string() +
+                     "\" is not writable)");
+  }
+  const std::string name = p.filename().string();
+  if (name.size() > name_max(p)) {
+    throw InputError(flag + ": got a file name of " + std::to_string(name.size()) +
+                     " bytes, expected at most " + std::to_string(name_max(p)) +
+                     " (the file system's NAME_MAX)");
+  }
+}
+
+void check_distinct(const std::string& flag_a, const std::string& a, const std::string& flag_b,
+                    const std::string& b) {
+  if (a.empty() || b.empty()) return;
+  std::error_code ec;
+  // Two names of one existing file (a hard link), or of the file a write replaces.
+  bool same = fs::equivalent(a, b, ec);
+  if (ec) same = a == b || output_target(a) == output_target(b);
+  if (same && !fs::is_character_file(a, ec)) {
+    throw InputError(flag_a + " and " + flag_b + ": both got \"" + a + "\"" +
+                     (a == b ? "" : " and \"" + b + "\" (one file)") +
+                     ", expected two different files");
+  }
+}
+
+AtomicFile::AtomicFile(std::string path, std::string flag)
+    : path_(std::move(path)), flag_(std::move(flag)) {
   // Only a regular file (or a new one) is replaced by the rename: a device, a
   // FIFO or a socket (/dev/null, a pipe) is written through, as a shell's
   // redirection would; a symbolic link's target is replaced, not the link.
-  namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(path_, ec);
   if (!ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st)) {
     f_ = std::fopen(path_.c_str(), "wb");
-    if (!f_) {
-      throw InputError(path_ + ": cannot open for writing (" + std::strerror(errno) + ")");
-    }
+    if (!f_) fail("cannot open for writing", errno);
     return;
   }
   std::string target = path_;
-  if (fs::is_symlink(fs::symlink_status(path_, ec))) {
-    const fs::path real = fs::canonical(path_, ec);
-    if (!ec) target = real.string();
-  }
+  if (fs::is_symlink(fs::symlink_status(path_, ec))) target = output_target(path_).string();
   target_ = target;
-  tmp_ = target + ".tmp-" + std::to_string(::getpid());
+  // "<name>.tmp-<pid>", the name cut so that the whole fits NAME_MAX.
+  const fs::path t(target);
+  const std::string suffix = ".tmp-" + std::to_string(::getpid());
+  const std::size_t max = name_max(t);
+  const std::string name =
+      cut_utf8(t.filename().string(), max > suffix.size() ? max - suffix.size() : 1);
+  tmp_ = (t.has_parent_path() ? (t.parent_path() / (name + suffix)) : fs::path(name + suffix))
+             .string();
   f_ = std::fopen(tmp_.c_str(), "wb");
   if (!f_) {
-    throw InputError(path_ + ": cannot open for writing (" + std::strerror(errno) + ")");
+    const int err = errno;
+    tmp_.clear();
+    fail("cannot open for writing", err);
   }
   slot_ = register_tmp(tmp_);
 }
@@ -91,36 +186,45 @@ AtomicFile::~AtomicFile() {
   unregister_tmp(slot_);
 }
 
+void AtomicFile::fail(const char* what, int err) {
+  throw InputError(label(flag_, path_) + ": " + what + " (" + std::strerror(err) + ")");
+}
+
 void AtomicFile::write(const char* s, std::size_t n) {
-  if (std::fwrite(s, 1, n, f_) != n) {
-    throw std::runtime_error(path_ + ": write failed (" + std::strerror(errno) + ")");
-  }
+  if (std::fwrite(s, 1, n, f_) != n) fail("could not be written", errno);
 }
 
 void AtomicFile::commit() {
   bool ok = std::fflush(f_) == 0;
-  ok = std::fclose(f_) == 0 && ok;
+  int err = errno;
+  if (std::fclose(f_) != 0 && ok) ok = false, err = errno;
   f_ = nullptr;
   if (tmp_.empty()) {  // written through
-    if (!ok)
-      throw std::runtime_error(path_ + ": could not be written (" + std::strerror(errno) + ")");
+    if (!ok) fail("could not be written", err);
     return;
   }
-  if (!ok || std::rename(tmp_.c_str(), target_.c_str()) != 0) {
-    std::string why = std::strerror(errno);
+  if (ok && std::rename(tmp_.c_str(), target_.c_str()) != 0) ok = false, err = errno;
+  if (!ok) {
     std::remove(tmp_.c_str());
     unregister_tmp(slot_);
     slot_ = -1;
-    throw std::runtime_error(path_ + ": could not be written (" + why + ")");
+    fail("could not be written", err);
   }
   unregister_tmp(slot_);
   slot_ = -1;
 }
 
-CsvFile::CsvFile(const std::string& path, const char* header) {
-  if (!path.empty()) {
-    file_.emplace(path);
-    buf_ = header;
+CsvFile::CsvFile(const std::string& path, const std::string& header, const std::string& flag) {
+  if (path.empty()) return;
+  file_.emplace(path, flag);
+  buf_ = header;
+  if (file_->through()) {  // a device: the header now, so a failing one fails before the run
+    file_->write(buf_);
+    buf_.clear();
+    if (std::fflush(file_->get()) != 0) {
+      throw InputError(label(flag, path) + ": could not be written (" + std::strerror(errno) +
+                       ")");
+    }
   }
 }
 

@@ -33,33 +33,6 @@ std::string num(double x) {
   return s;
 }
 
-void check_output_path(const std::string& flag, const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path p(path);
-  if (path.empty()) throw InputError(flag + ": got an empty path, expected a file name");
-  if (fs::is_directory(p, ec)) {
-    throw InputError(flag + ": got \"" + path + "\", a folder, expected a file name");
-  }
-  const fs::file_status st = fs::status(p, ec);
-  if (!ec && fs::exists(st) && !fs::is_regular_file(st)) {  // /dev/null, a FIFO: written through
-    if (::access(path.c_str(), W_OK) != 0) {
-      throw InputError(flag + ": got \"" + path + "\", expected a file you can write");
-    }
-    return;
-  }
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) {
-    throw InputError(flag + ": got \"" + path + "\", expected a file in an existing folder (\"" +
-                     dir.string() + "\" does not exist)");
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw InputError(flag + ": got \"" + path +
-                     "\", expected a file in a folder you can write (\"" + dir.string() +
-                     "\" is not writable)");
-  }
-}
-
 const Integrator& find_integrator(const LabInfo& info, const std::string& name,
                                   const std::string& where) {
   return find_named(info.integrators, name, where);
@@ -117,15 +90,43 @@ std::int64_t parse_whole(const std::string& flag, const std::string& text, std::
 }
 
 void check_initial_state(const Scene& scene, const World& world) {
-  const Energy e = world.energy(scene.x, scene.v);
-  const Vec2 p = momentum(scene.v, scene.m);
+  const Mat2X& x = scene.x;
+  const Mat2X& v = scene.v;
+  const std::vector<const Force*> terms = world.terms();
+  // Forces: every term's bound, summed particle by particle, and over the mass.
+  VecX bound = VecX::Zero(scene.n());
+  for (const Force* t : terms) {
+    t->bound(x, v, scene.m, bound);
+    const Eigen::Array<double, Eigen::Dynamic, 1> a = bound.array() / scene.m.array();
+    if (bound.allFinite() && a.allFinite()) continue;
+    Eigen::Index i = 0;  // the first particle whose bound is not finite
+    while (std::isfinite(bound[i]) && std::isfinite(a[i])) ++i;
+    throw InputError(scene.file + ": " + t->blame(x, v) +
+                     ": initial state: the force on particle " + std::to_string(i) +
+                     " (this term and those before it) is bounded by " + num(bound[i]) +
+                     " N, its acceleration by " + num(a[i]) +
+                     " m/s^2, expected finite forces and accelerations f/m (a force constant, "
+                     "position, velocity or mass so large that they overflow)");
+  }
+  // Energy: kinetic, then each term's potential; the momentum.
+  const Energy e = world.energy(x, v);
+  const Vec2 p = momentum(v, scene.m);
   if (std::isfinite(e.kinetic) && std::isfinite(e.potential) && std::isfinite(e.total()) &&
       p.allFinite()) {
     return;
   }
-  throw InputError(scene.file + ": initial state: kinetic energy " + num(e.kinetic) +
-                   ", potential energy " + num(e.potential) + ", momentum [" + num(p.x()) + ", " +
-                   num(p.y()) +
+  std::string where = "particles and emitters";  // the kinetic energy or the momentum
+  double V = 0;
+  for (const Force* t : terms) {
+    V += t->potential(x, scene.m);
+    if (!std::isfinite(V) || !std::isfinite(e.kinetic + V)) {
+      where = t->blame(x, v);
+      break;
+    }
+  }
+  throw InputError(scene.file + ": " + where + ": initial state: kinetic energy " +
+                   num(e.kinetic) + ", potential energy " + num(e.potential) + ", momentum [" +
+                   num(p.x()) + ", " + num(p.y()) +
                    "], expected finite values (a position, velocity, mass or force constant "
                    "is so large that they overflow)");
 }
@@ -160,8 +161,9 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
   Scratch scratch;
   scratch.resize(x.cols());
 
-  CsvFile trace(opt.out, "t,id,x,y,vx,vy\n");
-  CsvFile stats(opt.stats, "step,t,energy,kinetic,potential,px,py,force_evals\n");
+  CsvFile no_trace, no_stats;
+  CsvFile& trace = opt.trace ? *opt.trace : no_trace;
+  CsvFile& stats = opt.stats ? *opt.stats : no_stats;
   bool moved = false;  // did any step change the state?
   StepHooks hooks;
   hooks.step = [&] {
@@ -218,9 +220,7 @@ RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt
   return r;
 }
 
-namespace {
-
-ordered_json summary_json(const RunResult& r) {
+Summary summary_of(const RunResult& r) {
   Summary s;
   s.diverged = r.diverged;
   s.steps = r.steps;
@@ -234,96 +234,7 @@ ordered_json summary_json(const RunResult& r) {
   s.momentum = {r.momentum.x(), r.momentum.y()};
   s.unconverged = r.unconverged;
   s.warnings = r.warnings;
-  return wb::summary_json(s);
-}
-
-std::string help_footer(const LabInfo& info) {
-  std::vector<IntegratorLine> lines;
-  for (const Integrator& it : info.integrators) {
-    lines.push_back({it.name, it.description, it.order, it.evals_per_step});
-  }
-  std::string s = integrators_help(lines);
-  for (const auto& section : info.help_sections) s += "\n" + section;
-  if (info.sweep) {
-    s += sweep_help(
-        "Errors against the scene's \"exact\" motion or an RK4 run at the smallest\n"
-        "dt/16.");
-  }
-  return s + help_scenes_and_docs(info.lab);
-}
-
-}  // namespace
-
-int run_particle_lab(int argc, char** argv, const LabInfo& info) {
-  FlagSpec spec;
-  spec.exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
-  spec.summary = info.summary;
-  spec.footer = help_footer(info);
-  spec.trace_columns = "t,id,x,y,vx,vy";
-  spec.stats_columns = "step,t,energy,kinetic,potential,px,py,force_evals";
-  spec.seed = true;
-  spec.sweep = info.sweep;
-  spec.sweep_help =
-      "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
-      "k = 3..-6) to t_end and write one CSV row per run";
-  int status = 0;
-  const std::optional<RunFlags> flags = parse_run_flags(argc, argv, spec, status);
-  if (!flags) return status;
-  const std::string& exe = spec.exe;
-
-  return guarded_main(exe, [&] {
-    std::vector<std::string> keys = info.scene_keys;
-    if (info.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
-    Scene scene = load_scene(flags->scene_file, flags->seed, keys);
-    if (info.expand_scene) {
-      info.expand_scene(scene);
-      check_particles(scene, "the scene's generators");
-    }
-    if (!info.make_world) throw std::logic_error("LabInfo.make_world is not set");
-    std::unique_ptr<World> world = info.make_world(scene);
-    check_initial_state(scene, *world);
-    if (info.sweep) read_exact(scene);  // checks the "exact" key in every mode
-    if (!flags->sweep_csv.empty()) {
-      SweepOptions sweep;
-      sweep.csv = flags->sweep_csv;
-      sweep.integrators = flags->sweep_integrators;
-      sweep.dts = flags->sweep_dts;
-      if (flags->repeats) sweep.repeats = *flags->repeats;
-      sweep.dt = flags->dt;
-      sweep.t_end = flags->t_end;
-      sweep.exe = exe;
-      sweep.warnings = world->cost_warnings;
-      const SweepResult sr = run_sweep(info, scene, *world, sweep);
-      std::cout << sweep_summary(sweep.csv, sr.rows).dump() << std::endl;
-      return 0;
-    }
-
-    RunOptions opt;
-    opt.integrator = &choose_integrator(info.integrators, *flags, scene.integrator, scene.file);
-    opt.dt = step_size(*flags, scene.dt, scene.file);
-    opt.steps = steps_to_take(*flags, scene.t_end, scene.file, opt.dt);
-    opt.every = flags->every.value_or(1);
-    opt.out = flags->out;
-    opt.stats = flags->stats;
-
-    // Accepted: what will be slow is said now, once, before the run.
-    std::vector<std::string> warnings = world->cost_warnings;
-    if (opt.integrator->check) {
-      const std::string w = opt.integrator->check(*opt.integrator, world->dynamics());
-      if (!w.empty()) warnings.push_back(w);
-    }
-    const double work = double(opt.steps) * double(scene.n());
-    if (work > kLongRunParticleSteps) {
-      warnings.push_back(std::to_string(opt.steps) + " steps of " + std::to_string(scene.n()) +
-                         " particles (" + num(work) +
-                         " particle-steps): this run may take minutes or more");
-    }
-    for (const auto& w : warnings) std::cerr << exe << ": warning: " << w << "\n";
-    RunResult r = simulate(scene, *world, opt);
-    for (const auto& w : r.warnings) std::cerr << exe << ": warning: " << w << "\n";
-    std::cout << summary_json(r).dump() << std::endl;
-    return 0;
-  });
+  return s;
 }
 
 }  // namespace wb

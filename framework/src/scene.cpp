@@ -160,6 +160,19 @@ Scene load_scene(const std::string& file, std::optional<std::uint64_t> seed,
   return scene_from_json(file, read_json_file(file), seed, extra_keys);
 }
 
+std::string particle_key(const Scene& s, Eigen::Index i) {
+  const json* p = s.doc.contains("particles") ? &s.doc.at("particles") : nullptr;
+  Eigen::Index first = p && p->is_array() ? Eigen::Index(p->size()) : 0;
+  if (i < first) return "particles[" + std::to_string(i) + "]";
+  const json* e = s.doc.contains("emitters") ? &s.doc.at("emitters") : nullptr;
+  for (std::size_t k = 0; e && e->is_array() && k < e->size(); ++k) {
+    const json& c = (*e)[k].is_object() ? (*e)[k].value("count", json()) : json();
+    first += c.is_number_integer() ? Eigen::Index(c.get<std::int64_t>()) : 0;
+    if (i < first) return "emitters[" + std::to_string(k) + "]";
+  }
+  return "particle " + std::to_string(i) + " (made by the scene's generators)";
+}
+
 void check_particles(const Scene& s, const std::string& what) {
   for (Eigen::Index i = 0; i < s.n(); ++i) {
     const double m = s.m[i];

@@ -2,12 +2,11 @@
 #include "wb/sweep.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <iostream>
 #include <limits>
 #include <map>
 
+#include "wb/contract.h"
 #include "wb/exact.h"
 #include "wb/output.h"
 #include "wb/rk4.h"
@@ -124,8 +123,6 @@ std::vector<double> default_dt_ladder(double dt) {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // The scale that makes an energy error relative: |E0|, unless E0 is tiny
 // against its parts (energy near zero by the choice of the potential's zero),
 // then K0 + |V0|; 1 (an absolute error) when the scene has no energy at all.
@@ -149,148 +146,107 @@ Mat2X rk4_positions(const Scene& scene, const World& world, double h, long steps
   return x;
 }
 
+double smallest_dt(const SweepPlan& plan) {
+  return *std::min_element(plan.dts.begin(), plan.dts.end());
+}
+
 }  // namespace
 
-SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& world,
-                      const SweepOptions& opt) {
-  // Which integrators, which step sizes, to what time (the contract's one plan).
-  std::vector<std::string> names;
-  for (const Integrator& it : info.integrators) names.push_back(it.name);
-  const SweepPlan plan = plan_sweep(names, opt.integrators, opt.dts, opt.dt, opt.t_end, scene.dt,
-                                    scene.t_end, scene.file, opt.repeats);
-  const std::vector<double>& dts = plan.dts;
-  const ExactSolution exact = read_exact(scene);
-  const double h_ref = *std::min_element(dts.begin(), dts.end()) / kReferenceRefinement;
-  const std::string ladder = opt.dts.empty()
-                                 ? (opt.dt ? std::string("--dt") : scene.file + ": dt")
-                                 : std::string("--dts");
-  if (exact.kind == ExactSolution::kNone) {
-    for (std::size_t d = 0; d < dts.size(); ++d) {
-      const double n = std::round(double(plan.steps[d]) * dts[d] / h_ref);
-      if (!(n <= double(kMaxSteps))) {
-        throw InputError(ladder + ": the rk4 reference at the smallest dt / " +
-                         num(kReferenceRefinement) + " = " + num(h_ref) + " takes " + num(n) +
-                         " steps to t = " + num(double(plan.steps[d]) * dts[d]) +
-                         ", expected at most " + std::to_string(kMaxSteps) +
-                         " (use a larger smallest step, a shorter t_end or an \"exact\" scene)");
-      }
+std::vector<ReferenceRun> reference_runs(const SweepPlan& plan) {
+  const double h_ref = smallest_dt(plan) / kReferenceRefinement;
+  std::vector<ReferenceRun> runs;
+  for (std::size_t d = 0; d < plan.dts.size(); ++d) {
+    const double t = double(plan.steps[d]) * plan.dts[d];
+    bool seen = false;
+    for (const ReferenceRun& r : runs) seen = seen || r.t == t;
+    if (seen) continue;
+    const double n = std::max(1.0, std::round(t / h_ref));
+    runs.push_back({t, n <= double(kMaxSteps) ? long(n) : kMaxSteps + 1});
+  }
+  return runs;
+}
+
+void check_sweep(const Scene& scene, const ExactSolution& exact, const SweepPlan& plan,
+                 const std::string& ladder) {
+  if (scene.n() == 0) {
+    throw InputError("--sweep: " + scene.file +
+                     ": the scene has no particles, expected at least one (a sweep measures "
+                     "the particles' position errors)");
+  }
+  if (exact.kind != ExactSolution::kNone) return;
+  const double h_ref = smallest_dt(plan) / kReferenceRefinement;
+  for (const ReferenceRun& r : reference_runs(plan)) {
+    if (r.steps > kMaxSteps) {
+      throw InputError(ladder + ": the rk4 reference at the smallest dt / " +
+                       num(kReferenceRefinement) + " = " + num(h_ref) + " takes " +
+                       num(std::round(r.t / h_ref)) + " steps to t = " + num(r.t) +
+                       ", expected at most " + std::to_string(kMaxSteps) +
+                       " (use a larger smallest step, a shorter t_end or an \"exact\" scene)");
     }
   }
+}
 
-  // Every integrator against the scene before the first run.
-  std::vector<std::string> warnings = opt.warnings;
-  for (std::size_t i : plan.integrators) {
-    const Integrator& integ = info.integrators[i];
-    if (!integ.check) continue;
-    const std::string w = integ.check(integ, world.dynamics());
-    if (!w.empty()) warnings.push_back(w);
+ParticleSweep::ParticleSweep(const LabInfo& info, const Scene& scene, const World& world,
+                             const ExactSolution& exact, const SweepPlan& plan, std::string exe)
+    : info_(info),
+      scene_(scene),
+      world_(world),
+      exact_(exact),
+      h_ref_(smallest_dt(plan) / kReferenceRefinement),
+      exe_(std::move(exe)) {
+  scratch_.resize(scene.n());
+}
+
+Mat2X ParticleSweep::reference_positions(double t) {
+  if (exact_.kind != ExactSolution::kNone) {
+    Vec2 x, v;
+    exact_.at(t, x, v);
+    return x;
   }
+  auto it = rk4_cache_.find(t);
+  if (it != rk4_cache_.end()) return it->second;
+  const long n = std::max(1L, long(std::llround(t / h_ref_)));
+  Mat2X x = rk4_positions(scene_, world_, t / double(n), n);
+  if (!x.allFinite()) {
+    say(exe_, "warning",
+        "the rk4 reference diverged at h = " + num(t / double(n)) +
+            ": errors against it are written as nan");
+  }
+  return rk4_cache_.emplace(t, x).first->second;
+}
 
-  // Opened now, so that an unwritable path fails before the runs.
-  AtomicFile file(opt.csv);
-  for (const auto& w : warnings) std::cerr << opt.exe << ": warning: " << w << "\n";
-
-  // The reference: the exact motion, or RK4 at the smallest dt / 16 (cached
-  // per end time: a dt that does not divide T ends at round(T/dt) dt).
-  const std::string reference = exact.kind == ExactSolution::kNone ? "rk4" : "exact";
-  std::map<double, Mat2X> rk4_cache;
-  auto reference_positions = [&](double t) -> Mat2X {
-    if (exact.kind != ExactSolution::kNone) {
-      Vec2 x, v;
-      exact.at(t, x, v);
-      return x;
-    }
-    auto it = rk4_cache.find(t);
-    if (it != rk4_cache.end()) return it->second;
-    const long n = std::max(1L, long(std::llround(t / h_ref)));
-    if (opt.progress) {
-      std::cerr << "sweep: reference rk4 to t = " << t << " in " << n << " steps\n";
-    }
-    Mat2X x = rk4_positions(scene, world, t / double(n), n);
-    if (!x.allFinite()) {
-      std::cerr << "sweep: warning: the rk4 reference diverged at h = " << t / double(n)
-                << ": errors against it are written as nan\n";
-    }
-    return rk4_cache.emplace(t, x).first->second;
+SweepHooks ParticleSweep::hooks() {
+  SweepHooks h;
+  const Dynamics& dyn = world_.dynamics();
+  const Energy e0 = world_.energy(scene_.x, scene_.v);
+  h.reset = [this, &dyn] {
+    x_ = scene_.x;
+    v_ = scene_.v;
+    dyn.reset_evals();
   };
-
-  SweepResult result;
-  const std::size_t total = plan.integrators.size() * dts.size();
-  const Energy e0 = world.energy(scene.x, scene.v);
-  const double scale = relative_energy_scale(e0);
-  // The run contract's rule for a diverged run (docs/run-contract.md).
-  const double blowup_scale =
-      energy_scale(e0.kinetic, e0.potential, particle_work_scale(scene, world));
-  Scratch s;
-  s.resize(scene.n());
-  const Dynamics& dyn = world.dynamics();
-  for (std::size_t i : plan.integrators) {
-    const Integrator* integ = &info.integrators[i];
-    for (std::size_t d = 0; d < dts.size(); ++d) {
-      SweepRow row;
-      row.integrator = i;
-      row.dt = dts[d];
-      row.steps = plan.steps[d];
-      row.reference = reference;
-      if (opt.progress) {
-        std::cerr << "sweep: " << integ->name << " dt=" << num(row.dt) << " ("
-                  << result.rows.size() + 1 << "/" << total << ")\n";
-      }
-
-      // Untimed run: divergence and the largest energy error over the run.
-      Mat2X x = scene.x, v = scene.v;
-      dyn.reset_evals();
-      for (long k = 0; k < row.steps; ++k) {
-        integ->step(dyn, row.dt, x, v, s);
-        world.after_step(row.dt, x, v);
-        const bool finite = x.allFinite() && v.allFinite();
-        const double E = finite ? world.energy(x, v).total() : NAN;
-        if (!divergence(finite, E, blowup_scale, k + 1).empty()) {
-          row.diverged = true;
-          break;
-        }
-        row.energy_error = std::max(row.energy_error, std::abs(E - e0.total()) / scale);
-      }
-      row.diverged =
-          row.diverged || !unconverged_divergence(row.steps, dyn.unconverged()).empty();
-      if (row.steps > 0 && x == scene.x && v == scene.v) {
-        std::cerr << "sweep: warning: " << integ->name << " at dt=" << num(row.dt)
-                  << ": the state never changed in " << row.steps
-                  << " steps: its error measures the scene, not the method (is the step "
-                     "still a stub?)\n";
-      }
-      if (row.diverged) {
-        row.error = row.energy_error = kInf;
-      } else {
-        const Mat2X ref = reference_positions(double(row.steps) * row.dt);
-        row.error = (x - ref).colwise().norm().maxCoeff();
-        if (!ref.allFinite()) row.error = std::numeric_limits<double>::quiet_NaN();
-      }
-
-      // Timed runs: the pure step loop, fastest of opt.repeats.
-      row.wall_s = kInf;
-      for (int r = 0; r < opt.repeats; ++r) {
-        x = scene.x;
-        v = scene.v;
-        dyn.reset_evals();
-        const auto start = std::chrono::steady_clock::now();
-        for (long k = 0; k < row.steps; ++k) {
-          integ->step(dyn, row.dt, x, v, s);
-          world.after_step(row.dt, x, v);
-        }
-        const double wall =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        row.wall_s = std::min(row.wall_s, wall);
-        row.force_evals = dyn.evals();
-      }
-      result.rows.push_back(row);
+  h.steps = [this, &dyn](std::size_t i, double dt, long n) {
+    const Integrator& integ = info_.integrators[i];
+    for (long k = 0; k < n; ++k) {
+      integ.step(dyn, dt, x_, v_, scratch_);
+      world_.after_step(dt, x_, v_);
     }
-  }
-
-  // The CSV, written atomically.
-  file.write(sweep_table(scene.name, names, result.rows));
-  file.commit();
-  return result;
+  };
+  h.finite = [this] { return x_.allFinite() && v_.allFinite(); };
+  h.energy = [this] { return world_.energy(x_, v_).total(); };
+  h.moved = [this] { return x_ != scene_.x || v_ != scene_.v; };
+  h.evals = [&dyn] { return dyn.evals(); };
+  h.unconverged = [&dyn] { return dyn.unconverged(); };
+  h.error = [this](double t) {
+    const Mat2X ref = reference_positions(t);
+    if (!ref.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+    return (x_ - ref).colwise().norm().maxCoeff();
+  };
+  h.energy0 = e0.total();
+  h.energy_scale = relative_energy_scale(e0);
+  h.blowup_scale = energy_scale(e0.kinetic, e0.potential, particle_work_scale(scene_, world_));
+  h.reference = exact_.kind == ExactSolution::kNone ? "rk4" : "exact";
+  h.unmoved = "its error measures the scene, not the method (is the step still a stub?)";
+  return h;
 }
 
 }  // namespace wb

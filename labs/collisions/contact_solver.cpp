@@ -2,7 +2,8 @@
 
 // TODO(C5) effective mass and the restitution target (see contact_solver.h).
 // Plan: 1. c.mass_n = 1 / (w_a + w_b), w_b = 0 for a plane (c.b < 0);
-//       2. un = (v_a - v_b).n; c.bias = -e un if -un > threshold, else 0.
+//       2. un = (v_a - v_b).n; c.bias = -un if un > 0 (separating), else -e un if
+//          -un > threshold (an impact), else 0 (resting).
 void prepare_contact(const wb::VecX& w, const wb::Mat2X& v, double e, double threshold,
                      Contact& c) {
   // ---- Replace with your code ----

@@ -23,8 +23,13 @@
 //
 // prepare_contact: mass_n, and the normal velocity the contact aims for, from un
 //   BEFORE any impulse of this step:
-//     bias = -e un   when -un > threshold   (an impact bounces)
-//     bias = 0       otherwise              (resting: no micro-bounce)
+//     bias = -e un   when -un > threshold       (closing fast: an impact bounces)
+//     bias = 0       when 0 <= -un <= threshold (closing slowly: resting, no micro-bounce)
+//     bias = -un     when un > 0                (separating: the other contacts may turn
+//                                                it back, never faster than it leaves)
+//   An impulse that takes a contact from un to un' changes the kinetic energy by
+//   (1/2) P (un + un') (P its total): -e un loses (1 - e) of it, 0 loses it, and -un for a
+//   separating contact turned back keeps it (a target of 0 would ADD (1/2) P un).
 //   Pn, Pt are left as they are (kept by the caller from the last step).
 // warm_start_contact: applies the stored totals, J = Pn n + Pt t: v_a += w_a J,
 //   v_b -= w_b J (nothing for a plane).
@@ -34,10 +39,14 @@
 //      apply (Pt' - Pt) t
 //   stores Pn', Pt'; returns Pn' - Pn, the normal impulse this iteration added (N s).
 //
-// The framework (framework/drivers/collisions/contact_world.cpp) finds the contacts,
-// keeps their totals from step to step, calls prepare and warm start on every
-// contact and then `iterations` passes of solve_contact, and removes what overlap is
-// left afterwards by moving positions only (no velocity: it adds no energy).
+// The framework (framework/drivers/collisions/contact_world.cpp) finds the contacts and
+// keeps their totals from step to step. Impacts first, one at a time: for `iterations`
+// passes, each contact with e > 0 gets prepare_contact with no totals on the current
+// velocities and, if it closes faster than the threshold (bias > 0), ONE solve_contact:
+// the restitution law on its own approach, as C1 and C2 apply it, which keeps an elastic
+// impact's energy whatever else the contact touches. Then every contact together:
+// prepare, warm start, `iterations` passes of solve_contact. What overlap is left is
+// removed by moving positions only (no velocity: it adds no energy).
 //
 // Inputs:
 //   w          inverse masses 1/m (1/kg), one per particle, > 0

@@ -5,7 +5,8 @@
 // TODO(R6) effective masses and the restitution target (see plane_contact.h).
 // Plan: 1. c.r = c.p - x; I^-1 in the world frame (R2); c.K = E/m - [r]x I^-1 [r]x;
 //       2. c.mass_n = 1 / (n^T K n);
-//       3. vn = (v + omega x r).n; c.bias = -e vn if -vn > threshold, else 0.
+//       3. vn = (v + omega x r).n; c.bias = -vn if vn > 0 (leaving), else -e vn if
+//          -vn > threshold (an impact), else 0 (resting).
 void prepare_contact(const rigid::Body& b, const rigid::Vec3& n, double e, double threshold,
                      Contact& c) {
   // ---- Replace with your code ----

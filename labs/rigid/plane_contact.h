@@ -28,9 +28,14 @@
 //   Pn >= 0,     |Pt| <= mu Pn
 //
 // prepare_contact: r = p - x, K, mass_n as above, and the normal velocity the
-//   contact aims for, from the approach speed u.n BEFORE any impulse of this step:
-//     bias = -e (u.n)   when -(u.n) > threshold  (a real impact bounces)
-//     bias = 0          otherwise                (resting: no micro-bounce)
+//   contact aims for, from u.n BEFORE any impulse of this step:
+//     bias = -e (u.n)   when -(u.n) > threshold       (approaching fast: an impact bounces)
+//     bias = 0          when 0 <= -(u.n) <= threshold (approaching slowly: resting)
+//     bias = -(u.n)     when u.n > 0                  (leaving: the other contacts may turn
+//                                                      it back, never faster than it leaves)
+//   An impulse that takes the point from u.n to u.n' changes the kinetic energy by
+//   (1/2) P (u.n + u.n') (P its total): -e u.n loses (1 - e) of it, 0 loses it, and -u.n for
+//   a leaving point turned back keeps it (a target of 0 would ADD (1/2) P u.n).
 //   Pn, Pt are left as they are (the caller keeps them from the previous step).
 //
 // warm_start_contact: applies the stored totals at p, J = Pn n + Pt.
@@ -51,7 +56,8 @@
 //   Returns the sum of the contacts' Pn (N s).
 //
 // Penetration is not the solver's business: the caller pushes the body out after
-// the velocities are solved, without changing them (split impulses, handout §R6).
+// the velocities are solved, without changing them or the kinetic energy (split
+// impulses, handout §R6).
 //
 // Inputs:
 //   b          the body (m, I_body, x, v, q, omega)

@@ -21,7 +21,11 @@ void prepare_contact(const wb::VecX& w, const wb::Mat2X& v, double e, double thr
                      Contact& c) {
   c.mass_n = 1.0 / (w[c.a] + (c.b >= 0 ? w[c.b] : 0.0));
   const double un = relative_velocity(c, v).dot(c.n);
-  c.bias = -un > threshold ? -e * un : 0.0;
+  if (un > 0) {
+    c.bias = -un;  // separating: turned back at most as fast as it leaves
+  } else {
+    c.bias = -un > threshold ? -e * un : 0.0;  // an impact bounces, a resting contact stops
+  }
 }
 
 // TODO(C5) the totals of the last step, applied again (see contact_solver.h).

@@ -30,8 +30,12 @@ void prepare_contact(const rigid::Body& b, const rigid::Vec3& n, double e, doubl
   const rigid::Mat3 rx = rigid::skew(c.r);
   c.K = rigid::Mat3::Identity() / b.m - rx * inverse_inertia(b) * rx;
   c.mass_n = 1.0 / n.dot(c.K * n);
-  const double vn = point_velocity(b, c.r).dot(n);  // approach speed, before any impulse
-  c.bias = -vn > threshold ? -e * vn : 0.0;
+  const double vn = point_velocity(b, c.r).dot(n);  // before any impulse of this step
+  if (vn > 0) {
+    c.bias = -vn;  // separating: turned back at most as fast as it leaves
+  } else {
+    c.bias = -vn > threshold ? -e * vn : 0.0;  // an impact bounces, a resting contact stops
+  }
 }
 
 // TODO(R6) apply the totals kept from the previous step (see plane_contact.h).

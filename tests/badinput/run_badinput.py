@@ -4,16 +4,20 @@
 Runs each case of tests/badinput/cases.json against the lab executables in
 --bin and checks the run contract for bad input (docs/run-contract.md):
 exit status 2 (or the case's `status`; `kill_after` S: a slow valid run,
-stopped after S seconds, that must have warned; `stop_after` S: a run sent
+stopped after S seconds, that must have warned (`may_finish`: or that finished, as
+a skeleton's stubs do, with status 0); `stop_after` S: a run sent
 SIGTERM after S seconds, which must leave no output behind; `differs_from`: the
 arguments of a second run whose initial momentum must differ), exactly one line of valid UTF-8 on
 stderr of at most MAX_LINE bytes naming what the case `expect`s (`stderr_lines`: the
-number of lines of a run that is not refused), nothing on stdout, no output
+number of lines of a run that is not refused; `lines_prefix`: what every line of
+it starts with), nothing on stdout, no output
 file left behind (`absent`), special files still special (`special`: made by
 `fifo` with a reader, or `symlink` [name, target]), within TIME_LIMIT_S seconds
 (`max_seconds`: another limit; `max_cpu_seconds`: a limit on the CPU time it
 used, which a loaded machine does not inflate) and MEMORY_LIMIT_BYTES of
-address space. `{exe}` in an `expect` string is the executable's name. Large
+address space. `{exe}` in an `expect` string is the executable's name;
+`{badutf8}` in an argument is the byte 0xFF, `{name250}` and `{name300}` file
+names of 250 and 300 bytes. Large
 scenes (deep nesting, a 17 MiB file, a file at the 16 MiB cap, generators at
 their maximum) are generated into a temporary folder, not checked in.
 
@@ -21,6 +25,7 @@ their maximum) are generated into a temporary folder, not checked in.
 """
 import argparse
 import json
+import math
 import os
 import resource
 import shutil
@@ -38,7 +43,7 @@ MAX_LINE = 1100  # messages are cut to 1000 bytes (kMaxMessageBytes) plus the "<
 TIME_LIMIT_S = 20.0  # each case is refused in well under a second; this is a hang detector
 MEMORY_LIMIT_BYTES = 2 << 30  # a refused scene must not allocate gigabytes first
 # How the run contract's warnings about a stub end (docs/run-contract.md, `warnings`).
-STUB_WARNING_ENDINGS = ("written yet?", "still a stub?")
+STUB_WARNING_ENDINGS = ("written yet?", "still a stub?", "still stubs?")
 
 
 def generate(kind, tmp):
@@ -92,7 +97,7 @@ def generate(kind, tmp):
             {"count": 100000, "min": [0, 0], "max": [0, 0], "m": 1, "radius": 0.1}]})
     elif kind == "particles-x-planes":  # 10^6 particles x 100 planes x 20 passes
         planes = [{"point": [0, -k], "normal": [0, 1]} for k in range(100)]
-        text = json.dumps({"dt": 1e-3, "t_end": 1, "contact": {"iterations": 20},
+        text = json.dumps({"dt": 1e-3, "t_end": 10, "contact": {"iterations": 20},
                            "planes": planes, "emitters": [
                                {"count": 1000000, "min": [0, 0], "max": [1000, 1000],
                                 "m": 1}]})
@@ -104,6 +109,40 @@ def generate(kind, tmp):
     elif kind == "newline-in-file-name":
         path = os.path.join(tmp, "bad\nname.json")
         text = '{"dt": 0.1, "dt": 0.2}'
+    elif kind == "newline-name-slow":  # a valid scene that warns (the cost model) first
+        path = os.path.join(tmp, "slow\nname.json")
+        text = json.dumps({"dt": 1e-6, "t_end": 100, "emitters": [
+            {"count": 200, "min": [0, 0], "max": [1, 1], "m": 1}]})
+    elif kind == "newline-name-unconverged":  # Newton fails every step: one warning at the end
+        path = os.path.join(tmp, "rope\nname.json")
+        with open(os.path.join(HERE, "scenes", "newton-unconverged.json"), encoding="utf-8") as f:
+            text = f.read()
+    elif kind == "collisions-iterations-1000":  # 20 000 discs, 1000 solver iterations per step
+        text = json.dumps({"dt": 2e-3, "t_end": 10, "contact": {"iterations": 1000},
+                           "planes": [{"point": [0, 0], "normal": [0, 1]}],
+                           "emitters": [{"count": 20000, "seed": 1, "min": [-3, 0.05],
+                                         "max": [3, 3], "m": 1e-3, "radius": 0.01}],
+                           "forces": [{"type": "gravity", "g": [0, -9.81]}]})
+    elif kind == "rigid-iterations-1000":  # 200 boxes resting, 1000 contact iterations per step
+        bodies = [{"shape": "box", "size": [1, 1, 1], "m": 1, "x": [2 * k, 0, 0.5]}
+                  for k in range(200)]
+        text = json.dumps({"dt": 1e-3, "t_end": 100, "bodies": bodies, "contact": {"iterations": 1000},
+                           "planes": [{"point": [0, 0, 0], "normal": [0, 0, 1]}],
+                           "forces": [{"type": "gravity", "g": [0, 0, -9.81]}]})
+    elif kind == "curl-obstacles":  # 20 000 obstacles x 200 000 particles
+        obstacles = [{"center": [k % 200, k // 200], "radius": 0.1} for k in range(20000)]
+        text = json.dumps({"dt": 0.01, "t_end": 10, "emitters": [
+            {"count": 200000, "min": [0, 0], "max": [200, 100], "m": 1}], "forces": [
+            {"type": "curl-noise", "b": 1, "amplitude": 1, "scale": 1, "seed": 1,
+             "obstacles": obstacles}]})
+    elif kind == "discs-converge":  # 30 000 discs on a circle, all at its centre at step 2
+        n, R, h = 30000, 1000.0, 0.01
+        parts = []
+        for k in range(n):
+            a = 2 * 3.141592653589793 * k / n
+            x, y = R * math.cos(a), R * math.sin(a)
+            parts.append({"x": [x, y], "v": [-x / (2 * h), -y / (2 * h)], "m": 1, "radius": 0.01})
+        text = json.dumps({"dt": h, "t_end": 1, "contact": {}, "particles": parts})
     else:
         raise SystemExit(f"run_badinput.py: unknown generator '{kind}'")
     with open(path, "w", encoding="utf-8") as f:
@@ -131,7 +170,8 @@ def run_case(case, args):
     try:
         scene = generate(case["generate"], tmp) if "generate" in case else ""
         subst = {"{scene}": scene, "{scenes}": os.path.join(HERE, "scenes"), "{tmp}": tmp,
-                 "{repo}": REPO}
+                 "{repo}": REPO, "{badutf8}": "\udcff", "{name250}": "n" * 246 + ".csv",
+                 "{name300}": "n" * 296 + ".csv"}
         argv = [exe]
         for a in case["args"]:
             for k, v in subst.items():
@@ -163,7 +203,9 @@ def run_case(case, args):
         try:
             out, err_bytes = proc.communicate(timeout=kill_after or stop_after or limit)
             code = proc.returncode
-            if kill_after or stop_after:
+            if kill_after and case.get("may_finish") and code == 0:
+                code = "killed"  # a skeleton's stub does no work: it may finish in time
+            elif kill_after or stop_after:
                 return [f"finished within {kill_after or stop_after} s, expected a run long "
                         "enough to stop"]
         except subprocess.TimeoutExpired:
@@ -210,6 +252,11 @@ def run_case(case, args):
             if len(counted) != case["stderr_lines"]:
                 problems.append(f"stderr has {len(counted)} lines (besides stub warnings), "
                                 f"expected {case['stderr_lines']}")
+        if "lines_prefix" in case:
+            prefix = case["lines_prefix"].replace("{exe}", os.path.basename(exe))
+            for ln in lines[:-1]:
+                if not ln.startswith(prefix):
+                    problems.append(f"stderr line {ln[:80]!r} does not start with {prefix!r}")
         for want in case.get("expect", []):
             want = want.replace("{exe}", os.path.basename(exe))
             if want not in err:

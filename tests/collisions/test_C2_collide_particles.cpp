@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "collide_particles.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -32,7 +33,7 @@ const Vec2 kX1 = kX2 + 0.35 * kN;
 }  // namespace
 
 TEST_CASE("C2 collide_particles: equal masses head-on with e = 1 exchange normal velocities",
-          "[collisions][C2][4pts]") {
+          "[collisions][C2][3pts]") {
   Vec2 x1(0.0, 0.0), x2(0.19, 0.0);  // radii 0.1: overlap 0.01 along x
   Vec2 v1(2.0, 0.3), v2(-1.0, -0.4);
   const double J = collide_particles(1.2, 0.1, 1.2, 0.1, 1.0, x1, v1, x2, v2);
@@ -47,7 +48,7 @@ TEST_CASE("C2 collide_particles: equal masses head-on with e = 1 exchange normal
 TEST_CASE(
     "C2 collide_particles: momentum conserved to rounding and kinetic energy lost by "
     "(1 - e^2)/2 mu v_n^2",
-    "[collisions][C2][4pts]") {
+    "[collisions][C2][3pts]") {
   const double m1 = 1.5, m2 = 4.0, mu = m1 * m2 / (m1 + m2);
   for (double e : {1.0, 0.6, 0.0}) {
     Vec2 x1 = kX1, x2 = kX2;
@@ -66,7 +67,7 @@ TEST_CASE(
 }
 
 TEST_CASE("C2 collide_particles: e = 1 reproduces the lecture's elastic velocity formula",
-          "[collisions][C2][3pts]") {
+          "[collisions][C2][2pts]") {
   const double m1 = 1.5, m2 = 4.0;
   Vec2 x1 = kX1, x2 = kX2;
   Vec2 v1(0.7, -2.1), v2(-0.3, 0.8);
@@ -80,7 +81,7 @@ TEST_CASE("C2 collide_particles: e = 1 reproduces the lecture's elastic velocity
 }
 
 TEST_CASE("C2 collide_particles: a 1 to 10^6 mass ratio behaves like a wall",
-          "[collisions][C2][3pts]") {
+          "[collisions][C2][2pts]") {
   const double m1 = 1.0, m2 = 1e6, e = 0.5;
   Vec2 x1 = kX1, x2 = kX2;
   Vec2 v1 = -2.0 * kN + Vec2(0.96, -0.28), v2(0.0, 0.0);
@@ -180,6 +181,59 @@ TEST_CASE(
   J = collide_particles(1.0, 0.2, 1.0, 0.2, 1.0, x1, v1, x2, v2);
   require_near(J, 2.0, kRound, "(v1 - v2).n = -2: approaching, J = -(1 + 1) (-2) / 2");
   require_near(v1, Vec2(0.0, -1.0), kRound, "equal masses, e = 1: velocities exchanged");
+}
+
+TEST_CASE("C2 held-out: random pairs of discs in and out of contact follow the header",
+          "[collisions][C2][held-out][4pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("C2")) {
+    INFO(g.replay());
+    for (int s = 0; s < 16; ++s) {
+      const double m1 = g.log_uniform(0.05, 20.0), m2 = g.log_uniform(0.05, 20.0);
+      const double e = g.uniform(0.0, 1.0);
+      const bool exact = s % 4 == 0;  // touching exactly: binary fractions along an axis
+      const double r1 = exact ? g.integer(0, 8) / 8.0 : g.uniform(0.0, 1.0);
+      const double r2 = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
+      const Vec2 x2 =
+          exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
+      Vec2 x1;
+      if (exact) {
+        x1 = x2 + (r1 + r2) * (g.coin() ? Vec2(g.sign(), 0) : Vec2(0, g.sign()));
+      } else if (s % 4 == 1) {
+        x1 = x2;  // coincident centres: the fallback normal (0, 1)
+      } else {
+        x1 = x2 + (r1 + r2) * g.uniform(0.3, 1.3) * g.unit2();  // overlapping or apart
+      }
+      const Vec2 v1 = g.vec2(-3, 3), v2 = g.vec2(-3, 3);
+      // The header's response, written here.
+      const double dist = (x1 - x2).norm(), sgap = r1 + r2 - dist;
+      const Vec2 n = dist > 0 ? Vec2((x1 - x2) / dist) : Vec2(0, 1);
+      const double vn = (v1 - v2).dot(n), w1 = 1 / m1, w2 = 1 / m2;
+      Vec2 x1e = x1, x2e = x2, v1e = v1, v2e = v2;
+      double Je = 0;
+      if (sgap >= 0) {
+        if (vn < 0) {
+          Je = -(1 + e) * vn / (w1 + w2);
+          v1e += (Je / m1) * n;
+          v2e -= (Je / m2) * n;
+        }
+        x1e += sgap * w1 / (w1 + w2) * n;
+        x2e -= sgap * w2 / (w1 + w2) * n;
+      }
+      Vec2 y1 = x1, y2 = x2, u1 = v1, u2 = v2;
+      const double J = collide_particles(m1, r1, m2, r2, e, y1, u1, y2, u2);
+      INFO("m1 = " << m1 << ", r1 = " << r1 << ", x1 = " << wbtest::str(x1)
+                   << ", v1 = " << wbtest::str(v1) << "; m2 = " << m2 << ", r2 = " << r2
+                   << ", x2 = " << wbtest::str(x2) << ", v2 = " << wbtest::str(v2)
+                   << "; e = " << e << " (overlap " << sgap << ", (v1 - v2).n = " << vn << ")");
+      const double scale = 1.0 + x1.norm() + x2.norm() + v1.norm() + v2.norm();
+      wbtest::require_near(J, Je, 1e-12 * (1 + std::abs(Je)),
+                           "J = -(1 + e) v_n / (1/m1 + 1/m2) in contact and approaching, else 0");
+      wbtest::require_near(u1, v1e, 1e-12 * scale, "v1 + (J / m1) n");
+      wbtest::require_near(u2, v2e, 1e-12 * scale, "v2 - (J / m2) n");
+      wbtest::require_near(y1, x1e, 1e-12 * scale, "x1 moved out by s w1 / (w1 + w2) along n");
+      wbtest::require_near(y2, x2e, 1e-12 * scale, "x2 moved out by s w2 / (w1 + w2) against n");
+    }
+  }
 }
 
 }  // namespace test_C2_collide_particles

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grid_pairs.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -79,7 +80,7 @@ wb::VecX random_radii(Eigen::Index n, std::uint64_t seed, double lo, double hi) 
 }  // namespace
 
 TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed radii",
-          "[collisions][C3][6pts]") {
+          "[collisions][C3][5pts]") {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
     const Eigen::Index n = 400;
     const wb::Mat2X x = wbtest::random_points(n, seed, -3.0, 2.0);  // negative coordinates too
@@ -94,7 +95,7 @@ TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed
 }
 
 TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
-          "[collisions][C3][5pts]") {
+          "[collisions][C3][4pts]") {
   // k x k centres 2r apart (exact in binary), from -1 upwards: every disc
   // touches its neighbours and each box touches its diagonal neighbours'
   // corners, so the pairs are the lattice's 8-neighbour links:
@@ -119,7 +120,7 @@ TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
 }
 
 TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far outliers",
-          "[collisions][C3][4pts]") {
+          "[collisions][C3][3pts]") {
   {
     // Points (radius 0): only coincident ones pair up; none, one and two particles.
     wb::Mat2X x(2, 6);
@@ -147,6 +148,73 @@ TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far
     x.col(n - 2) = wb::Vec2(1e6, -1e6);  // far outliers
     x.col(n - 3) = wb::Vec2(1e6 + 0.01, -1e6);
     require_same_pairs(x, r, "one large disc and two far outliers");
+  }
+}
+
+TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair set",
+          "[collisions][C3][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("C3")) {
+    INFO(g.replay());
+    for (int s = 0; s < 3; ++s) {
+      const Eigen::Index n = g.integer(20, 60);
+      wb::Mat2X x(2, n);
+      wb::VecX radius(n);
+      if (s == 0) {
+        // A lattice of touching discs of one radius (binary fractions, offset at random by
+        // whole spacings): boxes touch exactly on the cells' boundaries.
+        const double r = g.integer(1, 8) / 16.0;
+        const long cols = g.integer(3, 8);
+        const wb::Vec2 origin(2 * r * double(g.integer(-20, 20)),
+                              2 * r * double(g.integer(-20, 20)));
+        for (Eigen::Index i = 0; i < n; ++i) {
+          x.col(i) = origin + 2 * r * wb::Vec2(double(i % cols), double(i / cols));
+          radius[i] = r;
+        }
+      } else {
+        // Mixed radii (some zero, one large), spread in a box a few diameters wide, some far.
+        const double scale = g.log_uniform(0.1, 10.0);
+        for (Eigen::Index i = 0; i < n; ++i) {
+          radius[i] = g.coin(0.1) ? 0.0 : scale * g.uniform(0.05, 0.5);
+          x.col(i) = scale * g.vec2(-3, 3);
+        }
+        radius[g.integer(0, n - 1)] = scale * g.uniform(1.0, 3.0);
+        x.col(g.integer(0, n - 1)) = scale * g.vec2(-100, 100);
+        x.col(g.integer(0, n - 1)) = x.col(g.integer(0, n - 1));  // two at the same place
+      }
+      Pairs expected;
+      brute_force(x, radius, expected);
+      // The output comes in full of last call's pairs: it must be cleared.
+      Pairs got = {{0, 1}, {2, 3}, {int(n) - 2, int(n) - 1}};
+      grid_pairs(x, radius, got);
+      for (const auto& pr : got) {
+        INFO("pair (" << pr.first << ", " << pr.second << "): expected 0 <= i < j < " << n);
+        REQUIRE((0 <= pr.first && pr.first < pr.second && pr.second < n));
+      }
+      std::sort(got.begin(), got.end());
+      std::sort(expected.begin(), expected.end());
+      Pairs missing, extra;
+      std::set_difference(expected.begin(), expected.end(), got.begin(), got.end(),
+                          std::back_inserter(missing));
+      std::set_difference(got.begin(), got.end(), expected.begin(), expected.end(),
+                          std::back_inserter(extra));
+      const bool repeated = std::adjacent_find(got.begin(), got.end()) != got.end();
+      std::ostringstream what;
+      what << (s == 0 ? "a lattice of touching discs" : "mixed radii") << ", " << n
+           << " discs: " << expected.size() << " pairs expected, " << got.size() << " found";
+      if (!missing.empty())
+        what << "; missing (" << missing[0].first << ", " << missing[0].second
+             << "): x = " << wbtest::str(x.col(missing[0].first))
+             << " r = " << radius[missing[0].first]
+             << " and x = " << wbtest::str(x.col(missing[0].second))
+             << " r = " << radius[missing[0].second];
+      if (!extra.empty())
+        what << "; not overlapping (" << extra[0].first << ", " << extra[0].second << ")";
+      if (repeated) what << "; a pair found twice";
+      INFO(what.str());
+      REQUIRE(missing.empty());
+      REQUIRE(extra.empty());
+      REQUIRE_FALSE(repeated);
+    }
   }
 }
 

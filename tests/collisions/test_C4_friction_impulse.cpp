@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "friction_impulse.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -43,7 +44,7 @@ Vec2 slide(double theta, double mu, int steps, double h, Vec2& x) {
 }  // namespace
 
 TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity stops",
-          "[collisions][C4][3pts]") {
+          "[collisions][C4][2pts]") {
   Vec2 v = -0.5 * kN + 0.2 * kT;
   const double jt = friction_impulse(kN, 3.0, 0.5, 2.0, v);  // needs 2 * 0.2 = 0.4 <= 1.5
   require_near(v, Vec2(-0.5 * kN), kRound, "static friction: tangential velocity 0, normal kept");
@@ -51,7 +52,7 @@ TEST_CASE("C4 friction_impulse: inside the friction cone the tangential velocity
 }
 
 TEST_CASE("C4 friction_impulse: outside the cone the impulse is mu jn against the sliding",
-          "[collisions][C4][3pts]") {
+          "[collisions][C4][2pts]") {
   Vec2 v = 0.1 * kN + 3.0 * kT;
   const double jt = friction_impulse(kN, 1.0, 0.4, 2.0, v);  // would need 6 > mu jn = 0.4
   require_near(v, Vec2(0.1 * kN + 2.8 * kT), kRound,
@@ -60,7 +61,7 @@ TEST_CASE("C4 friction_impulse: outside the cone the impulse is mu jn against th
 }
 
 TEST_CASE("C4 friction_impulse: a block on a slope sticks when tan theta < mu",
-          "[collisions][C4][3pts]") {
+          "[collisions][C4][2pts]") {
   const double theta = 20.0 * M_PI / 180.0;  // tan = 0.364 < 0.5
   Vec2 x(0.25, -0.5);
   const Vec2 v = slide(theta, 0.5, 2000, 1e-3, x);
@@ -146,6 +147,44 @@ TEST_CASE(
       require_near(v, Vec2(-0.3 * kN + (c.vt - bound / c.m) * kT), kRound,
                    "sliding: the tangential speed drops by mu jn / m");
       require_near(jt, bound, kRound, "sliding: returned impulse mu jn");
+    }
+  }
+}
+
+TEST_CASE("C4 held-out: random contacts inside and outside the friction cone follow the header",
+          "[collisions][C4][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("C4")) {
+    INFO(g.replay());
+    for (int s = 0; s < 16; ++s) {
+      // The first two along an axis, so that v_t = 0 exactly (and mu jn = 0 in the first).
+      const Vec2 n = s < 2 ? Vec2(0, g.sign()) : Vec2(g.unit2()), t(-n.y(), n.x());
+      const double m = g.uniform(0.1, 5.0), mu = s == 0 ? 0.0 : g.uniform(0.0, 1.5);
+      const double jn = s == 0 ? 0.0 : g.uniform(0.0, 5.0);
+      // Tangential speed: none, inside the cone, or outside it.
+      const double vt = s < 2 ? 0.0
+                              : g.sign() *
+                                    (g.coin() ? g.uniform(0.0, 0.95) : g.uniform(1.05, 4.0)) *
+                                    (mu * jn / m + (s % 3 == 0 ? g.uniform(0.0, 1.0) : 0.0));
+      const Vec2 v0 = g.uniform(-3, 3) * n + vt * t;
+      const Vec2 vtv = v0 - v0.dot(n) * n;
+      Vec2 ve = v0;
+      double je;
+      if (m * vtv.norm() <= mu * jn) {
+        ve = v0 - vtv;
+        je = m * vtv.norm();
+      } else {
+        ve = v0 - (mu * jn / m) * vtv / vtv.norm();
+        je = mu * jn;
+      }
+      Vec2 v = v0;
+      const double j = friction_impulse(n, jn, mu, m, v);
+      INFO("n = " << wbtest::str(n) << ", jn = " << jn << ", mu = " << mu << ", m = " << m
+                  << ", v = " << wbtest::str(v0) << " (m |v_t| = " << m * vtv.norm()
+                  << ", mu jn = " << mu * jn << ")");
+      wbtest::require_near(v, ve, 1e-12 * (1 + v0.norm()),
+                           "static (m |v_t| <= mu jn): v_t stopped; sliding: v_t reduced by "
+                           "mu jn / m; the normal part untouched");
+      wbtest::require_near(j, je, 1e-12 * (1 + je), "the tangential impulse: m |v_t| or mu jn");
     }
   }
 }

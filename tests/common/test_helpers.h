@@ -8,6 +8,7 @@
 //   - every test must fail on the skeleton (a stub) and pass on any correct
 //     implementation; expected values come from closed forms or laws
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -64,8 +65,56 @@ inline void require_near(const wb::Mat2X& got, const wb::Mat2X& expected, double
   }
 }
 
+// The one NaN-safe way to measure a difference (docs/grading.md, "Every value from the worker
+// is hostile"): a value that came back from the lab's code may be NaN or infinite anywhere,
+// and Eigen's maxCoeff() may skip a NaN that is not the first entry, so that
+// "(got - expected).cwiseAbs().maxCoeff() <= tol" passes. These return NaN when any entry of
+// either side is not finite, or when the shapes differ: every comparison with NaN is false,
+// so "<= tol", "> tol" and "== 0" all fail (an infinity would still pass "> tol").
+template <class A, class B>
+double max_abs_diff(const Eigen::DenseBase<A>& a, const Eigen::DenseBase<B>& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return std::nan("");
+  double worst = 0;
+  for (Eigen::Index j = 0; j < a.cols(); ++j) {
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      const double x = double(a(i, j)), y = double(b(i, j));
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(x - y)) return std::nan("");
+      worst = std::max(worst, std::abs(x - y));
+    }
+  }
+  return worst;
+}
+
+// The largest |entry|, NaN when an entry is not finite.
+template <class A>
+double max_abs(const Eigen::DenseBase<A>& a) {
+  double worst = 0;
+  for (Eigen::Index j = 0; j < a.cols(); ++j) {
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      const double v = double(a(i, j));
+      if (!std::isfinite(v)) return std::nan("");
+      worst = std::max(worst, std::abs(v));
+    }
+  }
+  return worst;
+}
+
+// A running maximum that a NaN or an infinity cannot hide from: once x is not finite the
+// result is NaN for good (std::max(acc, NaN) returns acc, and the NaN is lost).
+inline double worst_of(double acc, double x) {
+  return std::isfinite(x) && !std::isnan(acc) ? std::max(acc, x) : std::nan("");
+}
+// The same for a running minimum.
+inline double least_of(double acc, double x) {
+  return std::isfinite(x) && !std::isnan(acc) ? std::min(acc, x) : std::nan("");
+}
+
 inline void require_finite(const wb::Mat2X& m, const std::string& what) {
-  INFO(what << ": every entry must be finite (no NaN or inf)\n  got " << m);
+  if (m.allFinite()) return;
+  // The first columns only: the matrix came from the lab's code and may be huge.
+  INFO(what << ": every entry must be finite (no NaN or inf)\n  got (first columns of "
+            << m.cols() << ")\n"
+            << m.leftCols(std::min<Eigen::Index>(m.cols(), 8)));
   REQUIRE(m.allFinite());
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "heldout.h"
 #include "test_helpers.h"
 #include "wb/dynamics.h"
 
@@ -126,6 +127,104 @@ inline void check_independent_particles(wb::StepFn step,
                            "(x, v) after 100 steps = M^100 (x0, v0), M = " + matrix_text, 1e-10);
     }
   }
+}
+
+// The held-out check of a one-step method (tests/common/heldout.h): systems the student has
+// never seen (1 to 7 particles, a random nonlinear a(x, v) of positions and velocities, a
+// random step size), a few steps each, every step compared with the method's definition
+//   explicit (velocity_first false): x' = x + h v,  v' = v + h a(x, v)
+//   semi-implicit (velocity_first true): v' = v + h a(x, v),  x' = x + h v'
+// with exactly one force evaluation, at the state the step started from.
+inline void check_random_steps(wbtest::HeldOut& g, wb::StepFn step, bool velocity_first,
+                               const std::string& method) {
+  for (Eigen::Index n :
+       {Eigen::Index(g.integer(3, 7)), Eigen::Index(1), Eigen::Index(g.integer(2, 7))}) {
+    // a_i = c0 + c1 x_i + c2 v_i + c3 (x_i.y x_i.x, v_i.x v_i.y): each particle its own.
+    std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
+    Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4),
+          g.uniform(-4, 4);
+      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2),
+          g.uniform(-2, 2);
+    }
+    auto accel = [=](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+      for (Eigen::Index i = 0; i < x.cols(); ++i) {
+        a.col(i) = c0.col(i) + c1[std::size_t(i)] * x.col(i) + c2[std::size_t(i)] * v.col(i) +
+                   c3.col(i).cwiseProduct(Vec2(x(1, i) * x(0, i), v(0, i) * v(1, i)));
+      }
+    };
+    const double h = g.log_uniform(1e-3, 0.3);
+    Run r(accel, g.points(n, -4.0, 4.0), g.points(n, -4.0, 4.0));
+    r.record = true;
+    INFO(method << ", " << n << " particles, h = " << h);
+    for (int k = 1; k <= 3; ++k) {
+      const Mat2X xn = r.x, vn = r.v;
+      const std::size_t before = r.seen_x.size();
+      r.step(step, h);
+      INFO("step " << k << " from x = " << xn << ", v = " << vn);
+      {
+        INFO("force evaluations in this step: expected 1, got " << r.seen_x.size() - before);
+        REQUIRE(r.seen_x.size() == before + 1);
+      }
+      wbtest::require_near(r.seen_x.back(), xn, 0.0, "the evaluation must see the positions x_n");
+      wbtest::require_near(r.seen_v.back(), vn, 0.0,
+                           "the evaluation must see the velocities v_n");
+      Mat2X a(2, n);
+      accel(xn, vn, a);
+      const Mat2X v1 = vn + h * a;
+      const Mat2X x1 = xn + h * (velocity_first ? v1 : vn);
+      // Each entry is two or three roundings of terms at most ~10^3: 1e-12 absolute is ample.
+      wbtest::require_near(r.v, v1, 1e-12, method + ": v' = v + h a(x, v)", 1e-13);
+      wbtest::require_near(r.x, x1, 1e-12,
+                           method + (velocity_first ? ": x' = x + h v' (the new velocity)"
+                                                    : ": x' = x + h v (the old velocity)"),
+                           1e-13);
+    }
+  }
+}
+
+// The checks of a long run made by euler_oscillator_run (euler_kernels.h), which runs beside
+// the lab's code: the checkpoints have the promised size, start at (x0, v0), end at the final
+// state, and three segments chosen after the run replay exactly with the lab's step called one
+// step at a time (wbtest::check_segments). What the test judges is then computed here, from
+// the checkpoints.
+// `law(c, x, v)` checks the law the test is about at every checkpoint c (after c * every
+// steps): a run that does nothing between checkpoints and jumps at the end fails there.
+inline void check_long_run(wb::StepFn step, double w, double h, const Mat2X& x0, const Mat2X& v0,
+                           long n, long every, const Mat2X& x, const Mat2X& v, const Mat2X& xs,
+                           const Mat2X& vs, const std::string& name,
+                           const std::function<void(long, const Mat2X&, const Mat2X&)>& law) {
+  const Eigen::Index p = x0.cols();
+  const long checkpoints = n / every + 1;
+  {
+    INFO(name << ": the run returns " << checkpoints << " checkpoints of " << p
+              << " particles, got " << xs.cols() << " and " << vs.cols() << " columns");
+    REQUIRE(xs.cols() == checkpoints * p);
+    REQUIRE(vs.cols() == checkpoints * p);
+    REQUIRE(x.cols() == p);
+    REQUIRE(v.cols() == p);
+  }
+  wbtest::require_finite(xs, name + ": every position of the run");
+  wbtest::require_finite(vs, name + ": every velocity of the run");
+  wbtest::require_near(xs.leftCols(p).eval(), x0, 0.0, name + ": the first checkpoint is x0");
+  wbtest::require_near(vs.leftCols(p).eval(), v0, 0.0, name + ": the first checkpoint is v0");
+  wbtest::require_near(xs.rightCols(p).eval(), x, 0.0,
+                       name + ": the last checkpoint is the final x");
+  wbtest::require_near(vs.rightCols(p).eval(), v, 0.0,
+                       name + ": the last checkpoint is the final v");
+  for (long c = 0; c < checkpoints; ++c) {
+    INFO(name << ": the state after " << c * every << " steps (checkpoint " << c << ")");
+    law(c, xs.middleCols(c * p, p), vs.middleCols(c * p, p));
+  }
+  wbtest::check_segments(name, checkpoints, 3, [&](long c) {
+    Run r(oscillator(w), xs.middleCols(c * p, p), vs.middleCols(c * p, p));
+    for (long k = 0; k < every; ++k) r.step(step, h);
+    wbtest::require_near(r.x, xs.middleCols((c + 1) * p, p).eval(), 0.0,
+                         "positions after the replayed segment", 1e-12);
+    wbtest::require_near(r.v, vs.middleCols((c + 1) * p, p).eval(), 0.0,
+                         "velocities after the replayed segment", 1e-12);
+  });
 }
 
 }  // namespace eulertest

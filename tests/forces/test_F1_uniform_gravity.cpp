@@ -1,4 +1,5 @@
 // F1 uniform gravity: f_i += m_i g (labs/forces/uniform_gravity.h).
+#include "heldout.h"
 #include "test_helpers.h"
 #include "uniform_gravity.h"
 
@@ -15,7 +16,7 @@ namespace {
 constexpr double kTol = 1e-12;
 }  // namespace
 
-TEST_CASE("F1 uniform gravity: each particle gets m_i g", "[forces][F1][3pts]") {
+TEST_CASE("F1 uniform gravity: each particle gets m_i g", "[forces][F1][2pts]") {
   // Distinct masses (one below 1, so m^2 != m) and a g with both components
   // non-zero and different, so a missing or squared mass or swapped x/y shows.
   VecX m(3);
@@ -65,6 +66,22 @@ TEST_CASE("F1 uniform gravity: the force is minus the gradient of V = -sum m_i g
   Mat2X f = Mat2X::Zero(2, 3);
   add_uniform_gravity(m, g, f);
   wbtest::require_near(f, expected, tol, "gravity is conservative: f = -dV/dx", tol);
+}
+
+TEST_CASE("F1 held-out: random particles get f_i += m_i g", "[forces][F1][held-out][1pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F1")) {
+    INFO(g.replay());
+    const Eigen::Index n = g.integer(3, 9);
+    const VecX m = g.values(n, 0.1, 5.0);
+    const Vec2 grav = g.vec2(-20.0, 20.0);
+    const Mat2X f0 = g.points(n, -50.0, 50.0);  // forces already there
+    Mat2X f = f0;
+    add_uniform_gravity(m, grav, f);
+    Mat2X expected = f0;
+    for (Eigen::Index i = 0; i < n; ++i) expected.col(i) += m[i] * grav;
+    INFO("m = " << m.transpose() << ", g = " << wbtest::str(grav) << ", f before = " << f0);
+    wbtest::require_near(f, expected, kTol, "uniform gravity: f_i += m_i g", kTol);
+  }
 }
 
 }  // namespace test_F1_uniform_gravity

@@ -2,6 +2,7 @@
 // (labs/forces/newton_gravity.h).
 #include <cmath>
 
+#include "heldout.h"
 #include "newton_gravity.h"
 #include "test_helpers.h"
 
@@ -102,7 +103,7 @@ TEST_CASE("F2 newton gravity: adds to the forces already there", "[forces][F2][1
 }
 
 TEST_CASE("F2 newton gravity: pair forces cancel so a cluster keeps its momentum",
-          "[forces][F2][3pts]") {
+          "[forces][F2][2pts]") {
   // 12 bodies of different masses at random: the net force is a sum of
   // pairs f_ij + f_ji = 0, so it vanishes up to rounding (relative 1e-15 per
   // term, a few dozen terms: 1e-12 of the total force magnitude is ample).
@@ -125,7 +126,7 @@ TEST_CASE("F2 newton gravity: pair forces cancel so a cluster keeps its momentum
 }
 
 TEST_CASE("F2 newton gravity: the force is minus the gradient of the softened potential",
-          "[forces][F2][3pts]") {
+          "[forces][F2][2pts]") {
   // Four bodies at least 0.99 apart, eps = 0.1. Central differences with
   // h = 1e-5: truncation h^2/6 |V'''| ~ 1e-10 / 6 * 6 G m_i m_j / r^4 < 1e-8 here,
   // rounding eps_mach |V| / h ~ 1e-16 * 5 / 1e-5 = 5e-11; tolerance 1e-7.
@@ -177,6 +178,44 @@ TEST_CASE("F2 newton gravity: coincident bodies give finite forces with and with
   wbtest::require_near(f, expected, kTol,
                        "eps > 0: a coincident pair has d = 0 so adds nothing, the others attract",
                        kTol);
+}
+
+TEST_CASE("F2 held-out: random clusters attract pairwise with G m_i m_j d / (r^2 + eps^2)^(3/2)",
+          "[forces][F2][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F2")) {
+    INFO(g.replay());
+    // One cluster unsoftened and one softened, each with two bodies at the same place
+    // (a coincident pair adds nothing, with or without softening).
+    for (const bool soft : {false, true}) {
+      const Eigen::Index n = g.integer(4, 9);
+      Mat2X x = g.points(n, -3.0, 3.0);
+      const Eigen::Index a = g.integer(0, n - 1), b = (a + g.integer(1, n - 1)) % n;
+      x.col(b) = x.col(a);
+      const VecX m = g.values(n, 0.2, 4.0);
+      const double G = g.uniform(0.1, 3.0), eps = soft ? g.uniform(0.05, 0.6) : 0.0;
+      const Mat2X f0 = g.points(n, -5.0, 5.0);
+      Mat2X f = f0;
+      add_newton_gravity(x, m, G, eps, f);
+      Mat2X expected = f0;
+      double scale = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const Vec2 d = x.col(j) - x.col(i);
+          const double s = d.squaredNorm() + eps * eps;
+          if (j == i || s == 0.0) continue;
+          const Vec2 fij = G * m[i] * m[j] * d / std::pow(s, 1.5);
+          expected.col(i) += fij;
+          scale += fij.norm();
+        }
+      }
+      INFO("x = " << x << "\n  m = " << m.transpose() << ", G = " << G << ", eps = " << eps
+                  << " (bodies " << a << " and " << b << " coincide)");
+      wbtest::require_near(f, expected, 1e-12 * (1.0 + scale),
+                           "each body gets sum_{j != i} G m_i m_j (x_j - x_i) / "
+                           "(r^2 + eps^2)^(3/2), added to f",
+                           1e-12);
+    }
+  }
 }
 
 }  // namespace test_F2_newton_gravity

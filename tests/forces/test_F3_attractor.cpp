@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "attractor.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -19,7 +20,7 @@ constexpr double kTol = 1e-12;
 }  // namespace
 
 TEST_CASE("F3 attractor: pull of -GM m_i d_i / r^3 towards a centre off the origin",
-          "[forces][F3][4pts]") {
+          "[forces][F3][3pts]") {
   // center (1, -2), GM = 3.
   // Particle 0 at (4, 2): d = (3, 4), r = 5, r^3 = 125, m = 2:
   //   f_0 = -3 * 2 (3, 4) / 125 = (-0.144, -0.192).
@@ -94,6 +95,36 @@ TEST_CASE("F3 attractor: a particle exactly at the centre gets no force and no N
                        "at the centre the direction is undefined: the header says no force");
   wbtest::require_near(Vec2(f.col(1)), Vec2(-0.144, -0.192), kTol,
                        "the other particle is still pulled with GM m / r^2", kTol);
+}
+
+TEST_CASE("F3 held-out: random particles are pulled with -GM m_i d_i / r_i^3",
+          "[forces][F3][held-out][1pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F3")) {
+    INFO(g.replay());
+    const Eigen::Index n = g.integer(3, 9);
+    const Vec2 c = g.vec2(-2.0, 2.0);
+    Mat2X x = g.points(n, -4.0, 4.0);
+    x.col(g.integer(0, n - 2)) = c;  // one exactly at the centre (not the last): no force, no NaN
+    const VecX m = g.values(n, 0.1, 4.0);
+    const double GM = g.uniform(0.2, 5.0);
+    const Mat2X f0 = g.points(n, -5.0, 5.0);
+    Mat2X f = f0;
+    add_attractor(x, m, c, GM, f);
+    Mat2X expected = f0;
+    double scale = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Vec2 d = x.col(i) - c;
+      const double r = d.norm();
+      if (r == 0.0) continue;
+      expected.col(i) -= GM * m[i] * d / (r * r * r);
+      scale += GM * m[i] / (r * r);
+    }
+    INFO("center " << wbtest::str(c) << ", GM = " << GM << ", x = " << x
+                   << "\n  m = " << m.transpose());
+    wbtest::require_near(f, expected, 1e-12 * (1.0 + scale),
+                         "f_i += -GM m_i (x_i - c) / |x_i - c|^3 (nothing at the centre itself)",
+                         1e-12);
+  }
 }
 
 }  // namespace test_F3_attractor

@@ -1,5 +1,6 @@
 // F4 viscous damping: f_i += -b v_i (labs/forces/damping.h).
 #include "damping.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -15,7 +16,7 @@ constexpr double kTol = 1e-12;
 }  // namespace
 
 TEST_CASE("F4 damping: f = -b v opposes the velocity with magnitude b |v|",
-          "[forces][F4][3pts]") {
+          "[forces][F4][2pts]") {
   // b = 0.7. v_0 = (3, -4): f_0 = (-2.1, 2.8), |f_0| = 0.7 * 5 = 3.5.
   // v_1 = (-0.5, 2):  f_1 = (0.35, -1.4). v_2 = 0: no force.
   // (The drag does not involve the mass: the same b for every particle.)
@@ -58,6 +59,19 @@ TEST_CASE("F4 damping: the drag removes energy at the rate b |v|^2", "[forces][F
     const Vec2 vi = v.col(i);
     wbtest::require_near(Vec2(f.col(i)).dot(vi), -b * vi.squaredNorm(), kTol,
                          "power of viscous drag: f . v = -b |v|^2", kTol);
+  }
+}
+
+TEST_CASE("F4 held-out: random velocities get f_i += -b v_i", "[forces][F4][held-out][1pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F4")) {
+    INFO(g.replay());
+    const Eigen::Index n = g.integer(3, 9);
+    const Mat2X v = g.points(n, -10.0, 10.0), f0 = g.points(n, -20.0, 20.0);
+    const double b = g.uniform(0.05, 5.0);
+    Mat2X f = f0;
+    add_damping(v, b, f);
+    INFO("b = " << b << ", v = " << v << "\n  f before = " << f0);
+    wbtest::require_near(f, Mat2X(f0 - b * v), kTol, "viscous drag f_i += -b v_i", kTol);
   }
 }
 

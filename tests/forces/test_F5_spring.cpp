@@ -2,6 +2,7 @@
 // (labs/forces/spring.h).
 #include <cmath>
 
+#include "heldout.h"
 #include "spring.h"
 #include "test_helpers.h"
 
@@ -18,7 +19,7 @@ constexpr double kTol = 1e-12;
 }  // namespace
 
 TEST_CASE("F5 spring: a stretched spring pulls i towards j with k (L - rest)",
-          "[forces][F5][4pts]") {
+          "[forces][F5][3pts]") {
   // x_i = (1, 2), x_j = (4, 6): d = x_i - x_j = (-3, -4), L = 5, u = (-0.6, -0.8).
   // k = 10, rest = 2: tension k (L - rest) = 30, f_i = -30 u = (18, 24), along
   // x_j - x_i. Both ends move with the same velocity, so the damper adds nothing.
@@ -49,7 +50,7 @@ TEST_CASE("F5 spring: a compressed spring pushes apart and a spring at rest leng
 }
 
 TEST_CASE("F5 spring: the spring force is minus the gradient of 1/2 k (L - rest)^2",
-          "[forces][F5][3pts]") {
+          "[forces][F5][2pts]") {
   // Random ends 0.5 to 3 apart, random rest lengths, no damping. Central
   // differences, h = 1e-5: truncation h^2/6 |V'''| with |V'''| ~ 3 k / L < 100
   // here gives < 2e-9, rounding eps_mach |V| / h ~ 1e-16 * 50 / 1e-5 = 5e-10;
@@ -80,7 +81,7 @@ TEST_CASE("F5 spring: the spring force is minus the gradient of 1/2 k (L - rest)
   REQUIRE(checked >= 3);
 }
 
-TEST_CASE("F5 spring: the damper acts only along the spring", "[forces][F5][4pts]") {
+TEST_CASE("F5 spring: the damper acts only along the spring", "[forces][F5][3pts]") {
   // x_i = (2, 1), x_j = (-1, -3): d = (3, 4), L = 5, u = (0.6, 0.8), perp = (-0.8, 0.6).
   // k = 7, kd = 2, v_j = (0.1, 0.2).
   const Vec2 xi(2, 1), xj(-1, -3), vj(0.1, 0.2), u(0.6, 0.8), perp(-0.8, 0.6);
@@ -150,6 +151,33 @@ TEST_CASE("F5 spring: a zero-length spring returns zero and no NaN", "[forces][F
   wbtest::require_near(spring_force(x0, x0 + Vec2(0.3, 0.4), vi, vj, 10.0, 0.8, 1.0),
                        Vec2(-1.68, -2.24), kTol,
                        "a short compressed damped spring pushes i away from j", kTol);
+}
+
+TEST_CASE("F5 held-out: random springs give f_i = -(k (L - rest) + kd (v_i - v_j) . u) u",
+          "[forces][F5][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F5")) {
+    INFO(g.replay());
+    for (int s = 0; s < 12; ++s) {
+      const Vec2 xi = g.vec2(-3.0, 3.0), vi = g.vec2(-4.0, 4.0), vj = g.vec2(-4.0, 4.0);
+      const Vec2 xj = s == 0 ? xi : Vec2(g.vec2(-3.0, 3.0));  // the first: zero length
+      const double k = g.uniform(0.5, 50.0), rest = g.uniform(0.1, 4.0), kd = g.uniform(0.0, 3.0);
+      const Vec2 d = xi - xj;
+      const double L = d.norm();
+      Vec2 expected(0, 0);
+      if (L > 0) {
+        const Vec2 u = d / L;
+        expected = -(k * (L - rest) + kd * (vi - vj).dot(u)) * u;
+      }
+      INFO("x_i = " << wbtest::str(xi) << ", x_j = " << wbtest::str(xj)
+                    << ", v_i = " << wbtest::str(vi) << ", v_j = " << wbtest::str(vj)
+                    << ", k = " << k << ", rest = " << rest << ", kd = " << kd);
+      wbtest::require_near(spring_force(xi, xj, vi, vj, k, rest, kd), expected,
+                           1e-12 * (1.0 + expected.norm()),
+                           "spring-damper f_i = -(k (L - rest) + kd (v_i - v_j) . u) u, "
+                           "u = (x_i - x_j) / L, zero when L = 0",
+                           1e-12);
+    }
+  }
 }
 
 }  // namespace test_F5_spring

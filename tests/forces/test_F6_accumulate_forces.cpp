@@ -5,6 +5,7 @@
 #include <string>
 
 #include "accumulate_forces.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -102,7 +103,7 @@ Mat2X expected_sum(const System& s) {
 
 }  // namespace
 
-TEST_CASE("F6 accumulate forces: the total is the sum of every term", "[forces][F6][4pts]") {
+TEST_CASE("F6 accumulate forces: the total is the sum of every term", "[forces][F6][3pts]") {
   const System s = four();
   const Terms terms = three_terms();
   Mat2X f = Mat2X::Zero(2, 4);
@@ -170,6 +171,41 @@ TEST_CASE("F6 accumulate forces: no terms give zero force of the right size",
   accumulate_forces(none, s.x, s.v, s.m, f);
   wbtest::require_near(f, Mat2X::Zero(2, 4), 0.0,
                        "no force terms: every particle is free, f = 0 (2 x n)");
+}
+
+TEST_CASE("F6 held-out: random systems and term lists sum to exactly the terms' forces",
+          "[forces][F6][held-out][1pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F6")) {
+    INFO(g.replay());
+    System s;
+    const Eigen::Index n = g.integer(2, 9);
+    s.x = g.points(n, -4.0, 4.0);
+    s.v = g.points(n, -4.0, 4.0);
+    s.m = g.values(n, 0.1, 5.0);
+    // A random list of the three terms (each may come twice, or not at all).
+    Terms terms;
+    std::vector<int> kinds;
+    for (int k = int(g.integer(0, 4)); k > 0; --k) kinds.push_back(int(g.integer(0, 2)));
+    Mat2X expected = Mat2X::Zero(2, n);
+    for (int kind : kinds) {
+      if (kind == 0) terms.push_back(std::make_unique<MassTerm>());
+      if (kind == 1) terms.push_back(std::make_unique<PositionTerm>());
+      if (kind == 2) terms.push_back(std::make_unique<VelocityTerm>());
+      terms.back()->add(s.x, s.v, s.m, expected);
+    }
+    // f comes in with any size and any contents: too few columns, the right number, too many.
+    for (const Eigen::Index cols : {Eigen::Index(g.integer(0, 1)), n, n + g.integer(1, 3)}) {
+      Mat2X f = g.points(cols, -1e3, 1e3);
+      if (cols > 0 && g.coin()) f(0, 0) = std::numeric_limits<double>::quiet_NaN();
+      INFO(kinds.size() << " terms, " << n << " particles, f coming in with " << cols
+                        << " columns");
+      accumulate_forces(terms, s.x, s.v, s.m, f);
+      wbtest::require_near(f, expected, kTol, "f = the sum of every term's force, nothing else",
+                           kTol);
+      accumulate_forces(terms, s.x, s.v, s.m, f);
+      wbtest::require_near(f, expected, kTol, "a second call gives the same sum again", kTol);
+    }
+  }
 }
 
 }  // namespace test_F6_accumulate_forces

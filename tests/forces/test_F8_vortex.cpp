@@ -1,5 +1,6 @@
 // F8 vortex field: a Rankine vortex u(x) and the drag f_i += c (u(x_i) - v_i)
 // (labs/forces/vortex.h).
+#include "heldout.h"
 #include "test_helpers.h"
 #include "vortex.h"
 
@@ -28,7 +29,7 @@ VortexParams vortex() {
 
 }  // namespace
 
-TEST_CASE("F8 vortex: inside the core the flow turns like a solid disc", "[forces][F8][3pts]") {
+TEST_CASE("F8 vortex: inside the core the flow turns like a solid disc", "[forces][F8][2pts]") {
   const VortexParams p = vortex();
   // x = (1.6, -0.2): d = (0.6, 0.8), r = 1 < R, perp(d) = (-0.8, 0.6),
   // u = omega perp(d) = (-1.6, 1.2), speed omega r = 2.
@@ -43,7 +44,7 @@ TEST_CASE("F8 vortex: inside the core the flow turns like a solid disc", "[force
 }
 
 TEST_CASE("F8 vortex: outside the core the speed falls off as omega R^2 / r",
-          "[forces][F8][3pts]") {
+          "[forces][F8][2pts]") {
   const VortexParams p = vortex();
   // x = (4, 3): d = (3, 4), r = 5 > R, perp(d) = (-4, 3),
   // u = omega R^2 perp(d) / r^2 = 8 (-4, 3) / 25 = (-1.28, 0.96), speed 8 / 5 = omega R^2 / r.
@@ -128,6 +129,43 @@ TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise"
   // omega = -1.5 at (4, 3): -1.5 * 4 (-4, 3) / 25 = (0.96, -0.72).
   wbtest::require_near(vortex_flow(Vec2(4, 3), p), Vec2(0.96, -0.72), kTol,
                        "omega < 0: the same flow reversed", kTol);
+}
+
+TEST_CASE("F8 held-out: random vortices and particles inside and outside the core",
+          "[forces][F8][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F8")) {
+    INFO(g.replay());
+    VortexParams p;
+    p.center = g.vec2(-2.0, 2.0);
+    p.omega = g.signed_uniform(0.2, 4.0);
+    p.core = g.uniform(0.5, 2.5);
+    p.drag = g.uniform(0.1, 3.0);
+    const Eigen::Index n = g.integer(4, 10);
+    // Half of them inside the core, half outside, one on the axis.
+    Mat2X x(2, n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      x.col(i) =
+          p.center + (i % 2 ? g.uniform(0.05, 0.95) : g.uniform(1.05, 3.0)) * p.core * g.unit2();
+    x.col(g.integer(0, n - 1)) = p.center;
+    const Mat2X v = g.points(n, -3.0, 3.0), f0 = g.points(n, -5.0, 5.0);
+    Mat2X expected = f0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Vec2 d = x.col(i) - p.center, perp(-d.y(), d.x());
+      const double r = d.norm();
+      const Vec2 u =
+          r <= p.core ? Vec2(p.omega * perp) : Vec2(p.omega * p.core * p.core * perp / (r * r));
+      INFO("x = " << wbtest::str(x.col(i)) << ", center " << wbtest::str(p.center)
+                  << ", omega = " << p.omega << ", core R = " << p.core);
+      wbtest::require_near(
+          vortex_flow(x.col(i), p), u, 1e-12 * (1.0 + u.norm()),
+          "Rankine vortex: omega perp(d) inside, omega R^2 perp(d) / r^2 outside", 1e-12);
+      expected.col(i) += p.drag * (u - v.col(i));
+    }
+    Mat2X f = f0;
+    add_vortex(x, v, p, f);
+    INFO("x = " << x << "\n  v = " << v << "\n  drag c = " << p.drag);
+    wbtest::require_near(f, expected, 1e-11, "f_i += c (u(x_i) - v_i) for every particle", 1e-12);
+  }
 }
 
 }  // namespace test_F8_vortex

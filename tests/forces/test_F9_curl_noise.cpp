@@ -2,8 +2,11 @@
 // differences, and the drag f_i += b (u(x_i) - v_i) (labs/forces/curl_noise.h).
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "curl_noise.h"
+#include "heldout.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -63,7 +66,7 @@ constexpr double kRampHalf = 15.0 / 16 - 10.0 / 64 + 3.0 / 256;       // 0.79296
 }  // namespace
 
 TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the differences",
-          "[forces][F9][3pts]") {
+          "[forces][F9][1pts]") {
   CurlNoiseParams p = noise_field();
   const Mat2X pts = wbtest::random_points(40, 91, -5.0, 5.0);
   for (int with_obstacles = 0; with_obstacles < 2; ++with_obstacles) {
@@ -75,14 +78,14 @@ TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the dif
     for (Eigen::Index i = 0; i < pts.cols(); ++i) {
       const Vec2 x = pts.col(i);
       const Vec2 u = curl_noise_flow(x, p);
-      u_max = std::max(u_max, u.norm());
-      div_max = std::max(div_max, std::abs(divergence(x, p)));
+      u_max = wbtest::worst_of(u_max, u.norm());
+      div_max = wbtest::worst_of(div_max, std::abs(divergence(x, p)));
       // The vorticity scale (the size of grad u that a wrong curl leaves as divergence).
       const Vec2 ex(p.h, 0), ey(0, p.h);
       const double w = (curl_noise_flow(x + ex, p).y() - curl_noise_flow(x - ex, p).y() -
                         curl_noise_flow(x + ey, p).x() + curl_noise_flow(x - ey, p).x()) /
                        (2 * p.h);
-      vort_max = std::max(vort_max, std::abs(w));
+      vort_max = wbtest::worst_of(vort_max, std::abs(w));
     }
     CAPTURE(with_obstacles, u_max, vort_max);
     {
@@ -103,7 +106,7 @@ TEST_CASE("F9 curl noise: the flow is divergence-free to the rounding of the dif
 }
 
 TEST_CASE("F9 curl noise: the curl of the Rankine stream function is the F8 vortex flow",
-          "[forces][F9][2pts]") {
+          "[forces][F9][1pts]") {
   CurlNoiseParams p;
   p.psi = rankine_psi;
   p.h = 1e-5;
@@ -124,7 +127,7 @@ TEST_CASE("F9 curl noise: the curl of the Rankine stream function is the F8 vort
 }
 
 TEST_CASE("F9 curl noise: psi is ramped to zero at the nearest obstacle's edge",
-          "[forces][F9][2pts]") {
+          "[forces][F9][1pts]") {
   CurlNoiseParams p;
   p.psi = [](const Vec2&) { return 2.0; };  // a constant psi shows the ramp alone
   p.h = 1e-5;
@@ -154,6 +157,75 @@ TEST_CASE("F9 curl noise: psi is ramped to zero at the nearest obstacle's edge",
                          std::string("psi_c = ramp(d / d0) psi with ramp(s) = 15/8 s - 10/8 s^3 "
                                      "+ 3/8 s^5 for |s| < 1: ") +
                              c.why + " (at " + wbtest::str(c.x) + ")");
+  }
+}
+
+TEST_CASE("F9 curl noise: psi inside an obstacle larger than the ramp distance",
+          "[forces][F9][1pts]") {
+  // A disc of radius 3 with d0 = 1: deeper than d0 inside it, s = d / d0 <= -1 and the
+  // ramp is held at -1 (the polynomial turns back beyond |s| = 1: at s = -2.5 it is -21.8).
+  CurlNoiseParams p;
+  p.psi = [](const Vec2& x) { return 0.5 * x.y() - 2.0 * x.x(); };  // uniform u = (0.5, 2)
+  p.h = 0.25;  // a power of two: differences of this linear psi are exact
+  p.obstacles = {{Vec2(0, 0), 3.0}};
+  p.ramp = 1.0;
+  struct Case {
+    Vec2 x;
+    double ramp;
+    const char* why;
+  };
+  const Case cases[] = {
+      {Vec2(0, 0.5), -1.0, "d = -2.5, s = -2.5 <= -1: ramp = -1"},
+      {Vec2(-1.5, 0), -1.0, "d = -1.5, s = -1.5 <= -1: ramp = -1"},
+      {Vec2(0, -2.5), -kRampHalf, "d = -0.5, s = -1/2: ramp(-1/2) = -ramp(1/2)"},
+  };
+  for (const Case& c : cases) {
+    wbtest::require_near(curl_noise_potential(c.x, p), c.ramp * p.psi(c.x), kTol,
+                         std::string("psi_c = ramp(d / d0) psi, ramp(s) = -1 for s <= -1: ") +
+                             c.why + " (at " + wbtest::str(c.x) + ")");
+  }
+  wbtest::require_near(curl_noise_flow(Vec2(0, 0.5), p), Vec2(-0.5, -2.0), kTol,
+                       "deep inside (ramp = -1 all around) the flow is the curl of -psi: "
+                       "-(0.5, 2)");
+}
+
+TEST_CASE("F9 curl noise: the nearest edge counts and not the nearest centre",
+          "[forces][F9][1pts]") {
+  // At x = (1, 0): the small disc's centre is nearer (1 against 2.5), the large disc's
+  // EDGE is nearer (0.5 against 0.8). d is the smallest distance to an edge: 0.5, and
+  // with d0 = 2, s = 1/4. In either order of the list.
+  CurlNoiseParams p;
+  p.psi = [](const Vec2&) { return 2.0; };
+  p.h = 1e-5;
+  p.ramp = 2.0;
+  const Disc small{Vec2(0, 0), 0.2}, large{Vec2(3.5, 0), 2.0};
+  for (int order = 0; order < 2; ++order) {
+    p.obstacles = order == 0 ? std::vector<Disc>{small, large} : std::vector<Disc>{large, small};
+    wbtest::require_near(curl_noise_potential(Vec2(1, 0), p), 2 * kRampQuarter, kTol,
+                         std::string("d = min over the discs of (|x - center| - radius) = 0.5 "
+                                     "(the large disc's edge; the small disc's centre is "
+                                     "nearer but its edge is 0.8 away): psi_c = ramp(1/4) psi, "
+                                     "obstacles listed ") +
+                             (order == 0 ? "small first" : "large first"));
+  }
+}
+
+TEST_CASE("F9 curl noise: the central differences use the step h",
+          "[forces][F9][1pts]") {
+  // psi = y^3 - 2 x^3: the central difference with step h is exact up to h^2,
+  //   (psi(y + h) - psi(y - h)) / (2h) = 3 y^2 + h^2,  along x: -6 x^2 - 2 h^2,
+  // so u = (3 y^2 + h^2, 6 x^2 + 2 h^2) with the field's own h. All values below are
+  // exact binary fractions: the computation is exact.
+  CurlNoiseParams p;
+  p.psi = [](const Vec2& x) { return x.y() * x.y() * x.y() - 2.0 * x.x() * x.x() * x.x(); };
+  const Vec2 x(0.5, -1.5);
+  for (double h : {0.5, 0.125}) {
+    p.h = h;
+    wbtest::require_near(curl_noise_flow(x, p), Vec2(3 * 2.25 + h * h, 6 * 0.25 + 2 * h * h),
+                         kTol,
+                         "central differences with the field's step p.h = " + std::to_string(h) +
+                             " (not a step of your own): u = (3 y^2 + h^2, 6 x^2 + 2 h^2) for "
+                             "psi = y^3 - 2 x^3 at (0.5, -1.5)");
   }
 }
 
@@ -229,12 +301,69 @@ TEST_CASE("F9 curl noise: the same seed gives the same forces and another seed a
         "two fields built from the same seed must give bit-identical forces (no hidden "
         "state, no randomness of your own): largest difference "
         << (a - b).cwiseAbs().maxCoeff() << " N");
-    REQUIRE((a - b).cwiseAbs().maxCoeff() == 0.0);
+    REQUIRE(wbtest::max_abs_diff(a, b) == 0.0);  // NaN fails
   }
   {
     INFO("another seed is another noise: the forces must change (largest difference "
          << (a - c).cwiseAbs().maxCoeff() << " N); is psi = p.psi used?");
-    REQUIRE((a - c).cwiseAbs().maxCoeff() > 1e-3);
+    REQUIRE(std::isfinite(wbtest::max_abs_diff(a, c)));  // NaN or inf: no flow
+    REQUIRE(wbtest::max_abs_diff(a, c) > 1e-3);
+  }
+}
+
+TEST_CASE("F9 held-out: random fields and obstacles give the ramped psi and its curl",
+          "[forces][F9][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("F9")) {
+    INFO(g.replay());
+    CurlNoiseParams p;
+    // A smooth psi of the test's own: a plane wave and a quadratic, random each time.
+    const Vec2 k = g.vec2(-1.5, 1.5), q = g.vec2(-0.5, 0.5);
+    const double a = g.uniform(0.3, 2.0), phase = g.uniform(0.0, 6.0);
+    p.psi = [=](const Vec2& y) {
+      return a * std::sin(k.dot(y) + phase) + q.x() * y.x() * y.y() + q.y() * y.y() * y.y();
+    };
+    p.b = g.uniform(0.2, 3.0);
+    p.h = g.log_uniform(1e-5, 1e-3);
+    p.ramp = g.uniform(0.3, 2.0);
+    for (long k2 = g.integer(2, 3); k2 > 0; --k2)
+      p.obstacles.push_back({g.vec2(-3, 3), g.uniform(0.3, 1.2)});
+    auto psi_c = [&](const Vec2& y) {
+      if (p.obstacles.empty()) return p.psi(y);
+      double d = std::numeric_limits<double>::infinity();
+      for (const Disc& o : p.obstacles) d = wbtest::least_of(d, (y - o.center).norm() - o.radius);
+      const double s = std::clamp(d / p.ramp, -1.0, 1.0);
+      return (15.0 / 8 * s - 10.0 / 8 * s * s * s + 3.0 / 8 * s * s * s * s * s) * p.psi(y);
+    };
+    const Eigen::Index n = g.integer(6, 9);
+    Mat2X x = g.points(n, -4.0, 4.0);
+    // About the first obstacle: one inside it, one in its ramp band, one beyond the band (the
+    // others anywhere).
+    const Disc& o = p.obstacles[0];
+    x.col(0) = o.center + g.uniform(0.1, 0.9) * o.radius * g.unit2();
+    x.col(1) = o.center + (o.radius + g.uniform(0.1, 0.9) * p.ramp) * g.unit2();
+    x.col(2) = o.center + (o.radius + g.uniform(1.2, 2.0) * p.ramp) * g.unit2();
+    const Mat2X v = g.points(n, -2.0, 2.0), f0 = g.points(n, -3.0, 3.0);
+    Mat2X expected = f0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Vec2 y = x.col(i), ex(p.h, 0), ey(0, p.h);
+      INFO("at x = " << wbtest::str(y) << ", " << p.obstacles.size() << " obstacles, ramp "
+                     << p.ramp << ", h = " << p.h);
+      const double pc = psi_c(y);
+      wbtest::require_near(curl_noise_potential(y, p), pc, 1e-12 * (1.0 + std::abs(pc)),
+                           "psi_c = ramp(d / d0) psi, d the distance to the nearest edge");
+      const Vec2 u((psi_c(y + ey) - psi_c(y - ey)) / (2 * p.h),
+                   -(psi_c(y + ex) - psi_c(y - ex)) / (2 * p.h));
+      // Differences of values rounded to ~1e-16 |psi| over 2h: 1e-11 of |psi| / h is ample
+      // (and far below a first-order difference's error, h |psi''| / 2).
+      const double tol = 1e-11 * (1.0 + std::abs(pc)) / p.h;
+      wbtest::require_near(curl_noise_flow(y, p), u, tol,
+                           "u = (dpsi_c/dy, -dpsi_c/dx) by central differences with step h");
+      expected.col(i) += p.b * (u - v.col(i));
+    }
+    Mat2X f = f0;
+    add_curl_noise(x, v, p, f);
+    INFO("x = " << x << "\n  v = " << v << "\n  b = " << p.b);
+    wbtest::require_near(f, expected, 1e-7 / p.h, "f_i += b (u(x_i) - v_i) for every particle");
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "heldout.h"
 #include "spring_network.h"
 #include "test_helpers.h"
 
@@ -205,6 +206,102 @@ inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.
       0.0, 0.2, 1.0, 0.1;
   v << 0.3, -0.5, 0.8, -0.2,  //
       -0.7, 0.4, -0.1, 0.6;
+}
+
+// ---------------------------------------------------------------- held-out networks
+// (tests/common/heldout.h) A random network the student has never seen: 3 to 6 particles at
+// least 0.3 m apart, each joined to an earlier one (a tree) plus one more spring and one or
+// two anchored springs, rest lengths 0.6 to 1.4 times the current lengths (some compressed,
+// some stretched), damping, drag, every particle moving; with `pin`, one particle pinned.
+struct Network {
+  SpringNetwork net;
+  Mat2X x, v, f_ext;
+};
+
+inline Network random_network(wbtest::HeldOut& g, bool pin) {
+  Network w;
+  const Eigen::Index n = g.integer(3, 6);
+  w.x.resize(2, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (;;) {  // at least 0.3 m from the others: no spring close to zero length
+      w.x.col(i) = g.vec2(-1.5, 1.5);
+      bool far = true;
+      for (Eigen::Index j = 0; j < i; ++j) far = far && (w.x.col(i) - w.x.col(j)).norm() > 0.3;
+      if (far) break;
+    }
+  }
+  w.v = g.points(n, -1.0, 1.0);
+  w.f_ext = g.points(n, -3.0, 3.0);
+  w.net.m = g.values(n, 0.3, 3.0);
+  w.net.drag = g.uniform(0.0, 0.5);
+  auto add = [&](Eigen::Index i, Eigen::Index j, const Vec2& anchor) {
+    const Vec2 xj = j < 0 ? anchor : Vec2(w.x.col(j));
+    const double L = (Vec2(w.x.col(i)) - xj).norm();
+    w.net.springs.push_back(
+        spring(i, j, g.uniform(5.0, 60.0), L * g.uniform(0.6, 1.4), g.uniform(0.0, 1.0), anchor));
+  };
+  for (Eigen::Index i = 1; i < n; ++i) add(i, g.integer(0, i - 1), Vec2::Zero());
+  add(n - 1, 0, Vec2::Zero());
+  for (long a = g.integer(1, 2); a > 0; --a) add(g.integer(0, n - 1), -1, g.vec2(-2.0, 2.0));
+  if (pin) {
+    w.net.pinned.assign(std::size_t(n), 0);
+    w.net.pinned[std::size_t(g.integer(0, n - 1))] = 1;  // it arrives moving: its v is not 0
+  }
+  return w;
+}
+
+// The dense A and b of assemble_system.h at the linearisation point (xl, vl), pinned
+// particles' rows and columns replaced by their mass and b = 0 there.
+inline void dense_system(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                         const Mat2X& xl, const Mat2X& vl, const Mat2X& f_ext, double h,
+                         bool definite, Eigen::MatrixXd& A, Eigen::VectorXd& b) {
+  Eigen::MatrixXd K, D;
+  dense_jacobians(net, xl, vl, K, D, definite);
+  const Eigen::Index n = net.n();
+  Eigen::VectorXd M(2 * n);
+  for (Eigen::Index p = 0; p < n; ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
+  A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
+  b = M.asDiagonal() * flat(v0 - vl) + h * flat(forces(net, xl, vl) + f_ext) +
+      h * K * flat(x0 + h * vl - xl);
+  for (Eigen::Index p = 0; p < n; ++p) {
+    if (!net.is_pinned(p)) continue;
+    A.middleRows(2 * p, 2).setZero();
+    A.middleCols(2 * p, 2).setZero();
+    A.block<2, 2>(2 * p, 2 * p) = net.m[p] * Eigen::Matrix2d::Identity();
+    b.segment<2>(2 * p).setZero();
+  }
+}
+
+// Newton's method of backward_euler.h, written by the test with dense solves: the iterate
+// y after k solves (ys[k], k >= 1) and |G(y)| there (residuals[k]); ys[0] = the start v
+// (pinned 0). scale = |M v| + |b_0| + h |f_ext|.
+struct NewtonRun {
+  std::vector<Mat2X> ys;
+  std::vector<double> residuals;
+  double scale = 0;
+};
+
+inline NewtonRun newton_run(const SpringNetwork& net, const Mat2X& f_ext, double h, bool definite,
+                            const Mat2X& x0, const Mat2X& v0, int solves) {
+  NewtonRun r;
+  Mat2X vs = v0;
+  for (Eigen::Index p = 0; p < net.n(); ++p)
+    if (net.is_pinned(p)) vs.col(p).setZero();
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  dense_system(net, x0, vs, x0, vs, f_ext, h, definite, A, b);
+  r.scale = (vs * net.m.asDiagonal()).norm() + b.norm() + h * f_ext.norm();
+  Mat2X y = vs;
+  r.ys.push_back(y);
+  r.residuals.push_back(newton_residual(net, x0, vs, f_ext, h, y));
+  for (int k = 1; k <= solves; ++k) {
+    const Eigen::VectorXd dv = A.partialPivLu().solve(b);
+    y += Eigen::Map<const Mat2X>(dv.data(), 2, net.n());
+    r.ys.push_back(y);
+    r.residuals.push_back(newton_residual(net, x0, vs, f_ext, h, y));
+    dense_system(net, x0, vs, x0 + h * y, y, f_ext, h, definite, A, b);
+  }
+  return r;
 }
 
 }  // namespace imtest

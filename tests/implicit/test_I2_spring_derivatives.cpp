@@ -24,7 +24,7 @@ const double k = 30.0, kd = 2.5;
 
 void require_mat(const Mat2& got, const Mat2& expected, double tol, const std::string& what) {
   INFO(what << "\n  expected\n" << expected << "\n  got\n" << got << "\n  tolerance " << tol);
-  REQUIRE((got - expected).cwiseAbs().maxCoeff() <= tol);
+  REQUIRE(wbtest::max_abs_diff(got, expected) <= tol);  // NaN fails
 }
 
 // Central differences in x_i of the force formula (imtest::spring_terms).
@@ -42,7 +42,7 @@ Mat2 fd_x(double rest, double damping) {
 }  // namespace
 
 TEST_CASE("I2 spring derivatives: force is -(k (L - rest) + kd (v_i - v_j).u) u",
-          "[implicit][I2][4pts]") {
+          "[implicit][I2][3pts]") {
   for (double rest : {0.5, 1.6}) {  // stretched (L = 1.14) and compressed
     Vec2 f;
     Mat2 K, D;
@@ -54,7 +54,7 @@ TEST_CASE("I2 spring derivatives: force is -(k (L - rest) + kd (v_i - v_j).u) u"
 }
 
 TEST_CASE("I2 spring derivatives: K matches central differences of the elastic force",
-          "[implicit][I2][6pts]") {
+          "[implicit][I2][5pts]") {
   // The elastic force (kd = 0) stretched and compressed; definite = false: the exact block.
   for (double rest : {0.5, 1.6, 0.0}) {
     Vec2 f;
@@ -66,7 +66,7 @@ TEST_CASE("I2 spring derivatives: K matches central differences of the elastic f
 }
 
 TEST_CASE("I2 spring derivatives: D matches central differences in the velocities",
-          "[implicit][I2][4pts]") {
+          "[implicit][I2][3pts]") {
   Vec2 f;
   Mat2 K, D, J;
   for (int c = 0; c < 2; ++c) {
@@ -115,6 +115,45 @@ TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
       REQUIRE(f.norm() == 0.0);
       REQUIRE((K + k * Mat2::Identity()).norm() <= kRelTol * k);
       REQUIRE(D.norm() == 0.0);
+    }
+  }
+}
+
+TEST_CASE("I2 held-out: random springs stretched or compressed give the header's f K and D",
+          "[implicit][I2][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("I2")) {
+    INFO(g.replay());
+    for (int s = 0; s < 10; ++s) {
+      const Vec2 a = g.vec2(-2, 2), va = g.vec2(-3, 3), vb = g.vec2(-3, 3);
+      const Vec2 b = s == 0 ? a : Vec2(a + g.uniform(0.1, 2.0) * g.unit2());
+      const double kk = g.uniform(1.0, 100.0), kdd = g.uniform(0.0, 5.0);
+      const double L = (a - b).norm();
+      // Half of them compressed (rest > L), half stretched.
+      const double rest =
+          s == 0 ? g.uniform(0.0, 1.0) : L * (s % 2 ? g.uniform(1.1, 2.0) : g.uniform(0.3, 0.9));
+      const bool definite = g.coin();
+      Vec2 f;
+      Mat2 K, D;
+      spring_derivatives(a, b, va, vb, kk, rest, kdd, definite, f, K, D);
+      Vec2 fe(0, 0);
+      Mat2 Ke = -kk * Mat2::Identity(), De = Mat2::Zero();
+      if (L > 0) {
+        const imtest::SpringTerms t = imtest::spring_terms(a, b, va, vb, kk, rest, kdd, definite);
+        fe = t.f, Ke = t.K, De = t.D;
+      }
+      INFO("x_i = " << wbtest::str(a) << ", x_j = " << wbtest::str(b) << " (L = " << L
+                    << "), v_i = " << wbtest::str(va) << ", v_j = " << wbtest::str(vb)
+                    << ", k = " << kk << ", rest = " << rest << ", kd = " << kdd
+                    << ", definite = " << definite << "\n  got f = " << f.transpose() << ", K =\n"
+                    << K << "\n  D =\n"
+                    << D << "\n  expected K =\n"
+                    << Ke << "\n  D =\n"
+                    << De);
+      const double fscale = kk * (L + rest) + kdd * (va - vb).norm();
+      wbtest::require_near(f, fe, kRelTol * (1 + fscale),
+                           "f = -(k (L - rest) + kd (v_i - v_j).u) u (0 when L = 0)");
+      REQUIRE(wbtest::max_abs_diff(K, Ke) <= kRelTol * kk * (1 + rest / (L > 0 ? L : 1)));
+      REQUIRE(wbtest::max_abs_diff(D, De) <= kRelTol * (1 + kdd));
     }
   }
 }

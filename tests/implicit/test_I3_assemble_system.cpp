@@ -69,20 +69,20 @@ void require_dense(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& 
   REQUIRE(b.size() == be.size());
   const Eigen::MatrixXd Ad = A;
   Eigen::Index r, c;
-  const double err = (Ad - Ae).cwiseAbs().maxCoeff(&r, &c);
+  (Ad - Ae).cwiseAbs().maxCoeff(&r, &c);  // where, for the message (the check is NaN-safe)
   INFO(what << ": largest difference from the dense reference at A(" << r << ", " << c
             << "): got " << Ad(r, c) << ", expected " << Ae(r, c));
-  REQUIRE(err <= kRelTol * Ae.cwiseAbs().maxCoeff());
+  REQUIRE(wbtest::max_abs_diff(Ad, Ae) <= kRelTol * wbtest::max_abs(Ae));  // NaN fails
   Eigen::Index i;
-  const double berr = (b - be).cwiseAbs().maxCoeff(&i);
+  (b - be).cwiseAbs().maxCoeff(&i);
   INFO(what << ": largest difference in b at " << i << ": got " << b[i] << ", expected "
             << be[i]);
-  REQUIRE(berr <= kRelTol * be.cwiseAbs().maxCoeff());
+  REQUIRE(wbtest::max_abs_diff(b, be) <= kRelTol * wbtest::max_abs(be));  // NaN fails
 }
 }  // namespace
 
 TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
-          "[implicit][I3][4pts]") {
+          "[implicit][I3][3pts]") {
   const Setup s = setup();
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
@@ -93,7 +93,8 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
   REQUIRE(A.cols() == 8);
   const Eigen::MatrixXd Ad = A;
   INFO("A - A^T: largest entry " << (Ad - Ad.transpose()).cwiseAbs().maxCoeff());
-  REQUIRE((Ad - Ad.transpose()).cwiseAbs().maxCoeff() <= kRelTol * Ad.cwiseAbs().maxCoeff());
+  REQUIRE(wbtest::max_abs_diff(Ad, Ad.transpose()) <=
+          kRelTol * wbtest::max_abs(Ad));  // NaN fails
   // Blocks that may hold entries: diagonal, and the pairs joined by a spring.
   Eigen::Matrix4i allowed = Eigen::Matrix4i::Identity();
   for (const NetworkSpring& sp : s.net.springs)
@@ -117,7 +118,7 @@ TEST_CASE("I3 assembly: A is 2n x 2n symmetric with the network's sparsity",
 }
 
 TEST_CASE("I3 assembly: A and b equal a dense reference on a small network",
-          "[implicit][I3][7pts]") {
+          "[implicit][I3][5pts]") {
   const Setup s = setup();
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
@@ -142,10 +143,10 @@ TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3
   INFO("b has " << b.size() << " entries, expected " << be.size() << " (2n)");
   REQUIRE(b.size() == be.size());
   Eigen::Index i;
-  const double err = (b - be).cwiseAbs().maxCoeff(&i);
+  (b - be).cwiseAbs().maxCoeff(&i);
   INFO("Baraff and Witkin's right-hand side: at " << i << " got " << b[i] << ", expected "
                                                   << be[i]);
-  REQUIRE(err <= kRelTol * be.cwiseAbs().maxCoeff());
+  REQUIRE(wbtest::max_abs_diff(b, be) <= kRelTol * wbtest::max_abs(be));  // NaN fails
 }
 
 TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
@@ -182,6 +183,62 @@ TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks"
                   std::string("two compressed springs, definite = ") +
                       (definite ? "true: -K = k u u^T on them (spring_derivatives' clamp)"
                                 : "false: the exact blocks"));
+  }
+}
+
+TEST_CASE(
+    "I3 held-out: random networks assemble A = M - h D - h^2 K and b with only the allowed "
+    "blocks",
+    "[implicit][I3][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("I3")) {
+    INFO(g.replay());
+    for (const bool pin : {false, true}) {
+      imtest::Network w = imtest::random_network(g, pin);
+      const Eigen::Index n = w.net.n();
+      const double h = g.log_uniform(1e-3, 0.1);
+      const bool definite = g.coin();
+      Mat2X vl = w.v + g.points(n, -0.5, 0.5), xl = w.x + h * vl + g.points(n, -0.05, 0.05);
+      for (Eigen::Index p = 0; p < n; ++p) {
+        if (w.net.is_pinned(p))
+          vl.col(p).setZero(), xl.col(p) = w.x.col(p);  // as the caller does
+      }
+      Eigen::SparseMatrix<double> A;
+      Eigen::VectorXd b;
+      assemble_system(w.net, w.x, w.v, xl, vl, w.f_ext, h, definite, A, b);
+      Eigen::MatrixXd Ae;
+      Eigen::VectorXd be;
+      imtest::dense_system(w.net, w.x, w.v, xl, vl, w.f_ext, h, definite, Ae, be);
+      INFO(n << " particles, " << w.net.springs.size() << " springs, h = " << h
+             << ", definite = " << definite << (pin ? ", one particle pinned" : ""));
+      {
+        INFO("A is " << A.rows() << " x " << A.cols() << " and b has " << b.size()
+                     << " entries, expected " << 2 * n << " x " << 2 * n << " and " << 2 * n);
+        REQUIRE(A.rows() == 2 * n);
+        REQUIRE(A.cols() == 2 * n);
+        REQUIRE(b.size() == 2 * n);
+      }
+      // Blocks that may hold entries: each particle's own, and pairs of free particles
+      // joined by a spring.
+      Eigen::MatrixXi allowed = Eigen::MatrixXi::Identity(n, n);
+      for (const NetworkSpring& sp : w.net.springs)
+        if (sp.j >= 0 && !w.net.is_pinned(sp.i) && !w.net.is_pinned(sp.j))
+          allowed(sp.i, sp.j) = allowed(sp.j, sp.i) = 1;
+      for (int k = 0; k < A.outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+          INFO("stored entry A(" << it.row() << ", " << it.col() << ") between particles "
+                                 << it.row() / 2 << " and " << it.col() / 2
+                                 << ": only a particle's own block and the blocks of a spring "
+                                    "between two free particles may be stored");
+          REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
+        }
+      }
+      const Eigen::MatrixXd Ad = A;
+      INFO("A =\n"
+           << Ad << "\nexpected\n"
+           << Ae << "\nb = " << b.transpose() << "\nexpected " << be.transpose());
+      REQUIRE(wbtest::max_abs_diff(Ad, Ae) <= kRelTol * wbtest::max_abs(Ae));
+      REQUIRE(wbtest::max_abs_diff(b, be) <= kRelTol * (1 + wbtest::max_abs(be)));
+    }
   }
 }
 

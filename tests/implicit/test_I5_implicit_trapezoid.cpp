@@ -24,7 +24,7 @@ NewtonOptions options() {
 }  // namespace
 
 TEST_CASE("I5 implicit trapezoid: energy kept exactly on linear springs at any h w",
-          "[implicit][I5][4pts]") {
+          "[implicit][I5][3pts]") {
   // On X' = A X the step is the Cayley transform of A, which preserves the
   // energy norm: the energy ratio is 1 up to the solve's rounding (1e-9).
   SpringNetwork net =
@@ -46,7 +46,7 @@ TEST_CASE("I5 implicit trapezoid: energy kept exactly on linear springs at any h
 }
 
 TEST_CASE("I5 implicit trapezoid: one step on a damped linear spring is the Cayley transform",
-          "[implicit][I5][4pts]") {
+          "[implicit][I5][3pts]") {
   // Per coordinate X = (x - c, v), X' = A X + F with A = [[0, 1], [-k/m, -b/m]],
   // F = (0, f/m): the rule gives X' = (I - hA/2)^-1 ((I + hA/2) X + h F).
   SpringNetwork net =
@@ -77,7 +77,7 @@ TEST_CASE("I5 implicit trapezoid: one step on a damped linear spring is the Cayl
 }
 
 TEST_CASE("I5 implicit trapezoid: second order in h against the exact oscillator",
-          "[implicit][I5][3pts]") {
+          "[implicit][I5][2pts]") {
   // w = 2 pi, T = 0.5, N = 50 ... 200: error ~ C h^2 (1 + O((w h)^2)); a window
   // of 0.1 around 2 rejects first-order (backward Euler) and order-0 steps.
   const double w = 2.0 * M_PI, T = 0.5;
@@ -177,6 +177,48 @@ TEST_CASE("I5 implicit trapezoid: returns the Newton report of its backward Eule
   // f = -k (L - rest) u = (1, 0) N: v~ = h/2 f / m = (1, 0), x' = x~ + h/2 v~ = (2, 0).
   wbtest::require_near(v, Mat2X(Vec2(1.0, 0.0)), 0.0, "v = v~ (last good iterate)", 1e-15);
   wbtest::require_near(x, Mat2X(Vec2(2.0, 0.0)), 0.0, "x = x~ + h/2 v~", 1e-15);
+}
+
+TEST_CASE("I5 held-out: random networks step by the trapezoid rule and return the Newton report",
+          "[implicit][I5][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("I5")) {
+    INFO(g.replay());
+    for (int s = 0; s < 2; ++s) {
+      imtest::Network w = imtest::random_network(g, true);
+      const Eigen::Index n = w.net.n();
+      const double h = g.log_uniform(0.005, 0.1);
+      NewtonOptions o;
+      o.tol = 1e-12;
+      o.max_iterations = 50;
+      Mat2X x = w.x, v = w.v;
+      const NewtonReport r = implicit_trapezoid_step(w.net, w.f_ext, h, o, x, v);
+      // The explicit half, written here: pinned particles' v = 0 first.
+      Mat2X vs = w.v;
+      for (Eigen::Index p = 0; p < n; ++p)
+        if (w.net.is_pinned(p)) vs.col(p).setZero();
+      const Mat2X xt = w.x + 0.5 * h * vs;
+      const Mat2X vt = vs + 0.5 * h * (imtest::forces(w.net, w.x, vs) + w.f_ext) *
+                                w.net.m.cwiseInverse().asDiagonal();
+      const double res = imtest::trapezoid_residual(w.net, w.x, vs, w.f_ext, h, x, v);
+      const double scale = imtest::momentum_scale(w.net, w.x, vs, w.f_ext, h);
+      const double g1 = imtest::newton_residual(w.net, xt, vt, w.f_ext, 0.5 * h, v);
+      INFO(n << " particles, h = " << h << "; report {iterations " << r.iterations
+             << ", residual " << r.residual << ", converged " << r.converged
+             << "}; trapezoid residual " << res << " against the momentum scale " << scale
+             << "; the backward Euler half's |G| at "
+             << "the returned v: " << g1);
+      REQUIRE(r.converged);
+      REQUIRE(r.iterations >= 1);
+      REQUIRE(res <= 1e-9 * scale);
+      REQUIRE(wbtest::near(r.residual, g1, 1e-13 * scale, 1e-9));
+      for (Eigen::Index p = 0; p < n; ++p) {
+        if (!w.net.is_pinned(p)) continue;
+        wbtest::require_near(Vec2(x.col(p)), Vec2(w.x.col(p)), 0.0,
+                             "a pinned particle never moves, even one that arrives moving");
+        wbtest::require_near(Vec2(v.col(p)), Vec2(0, 0), 0.0, "a pinned particle's v is 0");
+      }
+    }
+  }
 }
 
 }  // namespace test_I5_implicit_trapezoid

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "heldout.h"
 #include "test_helpers.h"
 #include "wb/dynamics.h"
 
@@ -243,6 +244,77 @@ inline void check_two_evaluations(StepFn step, const std::string& method) {
                 << dyn.evals() - before
                 << " (one at the start, one at the intermediate state; no more, no fewer)");
     REQUIRE(dyn.evals() - before == 2);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The held-out check (tests/common/heldout.h): systems the student has never seen (1 to 7
+// particles, a random nonlinear a(x, v), a random step size), every step compared with the
+// method's definition, each of its two force evaluations at the state the definition says:
+//   midpoint:  a0 = a(x, v); (xm, vm) = (x + h/2 v, v + h/2 a0); a1 = a(xm, vm);
+//              x' = x + h vm, v' = v + h a1
+//   trapezoid: a0 = a(x, v); (xa, va) = (x + h v, v + h a0); a1 = a(xa, va);
+//              x' = x + h/2 (v + va), v' = v + h/2 (a0 + a1)
+inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
+                               const std::string& method) {
+  for (Eigen::Index n : {Eigen::Index(g.integer(3, 7)), Eigen::Index(1)}) {
+    std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
+    const Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4),
+          g.uniform(-4, 4);
+      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2),
+          g.uniform(-2, 2);
+    }
+    auto accel = [=](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+      for (Eigen::Index i = 0; i < x.cols(); ++i) {
+        a.col(i) = c0.col(i) + c1[std::size_t(i)] * x.col(i) + c2[std::size_t(i)] * v.col(i) +
+                   c3.col(i).cwiseProduct(wb::Vec2(x(1, i) * x(0, i), v(0, i) * v(1, i)));
+      }
+    };
+    std::vector<Mat2X> seen_x, seen_v;
+    wb::LambdaDynamics dyn([&](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+      seen_x.push_back(x), seen_v.push_back(v);
+      accel(x, v, a);
+    });
+    const double h = g.log_uniform(1e-3, 0.3);
+    Mat2X x = g.points(n, -4.0, 4.0), v = g.points(n, -4.0, 4.0);
+    INFO(method << ", " << n << " particles, h = " << h);
+    for (int k = 1; k <= 3; ++k) {
+      const Mat2X xn = x, vn = v;
+      Mat2X a0(2, n), a1(2, n);
+      accel(xn, vn, a0);
+      const Mat2X x1 = xn + (trapezoid ? h : 0.5 * h) * vn,
+                  v1 = vn + (trapezoid ? h : 0.5 * h) * a0;
+      accel(x1, v1, a1);
+      const Mat2X xe = trapezoid ? Mat2X(xn + 0.5 * h * (vn + v1)) : Mat2X(xn + h * v1);
+      const Mat2X ve = trapezoid ? Mat2X(vn + 0.5 * h * (a0 + a1)) : Mat2X(vn + h * a1);
+      seen_x.clear(), seen_v.clear();
+      wb::Scratch s = nan_scratch(n);
+      step(dyn, h, x, v, s);
+      INFO("step " << k << " from x = " << xn << ", v = " << vn);
+      {
+        INFO("force evaluations in this step: expected 2, got " << seen_x.size());
+        REQUIRE(seen_x.size() == 2);
+      }
+      // Each value is a few roundings of terms of at most ~10^3: 1e-11 absolute is ample for
+      // any order of the same operations.
+      wbtest::require_near(seen_x[0], xn, 0.0, "the first evaluation sees the positions x_n");
+      wbtest::require_near(seen_v[0], vn, 0.0, "the first evaluation sees the velocities v_n");
+      const std::string mid = trapezoid ? "the full Euler step X_a = X + h f(X)"
+                                        : "the half Euler step X_mid = X + (h/2) f(X)";
+      wbtest::require_near(seen_x[1], x1, 1e-11,
+                           "the second evaluation sees the positions of " + mid, 1e-12);
+      wbtest::require_near(seen_v[1], v1, 1e-11,
+                           "the second evaluation sees the velocities of " + mid, 1e-12);
+      wbtest::require_near(
+          x, xe, 1e-11, method + (trapezoid ? ": x' = x + h/2 (v + v_a)" : ": x' = x + h v_mid"),
+          1e-12);
+      wbtest::require_near(
+          v, ve, 1e-11,
+          method + (trapezoid ? ": v' = v + h/2 (a(X) + a(X_a))" : ": v' = v + h a(X_mid)"),
+          1e-12);
+    }
   }
 }
 

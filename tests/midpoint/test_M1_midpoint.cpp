@@ -12,12 +12,12 @@ const char* kMethod = "midpoint";
 constexpr double kThirdOrderCoef = 1.0 / 8.0;  // h^3 a''[f, f] coefficient (Taylor expansion)
 }  // namespace
 
-TEST_CASE("M1 midpoint: second order on the circular Kepler orbit", "[midpoint][M1][15pts]") {
+TEST_CASE("M1 midpoint: second order on the circular Kepler orbit", "[midpoint][M1][12pts]") {
   mptest::check_second_order(midpoint_step, kMethod);
 }
 
 TEST_CASE("M1 midpoint: oscillator energy grows by 1 + (h w)^4/4 per step",
-          "[midpoint][M1][10pts]") {
+          "[midpoint][M1][8pts]") {
   mptest::check_energy_factor(midpoint_step, kMethod);
 }
 
@@ -40,12 +40,22 @@ TEST_CASE("M1 midpoint: several particles at once without mixing columns",
 }
 
 TEST_CASE("M1 midpoint: h^3 velocity term on a nonlinear force is one eighth of a''(f f)",
-          "[midpoint][M1][10pts]") {
+          "[midpoint][M1][7pts]") {
   mptest::check_third_order_term(midpoint_step, kMethod, kThirdOrderCoef);
 }
 
 TEST_CASE("M1 midpoint: exactly two force evaluations per step", "[midpoint][M1][3pts]") {
   mptest::check_two_evaluations(midpoint_step, kMethod);
+}
+
+TEST_CASE(
+    "M1 held-out: every step of random systems follows the midpoint rule with its two "
+    "evaluations",
+    "[midpoint][M1][held-out][8pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("M1")) {
+    INFO(g.replay());
+    mptest::check_random_steps(g, midpoint_step, false, "midpoint");
+  }
 }
 
 }  // namespace test_M1_midpoint

@@ -1,6 +1,7 @@
 // Helpers for the rigid lab's graded tests: bodies, a reference free motion
 // written independently of the student's files, and 3D comparisons.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include "heldout.h"
 #include "rigid_body.h"
 #include "test_helpers.h"
 
@@ -38,7 +40,7 @@ inline void require_near(const Mat3& got, const Mat3& expected, double abs_tol,
   INFO(what << "\n  expected\n"
             << expected << "\n  got\n"
             << got << "\n  tolerance " << abs_tol << " on every entry");
-  REQUIRE((got - expected).cwiseAbs().maxCoeff() <= abs_tol);
+  REQUIRE(wbtest::max_abs_diff(got, expected) <= abs_tol);  // NaN anywhere fails
 }
 
 using wbtest::require_near;
@@ -122,6 +124,40 @@ inline void free_step(Body& b, double h, const VelocityStep& velocity) {
   b.tau.setZero();
   velocity(b, h);
   ref_position(b, h);
+}
+
+// A random body the student has never seen (held-out checks, tests/common/heldout.h): mass,
+// principal moments (each smaller than the sum of the others, as for a real solid),
+// orientation, position and velocities, forces and torques already accumulated.
+inline Body random_body(wbtest::HeldOut& g) {
+  Body b;
+  b.m = g.uniform(0.2, 5.0);
+  Vec3 I;
+  do {
+    I = Vec3(g.uniform(0.1, 3.0), g.uniform(0.1, 3.0), g.uniform(0.1, 3.0));
+  } while (2 * std::max({I.x(), I.y(), I.z()}) >= I.sum());
+  b.I_body = I.asDiagonal();
+  b.q = Eigen::Quaterniond(g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1))
+            .normalized();
+  b.x = g.vec3(-2, 2);
+  b.v = g.vec3(-2, 2);
+  b.omega = g.vec3(-3, 3);
+  b.f = g.vec3(-5, 5);
+  b.tau = g.vec3(-5, 5);
+  return b;
+}
+
+// Every field of a body against the expected one (tolerance relative to the sizes).
+inline void require_body(const Body& got, const Body& e, double tol, const std::string& what) {
+  require_near(got.x, e.x, tol * (1 + e.x.norm()), what + ": x");
+  require_near(got.v, e.v, tol * (1 + e.v.norm()), what + ": v");
+  require_near(got.omega, e.omega, tol * (1 + e.omega.norm()), what + ": omega");
+  require_near(got.f, e.f, tol * (1 + e.f.norm()), what + ": f");
+  require_near(got.tau, e.tau, tol * (1 + e.tau.norm()), what + ": tau");
+  require_near(Vec3(got.q.vec()), Vec3(e.q.vec()), tol, what + ": q (x, y, z)");
+  require_near(got.q.w(), e.q.w(), tol, what + ": q (w)");
+  require_near(got.m, e.m, 0.0, what + ": m (unchanged)");
+  require_near(got.I_body, e.I_body, 0.0, what + ": I_body (unchanged)");
 }
 
 }  // namespace rigidtest

@@ -45,7 +45,7 @@ void require_tensor(const Mat3& got, const Mat3& expected, const std::string& wh
 }  // namespace
 
 TEST_CASE("R1 box: inertia equals the integral over the box with edges a b c",
-          "[rigid][R1][4pts]") {
+          "[rigid][R1][3pts]") {
   const double m = 3.0;
   const Vec3 size(1.0, 2.0, 4.0);
   const Mat3 expected =
@@ -70,7 +70,7 @@ TEST_CASE("R1 sphere: inertia equals the integral over the ball", "[rigid][R1][4
 }
 
 TEST_CASE("R1 cylinder: inertia equals the integral over the cylinder along z",
-          "[rigid][R1][4pts]") {
+          "[rigid][R1][3pts]") {
   const double m = 5.0, R = 0.4, L = 3.0;
   // Cylindrical coordinates u = (s, phi, z), dV = s.
   const Mat3 expected = integrate(
@@ -80,6 +80,32 @@ TEST_CASE("R1 cylinder: inertia equals the integral over the cylinder along z",
   require_tensor(cylinder_inertia(m, R, L), expected,
                  "cylinder r = 0.4 m, length 3 m along z, 5 kg: I = rho * integral of "
                  "(r^2 E - r r^T) dV");
+}
+
+TEST_CASE("R1 held-out: random boxes spheres and cylinders have the header's moments",
+          "[rigid][R1][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("R1")) {
+    INFO(g.replay());
+    for (int s = 0; s < 5; ++s) {
+      const double m = g.uniform(0.1, 10.0), a = g.uniform(0.1, 3.0), b = g.uniform(0.1, 3.0),
+                   c = g.uniform(0.1, 3.0);
+      INFO("m = " << m << ", box edges " << a << " " << b << " " << c << ", sphere radius " << a
+                  << ", cylinder radius " << a << " and length " << b);
+      rigidtest::require_near(
+          box_inertia(m, Vec3(a, b, c)),
+          Mat3(Vec3(m / 12 * (b * b + c * c), m / 12 * (a * a + c * c), m / 12 * (a * a + b * b))
+                   .asDiagonal()),
+          1e-13 * m * (a * a + b * b + c * c),
+          "box: m/12 (b^2 + c^2), m/12 (a^2 + c^2), m/12 (a^2 + b^2)");
+      rigidtest::require_near(sphere_inertia(m, a), Mat3((0.4 * m * a * a) * Mat3::Identity()),
+                              1e-13 * m * a * a, "sphere: 2/5 m r^2 on every axis");
+      const double Ixy = m / 12 * (3 * a * a + b * b);
+      rigidtest::require_near(
+          cylinder_inertia(m, a, b), Mat3(Vec3(Ixy, Ixy, 0.5 * m * a * a).asDiagonal()),
+          1e-13 * m * (a * a + b * b),
+          "cylinder along z: m/12 (3 r^2 + L^2) about x and y, m r^2/2 about z");
+    }
+  }
 }
 
 }  // namespace test_R1_body_inertia

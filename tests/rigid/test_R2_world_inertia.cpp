@@ -28,7 +28,7 @@ const Vec3 kI(0.5, 2.0, 7.0);  // principal moments (kg m^2), all different
 
 TEST_CASE(
     "R2 world inertia: principal axes turned by R are eigenvectors and energy is frame-free",
-    "[rigid][R2][4pts]") {
+    "[rigid][R2][3pts]") {
   const Mat3 I = world_inertia(kR, kI.asDiagonal());
   for (int k = 0; k < 3; ++k) {
     const Vec3 axis = kR.col(k);  // the body's k-th axis in the world
@@ -54,7 +54,7 @@ TEST_CASE("R2 world inverse inertia: I^-1 (I w) gives w back", "[rigid][R2][4pts
 }
 
 TEST_CASE("R2 parallel axis: a box about its corner equals the integral over the box",
-          "[rigid][R2][4pts]") {
+          "[rigid][R2][3pts]") {
   const double m = 2.0;
   const Vec3 size(1.0, 3.0, 2.0);
   const Mat3 I_c = (m / 12.0 * Vec3(13.0, 5.0, 10.0)).asDiagonal();  // textbook box tensor
@@ -70,6 +70,35 @@ TEST_CASE("R2 parallel axis: a box about its corner equals the integral over the
   const Vec3 d = size / 2;  // centre of mass minus the corner
   require_near(parallel_axis(I_c, m, d), expected, kExactQuadTol * expected.norm(),
                "I_corner = I_c + m (|d|^2 E - d d^T) for a 1 x 3 x 2 m box of 2 kg");
+}
+
+TEST_CASE(
+    "R2 held-out: random rotations and offsets give R I R^T and its inverse and the parallel "
+    "axis",
+    "[rigid][R2][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("R2")) {
+    INFO(g.replay());
+    for (int s = 0; s < 5; ++s) {
+      const Body b = rigidtest::random_body(g);
+      const Mat3 R = rot(b), I = b.I_body;
+      const Vec3 d = g.vec3(-2, 2);
+      INFO("R =\n"
+           << R << "\nI_body diagonal " << I.diagonal().transpose() << ", m = " << b.m
+           << ", d = " << rigidtest::str(d));
+      const double scale = I.diagonal().sum();
+      rigidtest::require_near(world_inertia(R, I), Mat3(R * I * R.transpose()), 1e-13 * scale,
+                              "I = R I_body R^T");
+      rigidtest::require_near(world_inverse_inertia(R, I),
+                              Mat3(R * I.diagonal().cwiseInverse().asDiagonal() * R.transpose()),
+                              1e-13 * I.diagonal().cwiseInverse().sum(),
+                              "I^-1 = R I_body^-1 R^T");
+      const Mat3 Iw = R * I * R.transpose();
+      rigidtest::require_near(
+          parallel_axis(Iw, b.m, d),
+          Mat3(Iw + b.m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose())),
+          1e-13 * (scale + b.m * d.squaredNorm()), "I_P = I + m (|d|^2 E - d d^T)");
+    }
+  }
 }
 
 }  // namespace test_R2_world_inertia

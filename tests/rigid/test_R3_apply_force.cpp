@@ -25,7 +25,7 @@ TEST_CASE("R3 a force through the centre of mass pushes and gives no torque",
 }
 
 TEST_CASE("R3 a force at a lever arm adds the torque (p - x) x F to what is there",
-          "[rigid][R3][3pts]") {
+          "[rigid][R3][2pts]") {
   Body b = make_body(2.0, Vec3(1, 2, 3), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(1, 1, 1));
   b.f = Vec3(0.5, 0.0, -1.0);
   b.tau = Vec3(0.25, 1.0, 0.0);
@@ -42,7 +42,7 @@ TEST_CASE("R3 a force at a lever arm adds the torque (p - x) x F to what is ther
   require_near(b.x, Vec3(1, 1, 1), 0.0, "x unchanged by apply_force");
 }
 
-TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3][3pts]") {
+TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3][2pts]") {
   Body b = make_body(2.5, Vec3(1, 2, 3), quat(0.3, 0.2, 0.9, 0), Vec3(1, 2, 3), Vec3(4, 5, 6));
   b.f = Vec3(1.0, 0.0, 0.0);
   b.tau = Vec3(0.0, 2.0, 0.0);
@@ -53,6 +53,30 @@ TEST_CASE("R3 gravity adds m g at the centre of mass and no torque", "[rigid][R3
                "v unchanged: forces only accumulate in f, the step integrates them");
   require_near(b.x, Vec3(4, 5, 6), 0.0, "x unchanged by apply_gravity");
   require_near(b.omega, Vec3(1, 2, 3), 0.0, "omega unchanged by a force");
+}
+
+TEST_CASE("R3 held-out: random forces at random points add F and (p - x) x F and gravity m g",
+          "[rigid][R3][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("R3")) {
+    INFO(g.replay());
+    for (int s = 0; s < 5; ++s) {
+      const Body b0 = rigidtest::random_body(g);
+      const Vec3 F = g.vec3(-10, 10), p = b0.x + g.vec3(-2, 2), grav = g.vec3(-10, 10);
+      Body b = b0, e = b0;
+      e.f += F;
+      e.tau += (p - b0.x).cross(F);
+      INFO("F = " << rigidtest::str(F) << " at p = " << rigidtest::str(p) << ", x = "
+                  << rigidtest::str(b0.x) << ", f and tau already there: " << rigidtest::str(b0.f)
+                  << ", " << rigidtest::str(b0.tau));
+      apply_force(b, F, p);
+      rigidtest::require_body(b, e, 1e-13,
+                              "apply_force: f += F, tau += (p - x) x F, nothing else");
+      e.f += b0.m * grav;
+      apply_gravity(b, grav);
+      INFO("g = " << rigidtest::str(grav) << ", m = " << b0.m);
+      rigidtest::require_body(b, e, 1e-13, "apply_gravity: f += m g, no torque, nothing else");
+    }
+  }
 }
 
 }  // namespace test_R3_apply_force

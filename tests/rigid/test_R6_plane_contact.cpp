@@ -85,6 +85,13 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
       if ((p - b.x).dot(n) < 0) kept[std::size_t(j++)].p = p;  // the four lower corners
     }
     total = solve_plane_contacts(b, kept, n, 0.0, 0.05, mu, iterations);
+    {  // the vector comes back from the lab's code: its size is checked before it is indexed
+      INFO("solve_plane_contacts returned "
+           << kept.size()
+           << " contacts, it was given 4 (it "
+              "updates their totals, it never adds or drops one)");
+      REQUIRE(kept.size() == 4);
+    }
     ref_position(b, h);
   }
   return total;
@@ -93,7 +100,7 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
 }  // namespace
 
 TEST_CASE("R6 prepare: effective mass along n and the restitution target above the threshold",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   Vec3 p;
   const Body b0 = tilted_box(p);
   const double vn = point_velocity(b0, p).dot(kUp);  // -2.4: approaching
@@ -129,10 +136,41 @@ TEST_CASE("R6 prepare: effective mass along n and the restitution target above t
       require_near(b.omega, b0.omega, 0.0, "prepare applies nothing: omega unchanged");
     }
   }
+  // A tilted plane: the effective mass along ITS normal, 1 / (n^T K n) (not one entry of K,
+  // which is the same only for n = z), and the approach speed along it.
+  {
+    const Vec3 n(0.36, -0.48, 0.8);  // unit
+    const double vt = point_velocity(b0, p).dot(n);
+    INFO("plane normal " << str(n) << ", u.n = " << vt << ", threshold 0.1, e = 0.5");
+    Body b = b0;
+    Contact c = contact_at(p);
+    prepare_contact(b, n, 0.5, 0.1, c);
+    require_near(c.mass_n, 1.0 / n.dot(K * n), 0.0,
+                 "mass_n = 1 / (n^T K n) along the plane's own normal", kImpulseTol);
+    require_near(c.bias, vt > 0 ? -vt : (-vt > 0.1 ? -0.5 * vt : 0.0), kImpulseTol,
+                 "the bias from the normal velocity along this n");
+  }
+  // The same corner LEAVING the floor: on both sides of the threshold and for any e the
+  // target is -u.n (another contact may turn it back, never faster than it leaves: with a
+  // target of 0 the solver would add (1/2) Pn u.n of energy when it does).
+  for (double e : {0.0, 0.5}) {
+    for (double factor : {0.99, 1.01}) {
+      Body b = b0;
+      b.v = -b0.v;
+      b.omega = -b0.omega;  // u.n = -vn: separating
+      const double threshold = -vn * factor;
+      INFO("separating at " << -vn << " m/s, threshold " << threshold << ", e = " << e);
+      Contact c = contact_at(p);
+      prepare_contact(b, kUp, e, threshold, c);
+      require_near(c.bias, vn, kImpulseTol,
+                   "a point moving away from the plane aims at -u.n: it may be turned back at "
+                   "most as fast as it leaves, whatever e and the threshold");
+    }
+  }
 }
 
 TEST_CASE("R6 warm start: the stored totals are applied at the point with their own sign",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   Vec3 p;
   const Body b0 = tilted_box(p);
   Contact c = contact_at(p, 2.0, Vec3(0.3, -0.4, 0.0));
@@ -148,7 +186,7 @@ TEST_CASE("R6 warm start: the stored totals are applied at the point with their 
 }
 
 TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be taken back",
-          "[rigid][R6][4pts]") {
+          "[rigid][R6][2pts]") {
   // A point moving INTO the plane with nothing stored: the iteration adds the impulse
   // that makes u.n = bias, and returns it.
   Vec3 p;
@@ -200,7 +238,7 @@ TEST_CASE("R6 one iteration: the normal impulse is a clamped total that can be t
 }
 
 TEST_CASE("R6 friction: the bound is mu times the accumulated normal total and opposes the slip",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   // A sphere (r along -n: no turning from the normal impulse) sliding along x.
   const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
   const Vec3 p(0, 0, 0);
@@ -261,8 +299,119 @@ TEST_CASE("R6 friction: the bound is mu times the accumulated normal total and o
   }
 }
 
+TEST_CASE("R6 friction with restitution: the slip is the point's velocity in the plane",
+          "[rigid][R6][1pts]") {
+  // A sphere (r along -n: the normal impulse does not turn it) hitting the floor at 2 m/s
+  // while sliding at 3 m/s, e = 0.5. After step 1 the point moves AWAY at e * 2 = 1 m/s:
+  // the slip is only the part in the plane, ut = u - (u.n) n, and the friction impulse
+  // lies in the plane, leaving u.n = 1 m/s. mu = 0.5, Pn = 6 N s: the cone does not bind,
+  // so the point stops sliding (Pt = -2/7 m ut: the 5/7 rolling speed).
+  const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
+  const Vec3 p(0, 0, 0);
+  for (const Vec3& slide : {Vec3(3, 0, 0), Vec3(1.8, -2.4, 0)}) {
+    INFO("sliding at " << str(slide) << ", approaching at 2 m/s, e = 0.5, mu = 0.5");
+    Body s = make_body(m, Vec3::Constant(I), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, R),
+                       slide + Vec3(0, 0, -2));
+    Contact c = contact_at(p);
+    prepare_contact(s, kUp, 0.5, 0.1, c);
+    solve_contact(s, c, kUp, 0.5);
+    require_near(c.Pn, (1 + 0.5) * 2.0 * m, kImpulseTol, "Pn = (1 + e) m |vn| (r along n)");
+    require_near(c.Pt, Vec3(-2.0 / 7.0 * m * slide), kImpulseTol,
+                 "Pt = -2/7 m ut with ut the slip IN THE PLANE, u - (u.n) n");
+    require_near(point_velocity(s, p), Vec3(0, 0, 0.5 * 2.0), kImpulseTol,
+                 "the point stops sliding and still leaves at -e vn = 1 m/s: friction acts "
+                 "only in the plane");
+  }
+}
+
+TEST_CASE("R6 friction: the bound is the normal total of this iteration", "[rigid][R6][2pts]") {
+  // Step 1 (normal) comes before step 2 (friction), and step 2's bound is mu times the
+  // total step 1 just made. A sphere sliding at 3 m/s along x, mu = 0.1: the cone binds
+  // (mu Pn < 2/7 m u = 1.71 N s), so |Pt| = mu Pn tells which Pn was used.
+  const double m = 2.0, R = 0.5, I = 0.4 * m * R * R;
+  const Vec3 p(0, 0, 0);
+  struct Case {
+    double vz, stored, Pn;
+    const char* why;
+  };
+  const Case cases[] = {
+      {-1.0, 0.0, 2.0, "nothing stored, approaching at 1 m/s: this iteration makes Pn = 2"},
+      {1.0, 10.0, 6.0,
+       "10 N s stored, leaving at 1 m/s (target -u.n = -1): this iteration takes Pn down to 6"},
+  };
+  for (const Case& k : cases) {
+    INFO(k.why);
+    Body s = make_body(m, Vec3::Constant(I), quat(1, 0, 0, 0), Vec3::Zero(), Vec3(0, 0, R),
+                       Vec3(3, 0, k.vz));
+    Contact c = contact_at(p, k.stored);
+    prepare_contact(s, kUp, 0.0, 1.5, c);
+    solve_contact(s, c, kUp, 0.1);
+    require_near(c.Pn, k.Pn, kImpulseTol, "the normal total after step 1");
+    require_near(c.Pt, Vec3(-0.1 * k.Pn, 0, 0), kImpulseTol,
+                 "|Pt| = mu Pn with the NEW normal total of step 1 (step 1 before step 2), "
+                 "not the total the iteration started with");
+    require_near(s.v.x(), 3.0 - 0.1 * k.Pn / m, kImpulseTol, "v.x = 3 - mu Pn / m");
+  }
+}
+
+TEST_CASE("R6 together: one pass over the contacts in order per iteration", "[rigid][R6][1pts]") {
+  // solve_plane_contacts = prepare and warm start each contact, then `iterations` passes
+  // of solve_contact over the contacts in order. The test's own pass (mu = 0): for each
+  // contact, lambda = (bias - u.n) / (n^T K n), the total clamped at 0, its change applied
+  // at the point. One contact and one pass: u.n = -e vn exactly (Newton's law).
+  Vec3 p;
+  const Body b0 = tilted_box(p);
+  const double vn = point_velocity(b0, p).dot(kUp);
+  {
+    Body b = b0;
+    std::vector<Contact> cs = {contact_at(p)};
+    const double total = solve_plane_contacts(b, cs, kUp, 0.6, 0.1, 0.0, 1);
+    require_near(point_velocity(b, p).dot(kUp), -0.6 * vn, kImpulseTol,
+                 "one contact, iterations = 1: after its one pass u.n = -e vn");
+    require_near(total, cs[0].Pn, kImpulseTol, "returns the sum of the contacts' Pn");
+  }
+  // Two corners, their totals stored from a last step: every pass changes what the other
+  // corner needs, so 1, 2 and 3 passes end in three different states.
+  const Vec3 q = b0.x + rot(b0) * Vec3(0.5, -0.5, -0.5);
+  const double e = 0.3, threshold = 0.1;
+  for (int iterations : {1, 2, 3}) {
+    INFO("two contacts, stored Pn 0.2 and 0.4 N s, e = 0.3, iterations = " << iterations);
+    Body b = b0;
+    std::vector<Contact> cs = {contact_at(p, 0.2), contact_at(q, 0.4)};
+    solve_plane_contacts(b, cs, kUp, e, threshold, 0.0, iterations);
+    // The test's own passes.
+    Body r = b0;
+    const Vec3 pts[2] = {p, q};
+    double Pn[2] = {0.2, 0.4}, bias[2], mass[2];
+    for (int k = 0; k < 2; ++k) {
+      Mat3 K;
+      for (int a = 0; a < 3; ++a) {
+        Body probe = b0;
+        impulse_at(probe, pts[k], Vec3::Unit(a));
+        K.col(a) = point_velocity(probe, pts[k]) - point_velocity(b0, pts[k]);
+      }
+      mass[k] = 1.0 / kUp.dot(K * kUp);
+      const double u = point_velocity(b0, pts[k]).dot(kUp);
+      bias[k] = u > 0 ? -u : (-u > threshold ? -e * u : 0.0);
+    }
+    for (int k = 0; k < 2; ++k) impulse_at(r, pts[k], Pn[k] * kUp);  // warm start
+    for (int it = 0; it < iterations; ++it) {
+      for (int k = 0; k < 2; ++k) {
+        const double lambda = mass[k] * (bias[k] - point_velocity(r, pts[k]).dot(kUp));
+        const double next = std::max(Pn[k] + lambda, 0.0);
+        impulse_at(r, pts[k], (next - Pn[k]) * kUp);
+        Pn[k] = next;
+      }
+    }
+    require_near(b.v, r.v, kImpulseTol, "v after `iterations` passes over both contacts");
+    require_near(b.omega, r.omega, kImpulseTol, "omega after `iterations` passes");
+    require_near(cs[0].Pn, Pn[0], kImpulseTol, "contact 0's total after the passes");
+    require_near(cs[1].Pn, Pn[1], kImpulseTol, "contact 1's total after the passes");
+  }
+}
+
 TEST_CASE("R6 together and warm-started: a box on the floor rests to rounding",
-          "[rigid][R6][3pts]") {
+          "[rigid][R6][2pts]") {
   // Four corners on the floor, 10 iterations per step, totals kept between steps.
   // After a few steps each corner carries a quarter of the weight, m g h / 4 per step,
   // and nothing moves. Without accumulated totals or without the warm start the
@@ -281,7 +430,7 @@ TEST_CASE("R6 together and warm-started: a box on the floor rests to rounding",
 }
 
 TEST_CASE("R6 slope: static friction holds when mu > tan theta and else a = g (sin - mu cos)",
-          "[rigid][R6][2pts]") {
+          "[rigid][R6][1pts]") {
   // A 30 degree slope whose fall line is along neither world axis, and a box turned
   // about the normal: the friction must oppose the slip in whatever direction it is.
   const double theta = M_PI / 6, h = 1e-3;
@@ -307,6 +456,144 @@ TEST_CASE("R6 slope: static friction holds when mu > tan theta and else a = g (s
                  "mu = 0.3 < tan 30: speed along the fall line a T, a = g (sin - mu cos)", 1e-6);
     require_near((b.v - b.v.dot(down) * down).norm(), 0.0, 1e-9,
                  "it slides straight down the fall line (friction opposes the slip)");
+  }
+}
+
+namespace heldout_R6 {
+// The header's contact solver, written by the test (plane_contact.h).
+struct Ref {
+  Vec3 p, r;
+  Mat3 K;
+  double mass_n = 0, bias = 0, Pn = 0;
+  Vec3 Pt = Vec3::Zero();
+};
+Mat3 contact_K(const Body& b, const Vec3& r) {
+  const Mat3 R = rot(b);
+  const Mat3 Iinv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  return Mat3::Identity() / b.m - rigid::skew(r) * Iinv * rigid::skew(r);
+}
+void apply(Body& b, const Vec3& r, const Vec3& J) {
+  const Mat3 R = rot(b);
+  const Mat3 Iinv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  b.v += J / b.m;
+  b.omega += Iinv * r.cross(J);
+}
+void prepare(const Body& b, const Vec3& n, double e, double threshold, Ref& c) {
+  c.r = c.p - b.x;
+  c.K = contact_K(b, c.r);
+  c.mass_n = 1 / n.dot(c.K * n);
+  const double un = (b.v + b.omega.cross(c.r)).dot(n);
+  c.bias = -un > threshold ? -e * un : 0.0;
+}
+double solve(Body& b, Ref& c, const Vec3& n, double mu) {
+  const double un = (b.v + b.omega.cross(c.r)).dot(n);
+  const double Pn1 = std::max(c.Pn + c.mass_n * (c.bias - un), 0.0), added = Pn1 - c.Pn;
+  apply(b, c.r, added * n);
+  c.Pn = Pn1;
+  const Vec3 u = b.v + b.omega.cross(c.r), ut = u - u.dot(n) * n;
+  if (ut.norm() > 0) {
+    const Vec3 d = ut / ut.norm();
+    Vec3 Pt1 = c.Pt - ut.norm() / d.dot(c.K * d) * d;
+    if (Pt1.norm() > mu * c.Pn) Pt1 *= mu * c.Pn / Pt1.norm();
+    apply(b, c.r, Pt1 - c.Pt);
+    c.Pt = Pt1;
+  }
+  return added;
+}
+}  // namespace heldout_R6
+
+TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says",
+          "[rigid][R6][held-out][3pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("R6")) {
+    INFO(g.replay());
+    for (int s = 0; s < 4; ++s) {
+      Body b0 = rigidtest::random_body(g);
+      const Vec3 n = g.unit3();
+      const double e = g.uniform(0.0, 1.0), threshold = g.uniform(0.0, 1.0),
+                   mu = g.uniform(0.0, 1.2);
+      // The body moving into the plane (or slowly along it), 1 to 4 contact points.
+      b0.v -= (b0.v.dot(n) + g.uniform(-0.5, 3.0)) * n;
+      if (s == 0) {  // every point closing slower than the threshold: resting, no bounce
+        b0.omega.setZero();
+        b0.v += (-threshold * g.uniform(0.1, 0.9) - b0.v.dot(n)) * n;
+      }
+      const int k = int(g.integer(1, 4));
+      std::vector<Contact> cs(static_cast<std::size_t>(k));
+      std::vector<heldout_R6::Ref> refs(static_cast<std::size_t>(k));
+      for (int i = 0; i < k; ++i) {
+        cs[std::size_t(i)].p = b0.x + g.vec3(-1, 1);
+        // Totals from the last step: none, or some (Pt in the plane within the cone).
+        if (g.coin()) {
+          cs[std::size_t(i)].Pn = g.uniform(0.0, 2.0);
+          Vec3 t = g.vec3(-1, 1);
+          t -= t.dot(n) * n;
+          if (t.norm() > 0)
+            cs[std::size_t(i)].Pt =
+                t / t.norm() * g.uniform(0.0, 1.0) * mu * cs[std::size_t(i)].Pn;
+        }
+        refs[std::size_t(i)].p = cs[std::size_t(i)].p;
+        refs[std::size_t(i)].Pn = cs[std::size_t(i)].Pn;
+        refs[std::size_t(i)].Pt = cs[std::size_t(i)].Pt;
+      }
+      const int iterations = int(g.integer(1, 6));
+      INFO(k << " contacts, n = " << rigidtest::str(n) << ", e = " << e
+             << ", threshold = " << threshold << ", mu = " << mu << ", " << iterations
+             << " iterations; body m = " << b0.m << ", v = " << rigidtest::str(b0.v)
+             << ", omega = " << rigidtest::str(b0.omega));
+      // One contact step by step: prepare, warm start, two iterations.
+      {
+        Body b = b0, e_b = b0;
+        Contact c = cs[0];
+        heldout_R6::Ref ref = refs[0];
+        prepare_contact(b, n, e, threshold, c);
+        heldout_R6::prepare(e_b, n, e, threshold, ref);
+        rigidtest::require_near(c.r, ref.r, 1e-13, "prepare: r = p - x", 1e-13);
+        rigidtest::require_near(c.K, ref.K, 1e-12 * (1 + wbtest::max_abs(ref.K)),
+                                "prepare: K = E/m - [r]x I^-1 [r]x");
+        wbtest::require_near(c.mass_n, ref.mass_n, 0.0, "prepare: mass_n = 1 / (n^T K n)", 1e-12);
+        wbtest::require_near(c.bias, ref.bias, 1e-12,
+                             "prepare: bias = -e u.n above the threshold, else 0", 1e-12);
+        warm_start_contact(b, c, n);
+        heldout_R6::apply(e_b, ref.r, ref.Pn * n + ref.Pt);
+        rigidtest::require_body(b, e_b, 1e-12, "warm start: J = Pn n + Pt applied at p");
+        for (int it = 0; it < 2; ++it) {
+          const double got = solve_contact(b, c, n, mu);
+          const double want = heldout_R6::solve(e_b, ref, n, mu);
+          INFO("solve_contact, iteration " << it + 1);
+          wbtest::require_near(got, want, 1e-12, "returns Pn' - Pn", 1e-11);
+          wbtest::require_near(c.Pn, ref.Pn, 1e-12, "Pn' = max(Pn + mass_n (bias - u.n), 0)",
+                               1e-11);
+          rigidtest::require_near(c.Pt, ref.Pt, 1e-12,
+                                  "Pt' = Pt - |ut| / (d^T K d) d, scaled to mu Pn at most",
+                                  1e-11);
+          rigidtest::require_body(b, e_b, 1e-11, "the body after the iteration's two impulses");
+        }
+      }
+      // All of them together.
+      Body b = b0, e_b = b0;
+      std::vector<Contact> got = cs;
+      const double total = solve_plane_contacts(b, got, n, e, threshold, mu, iterations);
+      for (auto& r : refs) heldout_R6::prepare(e_b, n, e, threshold, r);
+      for (auto& r : refs) heldout_R6::apply(e_b, r.p - e_b.x, r.Pn * n + r.Pt);
+      for (int it = 0; it < iterations; ++it)
+        for (auto& r : refs) heldout_R6::solve(e_b, r, n, mu);
+      double want = 0;
+      for (const auto& r : refs) want += r.Pn;
+      {
+        INFO("solve_plane_contacts returned " << got.size() << " contacts, expected " << k);
+        REQUIRE(got.size() == std::size_t(k));
+      }
+      wbtest::require_near(total, want, 1e-11, "solve_plane_contacts returns the sum of the Pn",
+                           1e-10);
+      for (int i = 0; i < k; ++i) {
+        INFO("contact " << i);
+        wbtest::require_near(got[std::size_t(i)].Pn, refs[std::size_t(i)].Pn, 1e-11,
+                             "its Pn total", 1e-10);
+        rigidtest::require_near(got[std::size_t(i)].Pt, refs[std::size_t(i)].Pt, 1e-11,
+                                "its Pt total", 1e-10);
+      }
+      rigidtest::require_body(b, e_b, 1e-10, "the body after prepare, warm start and the passes");
+    }
   }
 }
 

@@ -46,7 +46,7 @@ struct Pendulum {
 }  // namespace
 
 TEST_CASE("R7 one impulse with beta 0: the pinned point stops and the impulse acts at it",
-          "[rigid][R7][3pts]") {
+          "[rigid][R7][2pts]") {
   Body b = make_body(2.0, Vec3(0.5, 1.0, 1.25), quat(0.8, 0.3, -0.2, 0.4), Vec3(1.0, -2.0, 0.5),
                      Vec3(0.3, 0.1, -0.2), Vec3(1.5, -0.5, 2.0));
   const Vec3 r_body(0.4, -0.3, 0.6);
@@ -61,7 +61,7 @@ TEST_CASE("R7 one impulse with beta 0: the pinned point stops and the impulse ac
 }
 
 TEST_CASE("R7 hinged pendulum: small swings have period 2 pi sqrt(I_p / (m g d))",
-          "[rigid][R7][2pts]") {
+          "[rigid][R7][1pts]") {
   // I_p = I_cm + m d^2 (parallel axis). At 0.05 rad the amplitude lengthens the
   // period by theta0^2 / 16 = 1.6e-4; semi-implicit Euler at h = 1e-3 shifts it
   // by O((h w)^2) ~ 1e-6. Zero crossings are interpolated to ~h^2.
@@ -108,7 +108,7 @@ TEST_CASE("R7 drift correction: beta/h of the drift is removed and a long run st
   double worst = 0;
   for (int k = 0; k < 100000; ++k) {
     p.step(h, beta);
-    worst = std::max(worst, p.drift());
+    worst = wbtest::worst_of(worst, p.drift());
   }
   INFO("largest drift of the pin over 100 s: " << worst << " m");
   REQUIRE(worst <= 4 * h * h * 30.0 * 0.5 / beta);
@@ -220,8 +220,8 @@ TEST_CASE("R7 revolute pendulum: period 2 pi sqrt(I_a / (m g d)) and the axis st
   double s_prev = p.b.x.dot(across);
   for (int k = 1; k <= 10000; ++k) {
     p.step(h, 0.2);
-    worst_angle = std::max(worst_angle, p.angle_error());
-    worst_drift = std::max(worst_drift, p.drift());
+    worst_angle = wbtest::worst_of(worst_angle, p.angle_error());
+    worst_drift = wbtest::worst_of(worst_drift, p.drift());
     const double s = p.b.x.dot(across);
     if (s_prev > 0 && s <= 0) crossings.push_back(h * (k - 1 + s_prev / (s_prev - s)));
     s_prev = s;
@@ -233,6 +233,66 @@ TEST_CASE("R7 revolute pendulum: period 2 pi sqrt(I_a / (m g d)) and the axis st
   REQUIRE(crossings.size() >= 4);
   const double T = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
   require_near(T, T0, 0.0, "period about the hinge axis, I_a = I_c + m d^2", kPeriodTol);
+}
+
+TEST_CASE("R7 held-out: random bodies pinned at random points take the header's impulses",
+          "[rigid][R7][held-out][2pts]") {
+  for (wbtest::HeldOut& g : wbtest::held_out("R7")) {
+    INFO(g.replay());
+    for (int s = 0; s < 4; ++s) {
+      const Body b0 = rigidtest::random_body(g);
+      const Vec3 r_body = g.vec3(-1, 1), axis_body = g.unit3();
+      const double h = g.log_uniform(1e-3, 0.05), beta = g.uniform(0.0, 1.0);
+      const Mat3 R = rot(b0);
+      const Mat3 Iinv = R * b0.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+      const Vec3 r = R * r_body;
+      const Vec3 anchor = b0.x + r + g.vec3(-0.05, 0.05);  // drifted a little
+      const Vec3 C = b0.x + r - anchor;
+      const Mat3 K = Mat3::Identity() / b0.m - rigid::skew(r) * Iinv * rigid::skew(r);
+      INFO("body m = " << b0.m << ", v = " << rigidtest::str(b0.v)
+                       << ", omega = " << rigidtest::str(b0.omega)
+                       << "; r_body = " << rigidtest::str(r_body) << ", anchor "
+                       << rigidtest::str(anchor) << ", h = " << h << ", beta = " << beta);
+      // The point joint.
+      const Vec3 P = K.ldlt().solve(-(b0.v + b0.omega.cross(r) + beta / h * C));
+      Body e = b0;
+      e.v += P / b0.m;
+      e.omega += Iinv * r.cross(P);
+      Body b = b0;
+      const Vec3 Pg = apply_hinge(b, r_body, anchor, h, beta);
+      rigidtest::require_near(Pg, P, 1e-10,
+                              "apply_hinge: P from K P = -(v + omega x r + beta/h C)", 1e-10);
+      rigidtest::require_body(b, e, 1e-10, "apply_hinge: v += P / m, omega += I^-1 (r x P)");
+      // The revolute hinge: its axis a near the body's axis.
+      const Vec3 u = R * axis_body;
+      const Vec3 a = (u + g.vec3(-0.05, 0.05)).normalized();
+      Vec3 b1, b2;
+      rigid::tangent_basis(a, b1, b2);
+      Eigen::Matrix<double, 3, 2> B;
+      B << b1, b2;
+      const Eigen::Vector2d Ca = B.transpose() * a.cross(u);
+      Eigen::Matrix<double, 5, 5> KK;
+      KK.topLeftCorner<3, 3>() = K;
+      KK.topRightCorner<3, 2>() = -rigid::skew(r) * Iinv * B;
+      KK.bottomLeftCorner<2, 3>() = B.transpose() * Iinv * rigid::skew(r);
+      KK.bottomRightCorner<2, 2>() = B.transpose() * Iinv * B;
+      Eigen::Matrix<double, 5, 1> rhs;
+      rhs << -(b0.v + b0.omega.cross(r)) - beta / h * C,
+          -B.transpose() * b0.omega - beta / h * Ca;
+      const Eigen::Matrix<double, 5, 1> lam = KK.ldlt().solve(rhs);
+      const Vec3 P2 = lam.head<3>(), M2 = B * lam.tail<2>();
+      e = b0;
+      e.v += P2 / b0.m;
+      e.omega += Iinv * (r.cross(P2) + M2);
+      b = b0;
+      const RevoluteImpulse ri = apply_revolute(b, r_body, anchor, axis_body, a, h, beta);
+      INFO("revolute: axis " << rigidtest::str(a) << ", the body's axis " << rigidtest::str(u));
+      rigidtest::require_near(ri.P, P2, 1e-9, "apply_revolute: P of the 5x5 system", 1e-9);
+      rigidtest::require_near(ri.M, M2, 1e-9, "apply_revolute: M = B mu of the 5x5 system", 1e-9);
+      rigidtest::require_body(b, e, 1e-9,
+                              "apply_revolute: v += P / m, omega += I^-1 (r x P + M)");
+    }
+  }
 }
 
 }  // namespace test_R7_hinge

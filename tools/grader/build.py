@@ -31,6 +31,7 @@ from .stubs import lab_headers
 from .stubs import parse as parse_header
 from .symbols import check_objects
 from .worker import WORKER_DIR, run_test, worker_files
+from . import heldout
 
 # ------------------------------------------------------------- scratch build
 
@@ -63,6 +64,8 @@ def check_list(lab, tests, problems=None):
             problems.append(f"'{n}': {t.points} points, but tagged {pts[0]}")
     if not tests:
         problems.append("no test cases")
+    if not problems:
+        problems += heldout.list_problems(lab, tests)
     total = sum(t.points for t in tests if isinstance(t.points, int))
     if not problems and total != 100:
         problems.append(f"the points add up to {total}, expected 100")
@@ -74,8 +77,10 @@ class Grader:
     """A scratch copy of the project and its build, reusable across runs."""
 
     def __init__(self, repo, build_root=None, jobs=2, timeout=60.0, verbose=True, screen=True,
-                 lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET):
+                 lab_budget=LAB_BUDGET, submission_budget=SUBMISSION_BUDGET, seed=None):
         self.repo, self.jobs, self.timeout, self.verbose = repo, max(1, jobs), timeout, verbose
+        # The held-out inputs' seed (heldout.py): given to every test process.
+        self.seed = heldout.random_seed() if seed is None else seed
         self.lab_budget, self.submission_budget = lab_budget, submission_budget
         self._deadline = None
         self.build_isolation = "nothing built in this run (the build folder was up to date)"
@@ -86,6 +91,7 @@ class Grader:
             build_root = self._tmp
         self.temporary = self._tmp is not None
         self.reuse_results = False  # results.py's cache: set by the command line (cli.py)
+        self.seed_chosen = False  # reuse_results: the seed was asked for, it keys a report too
         self.root = os.path.abspath(build_root)
         self.src = os.path.join(self.root, "src")
         self.build = os.path.join(self.root, "build")
@@ -490,8 +496,10 @@ class Grader:
         if self.reuse_results and fresh:
             self._save_reports({lab: (keys[lab], rep) for lab, rep in fresh.items()})
         if cached:
+            seeds = sorted({f"{v:#x}" for v in self._reused_seeds.values() if isinstance(v, int)})
             self.say(f"grade: {', '.join(cached)}: unchanged since the last grade (its results "
-                     "are reused)")
+                     "are reused" + (f", held-out inputs from seed {', '.join(seeds)}" if seeds
+                                     else "") + ")")
         return {lab: cached[lab] if lab in cached else fresh[lab] for lab in labs}
 
     # -- the results of an unchanged lab (reuse_results)
@@ -500,7 +508,8 @@ class Grader:
         h = hashlib.sha256()
         parts = [CACHE_VERSION, grader_digest(), prebuilt_inputs(pristine), lab, refused, self.timeout,
                  self.lab_budget, self.submission_budget, self.screen, self.diagnosis,
-                 sorted(self.sandbox.layers), sorted(self.sandbox.missing)]
+                 sorted(self.sandbox.layers), sorted(self.sandbox.missing),
+                 self.seed if self.seed_chosen else "any seed"]
         h.update(json.dumps(parts, default=str).encode())
         for name in sorted(overlay):
             h.update(name.encode() + b"\0" + hashlib.sha256(overlay[name]).digest())
@@ -530,11 +539,13 @@ class Grader:
 
     def _cached_reports(self, keys):
         stored, out = self._load_reports(), {}
+        self._reused_seeds = {}
         for lab, key in keys.items():
             entry = stored.get(lab)
             if isinstance(entry, dict) and entry.get("key") == key:
                 try:
                     out[lab] = report_from_json(entry["report"])
+                    self._reused_seeds[lab] = entry.get("seed")
                 except (KeyError, TypeError, ValueError, AttributeError):
                     pass
         return out
@@ -543,7 +554,7 @@ class Grader:
         stored = self._load_reports()
         for lab, (key, rep) in graded.items():
             if all(not r.reason.startswith(UNSETTLED) for r in rep.results):
-                stored[lab] = {"key": key, "report": report_to_json(rep)}
+                stored[lab] = {"key": key, "report": report_to_json(rep), "seed": self.seed}
             else:
                 stored.pop(lab, None)
         body = json.dumps(stored, sort_keys=True)
@@ -577,6 +588,14 @@ class Grader:
                         staged[os.path.join("labs", lab, name)] = data
         self.sync(staged)
         self.configure(labs)
+        # Nothing an earlier build left may differ between the screening and the build: the
+        # binaries build_lab removes are removed now, before the screening preprocesses.
+        for lab in labs:
+            for old in (self.binary(lab), self.worker(lab)):
+                try:
+                    os.remove(old)
+                except FileNotFoundError:
+                    pass
         commands = self.compile_commands() if self.screen else {}
         for lab in labs:
             allowed = set(student_files(self.repo, lab))
@@ -628,17 +647,15 @@ class Grader:
             if (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
                 raise Defect(f"the test binary or the worker of {lab} changed while grading")
             with budget_lock:
-                left = min(self.lab_budget - used[lab], submission_end - time.monotonic())
-            if left <= 0:
-                which = ("the lab's" if self.lab_budget - used[lab] <= 0 else "the submission's")
-                why = (f"not run: {which} time budget ({self.lab_budget:g} s for a lab, "
-                       f"{self.submission_budget:g} s for a submission) is used up")
+                left, why = time_left(self.lab_budget, used[lab], self.submission_budget,
+                                      submission_end, time.monotonic())
+            if why:
                 return TestResult(t, 0, "failed", why, why + ": earlier tests took that long "
                                   "(timeouts, or a slow or sleeping lab)")
             began = time.monotonic()
             try:
                 return run_test(self.sandbox, runnable[lab], workers[lab], t,
-                                min(self.timeout, left), self.src + "/", self.cwd)
+                                min(self.timeout, left), self.src + "/", self.cwd, self.seed)
             finally:
                 with budget_lock:
                     used[lab] += time.monotonic() - began
@@ -670,6 +687,8 @@ class Grader:
                                                   "The lab does not compile:\n" + rep.compile_error))
                 else:
                     rep.results.append(futures[(lab, t.name)].result())
+            if rep.gradable:
+                heldout.gate(rep.results)  # public points need the task's held-out check
         return reports
 
     def diagnose(self, reports, labs, futures, lists, overlays, probers, workers, end):
@@ -704,6 +723,19 @@ def _diagnose_one(grader, lab, results, overlay, prober, worker, end):
         return run_probes(grader.sandbox, prober, worker, ids, grader.cwd,
                           min(left, PROBES_TIMEOUT))
     return diagnose_lab(grader.repo, lab, results, overlay, run, grader.say)
+
+
+def time_left(lab_budget, used, submission_budget, submission_end, now):
+    """(seconds the next test of a lab may run, why it may not run): the least of what is
+    left of the lab's budget (lab_budget less the `used` seconds its tests took so far) and
+    of the submission's (until submission_end, on the clock of `now`); why is "" while both
+    are left, else the reason a test is not run, naming the budget used up."""
+    left = min(lab_budget - used, submission_end - now)
+    if left > 0:
+        return left, ""
+    which = "the lab's" if lab_budget - used <= 0 else "the submission's"
+    return left, (f"not run: {which} time budget ({lab_budget:g} s for a lab, "
+                  f"{submission_budget:g} s for a submission) is used up")
 
 
 def _world_traversable(path):

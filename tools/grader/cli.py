@@ -10,6 +10,7 @@ import sys
 from . import common
 from .build import Grader
 from .common import BadInput, Defect, log
+from . import heldout
 from .procs import kill_all
 from .project import repo_root
 from .results import layers_data, layers_text, print_table, results_json, write_atomic
@@ -64,6 +65,12 @@ def parse_args(argv):
                    help="exit 1 unless every graded lab scores exactly N")
     p.add_argument("--jobs", type=int, default=2, metavar="J",
                    help="test cases run at once, and build jobs (default 2)")
+    p.add_argument("--seed", metavar="N",
+                   help="the seed of the held-out inputs (decimal or 0x hex): replays a grading's "
+                        "held-out checks (default: a random one, printed)")
+    p.add_argument("--seed-key", metavar="FILE",
+                   help="derive the seed from this secret and the submission's files (the "
+                        "autograder's: the student cannot know it in advance)")
     p.add_argument("--no-screen", action="store_true",
                    help="skip the screening of student files (only to test the sandbox alone; "
                         "the output and results.json say so)")
@@ -91,12 +98,21 @@ def main(argv):
     for flag, value in (("--lab-budget", args.lab_budget), ("--budget", args.budget)):
         if value <= 0:
             raise BadInput(f"{flag} {value:g}: expected a positive number of seconds")
+    if args.seed is not None and args.seed_key:
+        raise BadInput("--seed and --seed-key: give one of them")
+    seed = (heldout.parse_seed(args.seed) if args.seed is not None else
+            heldout.seed_from_key(args.seed_key, overlays) if args.seed_key else
+            heldout.random_seed())
+    log(f"grade: held-out inputs from seed {seed:#x} (--seed {seed:#x} replays them)")
     build_dir, own = args.build_dir, False
     if build_dir is None and not args.fresh:
         build_dir, own = default_build_dir(repo), True
     grader = Grader(repo, build_dir, args.jobs, args.timeout, screen=not args.no_screen,
-                    lab_budget=args.lab_budget, submission_budget=args.budget)
+                    lab_budget=args.lab_budget, submission_budget=args.budget, seed=seed)
     grader.reuse_results = own  # the student's loop: an unchanged lab is not graded again
+    # A seed asked for (--seed, --seed-key) is part of what a reused report must have been
+    # graded with; a random one is not (any seed will do for files graded before).
+    grader.seed_chosen = args.seed is not None or bool(args.seed_key)
     try:
         reports = grader.grade(overlays, labs, {l: r for l, r in refused.items() if r})
     finally:

@@ -9,7 +9,8 @@ import tempfile
 
 from .common import RESULTS_CAP, printable
 
-DIAGNOSIS_LINES = 40  # lines of one task's diagnosis kept (each at most wbgrade_hints.LINE_CHARS)
+DIAGNOSIS_LINES = 40  # lines of one task's diagnosis kept
+DIAGNOSIS_CHARS = 400  # characters of one line kept (wbgrade_hints.LINE_CHARS, capped here too)
 
 
 def task_lines(d):
@@ -18,7 +19,8 @@ def task_lines(d):
         lines = d.lines()
     except Exception as e:  # a broken diagnosis never changes a score
         return [f"{getattr(d, 'task', '?')}: (no diagnosis: {type(e).__name__})"]
-    return [printable(str(l), keep_newlines=False) for l in lines[:DIAGNOSIS_LINES]]
+    return [printable(str(l), keep_newlines=False)[:DIAGNOSIS_CHARS]
+            for l in list(lines)[:DIAGNOSIS_LINES]]
 
 
 def lab_diagnosis(lab, rep):
@@ -43,7 +45,9 @@ def layers_text(grader):
     lines = ["screening: " + ("active (allow-listed headers, denied identifiers, regular files)"
                               if grader.screen else "OFF (--no-screen: for testing the sandbox)"),
              "sandbox of each test process:", grader.sandbox.describe(),
-             "build (compiler, assembler, linker): " + grader.build_isolation]
+             "build (compiler, assembler, linker): " + grader.build_isolation,
+             f"held-out inputs: seed {grader.seed:#x} (tools/grade --seed {grader.seed:#x} "
+             "replays them)"]
     return "\n".join(lines)
 
 

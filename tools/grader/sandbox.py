@@ -5,6 +5,7 @@ Trust: this is the wall around student code."""
 import hashlib
 import os
 import re
+import secrets
 import shutil
 import subprocess
 import threading
@@ -20,12 +21,20 @@ BUILD_UID = 60999  # the build (compiler, assembler, linker) runs as this user w
 BUILD_ADDRESS_SPACE = 4 * 1024 * 1024 * 1024  # RLIMIT_AS of each compiler process
 BUILD_FSIZE = 512 * 1024 * 1024  # largest file a build may write (the precompiled headers: 100 MB)
 BUILD_CPU = 900  # s, RLIMIT_CPU of each build process
-TEST_UID_BASE = 61000  # tests run as user 61000 + k (k cycles over 1000 values), never root
+# Test processes run as users drawn at random from this range, never two at once with the same
+# one: a process cannot guess the other's user from its own (tools/gradescope/hostile knows the
+# range, to find what a test user left behind).
+TEST_UID_RANGE = (1 << 20, 1 << 30)
 LAYER_TEXT = {
-    "seccomp": "seccomp filter: no processes, threads, exec, signals to others, sockets; "
-               "files read-only",
-    "namespaces": "own PID, network and IPC namespaces: everything the test started ends with it",
-    "user": "unprivileged user (cannot write the grader's files or signal it)",
+    "seccomp": "seccomp filter: no processes, threads, exec, signals to others, sockets, "
+               "sleeping or timed waits; files read-only",
+    "namespaces": "own PID, mount, network and IPC namespaces: everything the test started ends "
+                  "with it",
+    "proc": "its own /proc: no other process is visible (their command lines, environments)",
+    "view": "the worker's file system holds its binary and libraries only (no sources, build "
+            "tree, tests or solutions)",
+    "user": "unprivileged user, a random one for each process (cannot write the grader's files "
+            "or signal it)",
     "rlimits": "limits: memory (address space), file size, CPU time, no core files",
 }
 
@@ -36,29 +45,38 @@ class Sandbox:
 
     def __init__(self, root, say):
         self.launcher, self.layers, self.missing = None, [], {}
-        self._uid, self._uid_lock = 0, threading.Lock()
+        self._uids, self._uid_lock = set(), threading.Lock()
+        self.view_root = os.path.join(root, "view")  # an empty folder: the worker's tmpfs root
+        self._libraries = {}
         self.layers.append("rlimits")
         try:
             self.launcher = self._compile(root)
         except Exception as e:  # no compiler or no libseccomp: the limits alone
             self.launcher = None
             reason = str(e).strip().splitlines()[-1:] or ["unknown"]
-            for layer in ("seccomp", "namespaces", "user"):
+            for layer in ("seccomp", "namespaces", "proc", "view", "user"):
                 self.missing[layer] = f"the launcher could not be built: {reason[0]}"
             return
-        wanted = {"seccomp": ["--seccomp"], "namespaces": ["--ns"],
-                  "user": ["--uid", str(TEST_UID_BASE)]}
+        if not os.path.isdir(self.view_root):
+            os.mkdir(self.view_root, 0o755)
+        true = shutil.which("true") or "/bin/true"
+        wanted = {"seccomp": ["--seccomp"], "namespaces": ["--ns"], "proc": ["--ns", "--proc"],
+                  "view": ["--ns"] + self._view_flags(true),
+                  "user": ["--uid", str(TEST_UID_RANGE[0])]}
         disabled = set(os.environ.get("WB_SANDBOX_DISABLE", "").replace(",", " ").split())
         for layer, flags in wanted.items():
             if layer in disabled:  # to see what the other layers hold alone
                 self.missing[layer] = "disabled by WB_SANDBOX_DISABLE"
+                continue
+            if layer in ("proc", "view") and "namespaces" not in self.layers:
+                self.missing[layer] = "needs the namespaces layer"
                 continue
             ok, why = self._probe(flags)
             if ok:
                 self.layers.append(layer)
             else:
                 self.missing[layer] = why
-        ok, why = self._probe(self.flags(0))
+        ok, why = self._probe(self.flags(0, view=true))
         if not ok:  # each works alone but not together: keep the safest single one
             raise Defect(f"the sandbox layers {', '.join(self.layers)} do not work together: {why}")
 
@@ -101,18 +119,47 @@ class Sandbox:
             proc.stderr.decode("utf-8", "replace").strip()
 
     def next_uid(self):
+        """A user no running test process has, drawn at random (released by release_uid)."""
         with self._uid_lock:
-            self._uid = (self._uid + 1) % 1000
-            return TEST_UID_BASE + self._uid
+            while True:
+                uid = TEST_UID_RANGE[0] + secrets.randbelow(TEST_UID_RANGE[1] - TEST_UID_RANGE[0])
+                if uid not in self._uids:
+                    self._uids.add(uid)
+                    return uid
 
-    def flags(self, uid):
+    def release_uid(self, uid):
+        with self._uid_lock:
+            self._uids.discard(uid)
+
+    def libraries(self, binary):
+        """The files a dynamically linked binary needs to start: its interpreter, the shared
+        libraries it and they need (DT_NEEDED, resolved as the loader would: RUNPATH, then
+        ldconfig's cache, then the default folders) and the loader's cache. Read with readelf
+        (the binary never runs); cached per binary path and version."""
+        st = os.stat(binary)
+        key = (binary, st.st_ino, st.st_size, st.st_mtime_ns)
+        if key not in self._libraries:
+            self._libraries[key] = elf_closure(binary)
+        return self._libraries[key]
+
+    def _view_flags(self, binary):
+        return ["--view-root", self.view_root] + [
+            x for f in [binary] + self.libraries(binary) for x in ("--view", f)]
+
+    def flags(self, uid, view=None):
+        """The launcher's flags of the active layers; `view`: the binary whose file system view
+        the process gets (when that layer is active)."""
         f = []
         if "seccomp" in self.layers:
             f.append("--seccomp")
         if "namespaces" in self.layers:
             f.append("--ns")
+            if "proc" in self.layers:
+                f.append("--proc")
+            if view and "view" in self.layers:
+                f += self._view_flags(view)
         if "user" in self.layers:
-            f += ["--uid", str(uid or TEST_UID_BASE)]
+            f += ["--uid", str(uid or TEST_UID_RANGE[0])]
         return f
 
     def describe(self):
@@ -137,11 +184,12 @@ class Sandbox:
                                       "--cpu", str(BUILD_CPU), "--nofile", "1024", "--cwd", cwd,
                                       "--"] + cmd
 
-    def start(self, cmd, cwd, pass_fds=(), env=None, stdout_cap=REPORT_CAP + 1,
-              stderr_cap=OUTPUT_CAP, wrapped=None, keep_tail=False):
+    def start(self, cmd, cwd, pass_fds=(), env=(), stdout_cap=REPORT_CAP + 1,
+              stderr_cap=OUTPUT_CAP, wrapped=None, keep_tail=False, view=False):
         """Starts one process in the sandbox (its standard output and error captured, capped,
-        read in linear time); `pass_fds` are inherited, `env` is one "NAME=VALUE" added to
-        its clean environment. Returns a Running; Running.finish() waits for it."""
+        read in linear time); `pass_fds` are inherited, `env` lists "NAME=VALUE"s added to
+        its clean environment (at most 4); `view`: the process sees only its binary and
+        libraries (the worker). Returns a Running; Running.finish() waits for it."""
         if self.launcher is None:  # no launcher: the limits through prlimit, if present
             wrapped = (["prlimit", f"--fsize={REPORT_FSIZE}", f"--as={TEST_ADDRESS_SPACE}",
                         f"--cpu={TEST_CPU}", "--core=0", "--"] if shutil.which("prlimit")
@@ -150,26 +198,36 @@ class Sandbox:
                 self.layers.remove("rlimits")
                 self.missing["rlimits"] = "prlimit is not installed"
             clean = {"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8"}
-            if env:
-                clean[env.split("=", 1)[0]] = env.split("=", 1)[1]
+            for e in env:
+                clean[e.split("=", 1)[0]] = e.split("=", 1)[1]
             proc = _start(wrapped + cmd, subprocess.PIPE, subprocess.PIPE, cwd=cwd,
                           pass_fds=pass_fds, env=clean)
             status_r = None
         else:
             status_r, status_w = os.pipe()
             os.set_inheritable(status_w, True)
+            uid = None
             if wrapped:  # a prepared launcher command (build_command)
                 full = [wrapped[0], "--status-fd", str(status_w)] + wrapped[1:]
             else:
+                uid = self.next_uid()
                 full = [self.launcher, "--status-fd", str(status_w)] + \
-                    self.flags(self.next_uid()) + [
+                    self.flags(uid, cmd[0] if view else None) + [
                     "--as", str(TEST_ADDRESS_SPACE), "--fsize", str(REPORT_FSIZE), "--cpu",
-                    str(TEST_CPU), "--cwd", cwd] + (["--env", env] if env else []) + ["--"] + cmd
+                    str(TEST_CPU), "--cwd", cwd] + [x for e in env for x in ("--env", e)] + \
+                    ["--"] + cmd
             try:
                 proc = _start(full, subprocess.PIPE, subprocess.PIPE, cwd=cwd,
                               pass_fds=(status_w,) + tuple(pass_fds))
+            except BaseException:
+                if uid is not None:
+                    self.release_uid(uid)
+                raise
             finally:
                 os.close(status_w)
+            running = Running(proc, status_r, stdout_cap, stderr_cap, keep_tail)
+            running.release = (lambda: self.release_uid(uid)) if uid is not None else None
+            return running
         return Running(proc, status_r, stdout_cap, stderr_cap, keep_tail)
 
     def run(self, cmd, timeout, cwd):
@@ -183,6 +241,7 @@ class Running:
 
     def __init__(self, proc, status_r, stdout_cap, stderr_cap, keep_tail=False):
         self.proc, self.status_r, self.cap = proc, status_r, stdout_cap - 1
+        self.release = None  # frees the process's user once it has ended
         self.report = _Capture(proc.stdout, stdout_cap, keep_tail)
         self.output = _Capture(proc.stderr, stderr_cap, keep_tail)
         self.report.start()
@@ -207,9 +266,75 @@ class Running:
                 status = ("error", line[6:])
             elif m:
                 status = (m.group(1), int(m.group(2)))
+        if self.release and rc is not None:  # ended: its namespace and every process in it too
+            self.release()
         if rc is None:
             status = ("timeout", None)
         elif status is None:  # without the launcher, or it was killed
             status = ("exit", rc) if rc >= 0 else ("signal", -rc)
         data = self.report.data if self.report.total <= self.cap else None
         return status, data, self.output.text()
+
+
+# ------------------------------------------------------------ a binary's libraries
+
+def _readelf(args, path):
+    out = subprocess.run(["readelf", "-W"] + args + [path], stdin=subprocess.DEVNULL,
+                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=60)
+    return out.stdout.decode("utf-8", "replace")
+
+
+_LDCONFIG = None
+
+
+def _ldconfig():
+    """{library name: path} of the loader's cache for this machine's word size."""
+    global _LDCONFIG
+    if _LDCONFIG is None:
+        _LDCONFIG = {}
+        try:
+            out = subprocess.run(["ldconfig", "-p"], stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                 timeout=60).stdout.decode("utf-8", "replace")
+        except (OSError, subprocess.SubprocessError):
+            out = ""
+        for line in out.splitlines():
+            m = re.match(r"\s*(\S+) \((.*)\) => (\S+)$", line)
+            if m and ("x86-64" in m.group(2) or "64bit" in m.group(2) or "x86" not in m.group(2)):
+                _LDCONFIG.setdefault(m.group(1), m.group(3))
+    return _LDCONFIG
+
+
+DEFAULT_LIB_DIRS = ["/lib/x86_64-linux-gnu", "/usr/lib/x86_64-linux-gnu", "/lib64", "/usr/lib64",
+                    "/lib", "/usr/lib", "/usr/local/lib"]
+
+
+def elf_closure(binary):
+    """The interpreter, the shared libraries (transitively) and /etc/ld.so.cache a binary needs
+    (readelf only: the binary is never run). Raises Defect when a library cannot be found."""
+    files, todo, seen = [], [binary], set()
+    interp = re.search(r"\[Requesting program interpreter: ([^\]]+)\]", _readelf(["-l"], binary))
+    if interp:
+        files.append(interp.group(1))
+    while todo:
+        path = todo.pop()
+        dyn = _readelf(["-d"], path)
+        runpath = [d for m in re.finditer(r"\((?:RUNPATH|RPATH)\).*\[(.*)\]", dyn)
+                   for d in m.group(1).split(":") if d.startswith("/")]
+        for name in re.findall(r"\(NEEDED\).*\[(.*)\]", dyn):
+            if name in seen:
+                continue
+            seen.add(name)
+            found = next((os.path.join(d, name) for d in runpath
+                          if os.path.isfile(os.path.join(d, name))), None) or \
+                _ldconfig().get(name) or next((os.path.join(d, name) for d in DEFAULT_LIB_DIRS
+                                               if os.path.isfile(os.path.join(d, name))), None)
+            if not found:
+                raise Defect(f"{binary} needs {name}, which the loader would not find")
+            files.append(found)
+            todo.append(found)
+    if os.path.isfile("/etc/ld.so.cache"):
+        files.append("/etc/ld.so.cache")
+    # A path that is a symbolic link (/lib64/ld-linux-x86-64.so.2) is bound with its target's
+    # content at the link's own path: the loader opens the paths it resolved, nothing else.
+    return sorted(set(files))

@@ -75,6 +75,12 @@ ALLOWED_RESERVED = {"__assert_fail", "__extension__", "__PRETTY_FUNCTION__", "__
                     "__builtin_inf", "__builtin_inff", "__builtin_infl", "__builtin_huge_val",
                     "__builtin_huge_valf", "__builtin_huge_vall", "__builtin_expect",
                     "__null", "__cplusplus", "__LINE__", "__FILE__"}
+# Identifiers refused in the raw text, before preprocessing: what the preprocessor evaluates
+# against the file system (whether a file exists). The screening and the build must read
+# exactly the same files; a condition on a file's existence (the worker binary, an object of
+# an earlier build) could be false when screening and true when compiling. Token pasting
+# (## or %:%:) is refused too, so that no such name can be assembled from pieces.
+DENIED_RAW_IDENTIFIERS = {"__has_include", "__has_include_next"}
 # Text refused inside a string literal (paths to other processes, devices, the
 # grader's own folders).
 DENIED_IN_STRINGS = ["/proc", "/dev/", "/sys/", "/autograder", "/tmp"]
@@ -260,6 +266,14 @@ class Screen:
                 raise Refused(f"{name}:{no}: a raw string literal with a line that starts with "
                               "# (it would look like a directive to the screening)")
         for k, (kind, tok, no, _) in enumerate(toks):
+            if kind == "id" and tok in DENIED_RAW_IDENTIFIERS:
+                raise Refused(f"{name}:{no}: {tok} is not allowed in student code (it asks the "
+                              "preprocessor whether a file exists: what the screening reads must "
+                              "be what the build reads)")
+            if (kind == "punct" and tok in ("#", "%:") and k + 1 < len(toks) and
+                    toks[k + 1][0] == "punct" and toks[k + 1][1] in ("#", "%:")):
+                raise Refused(f"{name}:{no}: token pasting (##) is not allowed in student code "
+                              "(it can assemble names the screening refuses)")
             if kind != "hash":
                 continue
             rest = list(itertools.takewhile(lambda t: not t[3], toks[k + 1:]))  # logical line

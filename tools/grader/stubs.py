@@ -200,6 +200,10 @@ def generate(repo, lab):
            '#include "wb/dynamics.h"', '#include "wb_rpc.h"', "", "namespace wbrpc {"]
     for q, _ in structs:
         rpc += [f"inline void put(Out& o, const ::{q}& v);", f"inline void get(In& in, ::{q}& v);"]
+    for q, fields in structs:  # the fewest bytes one of them takes (a vector's count is
+        rpc += [f"template <> struct WireMin<::{q}> {{ static constexpr std::size_t value = " +  # checked against it)
+                (" + ".join(f"WireMin<std::decay_t<decltype(::{q}::{f})>>::value" for f in fields)
+                 or "1") + "; };"]
     for k, (q, fields) in enumerate(structs):
         mirror = " ".join(f"decltype(::{q}::{f}) {f};" for f in fields)
         rpc += [f"struct Mirror{k} {{ {mirror} }};",

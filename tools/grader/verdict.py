@@ -3,7 +3,6 @@ framework's report (from a pipe only the grader reads), checked for this run and
 
 Trust: decides the score; reads untrusted bytes as data only (capped, parsed defensively)."""
 import re
-import signal
 import xml.etree.ElementTree as ET
 
 from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, Defect, TestResult,
@@ -85,40 +84,50 @@ def read_report(data, name, nonce, strip):
     return "failed", " ".join((first or "failed").split()), details
 
 
+class GraderError(Defect):
+    """The trusted side failed (the test process crashed, ended outside the test framework, or
+    wrote no complete report): a defect of the grader or of its tests, never the submission's
+    fault. The run ends with status 1 and the lab is not scored (docs/grading.md, "Blame")."""
+
+
 def judge(test, status, data, captured, nonce, timeout, strip, worker_status=None,
           worker_output=""):
     """The TestResult of one run: `status` from the launcher ("exit"/"signal"/"timeout"/
     "idle"/"error", value), `data` the report read from the test's standard output (None: too
     big), `captured` its (capped) other output, `nonce` this run's random name. The worker's
-    status and output only explain a failure; they never make a test pass."""
+    status and output only explain a failure; they never make a test pass.
+
+    Blame: no byte of student code runs in the test process, and every value it reads from
+    the worker is checked before use, so a test process that crashes, ends in the middle of
+    the test or writes no complete report is the grader's own defect: GraderError, never a
+    failure of the submission. What the worker does (crash, exit, garbage, silence) fails
+    the test, through the test's own report."""
     verdict, reason, details = read_report(data, test.name, nonce, strip)
     kind, value = status
-    # The report stops inside this test case, and the framework did not see a
-    # crash there: the test body left without returning, i.e. exit(), _Exit()
-    # or quick_exit() in student code (exit() then often crashes on the way
-    # out, the framework's streams being torn down).
-    left = (verdict == "missing" and data is not None and b"<TestCase " in data
-            and b"</TestCase>" not in data and b"FatalErrorCondition" not in data)
+    if kind == "error":
+        raise Defect(f"the sandbox could not start a test process: {value}")
+    if kind == "exit" and worker_status and worker_status[0] == "error":
+        raise Defect(f"the sandbox could not start a worker process: {worker_status[1]}")
     if kind == "timeout":
         reason = f"timed out after {timeout:g} s (an infinite loop?)"
     elif kind == "idle":
-        reason = (f"stopped after {value:g} s without using the CPU (sleeping or waiting in "
-                  "student code?)")
-    elif kind == "error":
-        raise Defect(f"the sandbox could not start a test process: {value}")
-    elif left:
-        how = (f"status {value}" if kind == "exit" else
-               f"then crashed on the way out, {signal.Signals(value).name if value in signal.valid_signals() else value}")
-        reason = ("the process ended in the middle of the test, outside the test framework: "
-                  f"exit(), _Exit() or quick_exit() called in student code? ({how})")
-    elif kind == "signal":  # Catch may have reported the signal itself ("crashed: SIGSEGV ...")
-        reason = reason if reason.startswith("crashed") else f"crashed ({signal_name(value)})"
-    elif verdict == "missing":
-        reason = (f"exited with status {value} before the test finished ({reason})" if value != 0
-                  else "exited with status 0 before the test finished (exit() called in student "
-                       f"code?): {reason}")
-    elif verdict == "passed" and value != 0:
-        reason = f"the test passed but the process exited with status {value}"
+        reason = (f"stopped: its processes used almost no CPU for {value:g} s (sleeping or "
+                  "waiting in the lab's code?)")
+    elif data is None:  # the report is over its cap: the tests print values the worker chose
+        reason = (f"the test's report is larger than {REPORT_CAP // (1024 * 1024)} MiB: the lab's "
+                  "code returned values too large to report (a huge matrix?)")
+    else:
+        crashed = kind == "signal" or b"<FatalErrorCondition" in data
+        incomplete = verdict == "missing"
+        disagree = (verdict == "passed") != (kind == "exit" and value == 0)
+        if crashed or incomplete or disagree:
+            how = (f"crashed ({signal_name(value)})" if kind == "signal" else
+                   "crashed (" + reason.removeprefix("crashed: ") + ")" if crashed else
+                   f"exited with status {value}: {reason}" if incomplete else
+                   f"reported '{verdict}' but exited with status {value}")
+            raise GraderError(
+                f"the trusted test process of '{test.name}' ({test.lab}) {how}: a defect of the "
+                "grader or its tests, not of the submission; the lab is not scored")
     passed = kind == "exit" and value == 0 and verdict == "passed"
     gone = "the lab's code stopped answering" in details
     if not passed and gone and worker_status:
@@ -128,8 +137,6 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
         elif wkind == "exit":
             reason = (f"the lab's code ended its process with status {wvalue} in the middle of "
                       "the test (exit(), _Exit() or quick_exit() called in student code?)")
-        elif wkind == "error":
-            raise Defect(f"the sandbox could not start a worker process: {wvalue}")
     # A failed assertion's details start with the same message: no need to repeat it.
     repeats = verdict == "failed" and kind == "exit" and details and not gone
     parts = [] if passed or repeats else [reason]
@@ -142,5 +149,3 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
     return TestResult(test, test.points if passed else 0, "passed" if passed else "failed",
                       "" if passed else short(reason),
                       capped("\n\n".join(parts), TEST_OUTPUT_CAP))
-
-

@@ -5,12 +5,13 @@ the worker can only send values back (docs/grading.md "The worker").
 
 Trust: starts the process that runs student code (the worker), always inside the sandbox,
 and stops both when the test ends, idles, or runs out of time."""
+import collections
 import os
 import secrets
 import select
 import time
 
-from .common import IDLE_LIMIT, WORKER_OUTPUT_CAP
+from .common import IDLE_LIMIT, IDLE_SHARE, WORKER_OUTPUT_CAP
 from .procs import _descendants, _kill_tree
 from .stubs import generate
 from .verdict import judge
@@ -67,33 +68,40 @@ class _ExitWaiter:
             self.fd = None
 
 
-def run_test(sandbox, binary, worker, test, timeout, strip, cwd):
-    """Runs one test case; returns its TestResult. `timeout` is this test's wall-clock limit.
+def run_test(sandbox, binary, worker, test, timeout, strip, cwd, seed=None):
+    """Runs one test case; returns its TestResult. `timeout` is this test's wall-clock limit;
+    `seed` the held-out inputs' seed (heldout.py), given to the test process only.
 
     The test process's report (its standard output, read only by the grader, this run's
     random name) and how it ended (from the launcher) decide; the worker's own end (a crash,
-    exit()) only explains a failure. A test whose processes use no CPU for IDLE_LIMIT s
-    (sleeping, or waiting on each other) is stopped then, like one that runs out of time."""
+    exit()) only explains a failure. A test whose processes use less than IDLE_SHARE of one
+    core over the last IDLE_LIMIT s of wall-clock time (sleeping, waiting on each other, a
+    few ticks now and then) is stopped then, like one that runs out of time.
+    The worker is started with nothing of the test's: its argv is its binary and two pipe
+    numbers, its environment the sandbox's clean one, and it sees no other process."""
     nonce = "wb-" + secrets.token_hex(16)
     to_worker_r, to_worker_w = os.pipe()
     to_test_r, to_test_w = os.pipe()
     try:
         wk = sandbox.start([worker, str(to_worker_r), str(to_test_w)], cwd,
                            pass_fds=(to_worker_r, to_test_w), stdout_cap=WORKER_OUTPUT_CAP,
-                           stderr_cap=WORKER_OUTPUT_CAP)
+                           stderr_cap=WORKER_OUTPUT_CAP, view=True)
     finally:
         os.close(to_worker_r)
         os.close(to_test_w)
     try:
+        env = [f"WB_WORKER_FDS={to_test_r},{to_worker_w}"]
+        if seed is not None:
+            env.append(f"WB_HELDOUT_SEED={seed:#x}")
         tp = sandbox.start([binary, test.name, "-w", "NoTests", "-r", "xml", "-n", nonce], cwd,
-                           pass_fds=(to_test_r, to_worker_w),
-                           env=f"WB_WORKER_FDS={to_test_r},{to_worker_w}")
+                           pass_fds=(to_test_r, to_worker_w), env=env)
     finally:
         os.close(to_test_r)
         os.close(to_worker_w)
     start = time.monotonic()
     deadline, stopped = start + timeout, None
-    last_ticks, last_change = -1, start
+    history = collections.deque()  # (time, CPU ticks) over the last IDLE_LIMIT s and a bit
+    hz = os.sysconf("SC_CLK_TCK")
     pids = [tp.proc.pid, wk.proc.pid]
     waiter = _ExitWaiter(tp.proc.pid)  # opened before the first poll: the pid is not reaped yet
     try:
@@ -103,9 +111,11 @@ def run_test(sandbox, binary, worker, test, timeout, strip, cwd):
                 stopped = ("timeout", None)
                 break
             ticks = _cpu_ticks(pids)
-            if ticks != last_ticks:
-                last_ticks, last_change = ticks, now
-            elif now - last_change >= IDLE_LIMIT:
+            history.append((now, ticks))
+            while len(history) > 1 and history[1][0] <= now - IDLE_LIMIT:
+                history.popleft()
+            t_old, ticks_old = history[0]
+            if now - t_old >= IDLE_LIMIT and (ticks - ticks_old) / hz < IDLE_SHARE * (now - t_old):
                 stopped = ("idle", IDLE_LIMIT)
                 break
             waiter.wait(min(0.05 if now - start < 0.5 else 0.25, max(0.0, deadline - now)))

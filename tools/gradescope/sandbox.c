@@ -1,25 +1,38 @@
 // wb-sandbox: runs one graded test process inside the layers tools/grade asks for.
 //
-//   wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] [--fsize B]
-//              [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE] -- PROGRAM ARGS...
+//   wb-sandbox --status-fd N [--ns [--proc]] [--uid U] [--seccomp] [--as B] [--fsize B]
+//              [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE]...
+//              [--view-root DIR --view FILE...] -- PROGRAM ARGS...
 //
 // Layers (each one is set up or the launcher fails with status 125 and says
 // why on the status descriptor: a layer asked for is never silently missing):
-//   --ns       new PID, network, IPC and UTS namespaces: the test is process 2
-//              of its own PID namespace under a tiny init (process 1) that
-//              reports its status; when the test ends the init exits and the
-//              kernel kills everything left in the namespace. No network.
+//   --ns       new PID, mount, network, IPC and UTS namespaces: the test is
+//              process 2 of its own PID namespace under a tiny init (process 1)
+//              that reports its status; when the test ends the init exits and
+//              the kernel kills everything left in the namespace. No network.
+//   --proc     (with --ns) /proc is the namespace's own (its two processes,
+//              nothing of the host's: no other process's command line or
+//              environment). Needs mount (a container may refuse it: then this
+//              layer alone is missing).
+//   --view-root DIR --view FILE...  (with --ns) the test sees a file system
+//              that holds the FILEs only, each at its own path, read-only: an
+//              empty tmpfs mounted on DIR (in the test's mount namespace only)
+//              becomes its root; the working folder is /. For the worker: its
+//              binary, its shared libraries and the loader, nothing else (no
+//              sources, no build tree, no tests, no solutions).
 //   --uid U    runs the test as user and group U (no supplementary groups),
 //              so it cannot write what the grader (root) owns, nor signal it.
 //   --seccomp  a seccomp filter (after no_new_privs): no fork, vfork, clone
 //              (so no threads and no children), no exec after the first, no
 //              signals except to itself, no ptrace, no sockets, no namespaces
 //              or mounts, no io_uring, no sleeping or timers (nanosleep, poll,
-//              select, alarm...), and files open read-only: every call
-//              that creates, writes, renames, removes or changes a file fails.
+//              select, alarm..., and every wait with a timeout: futex waits with
+//              one, rt_sigtimedwait, semtimedop, mq_timed*, io_getevents), and
+//              files open read-only: every call that creates, writes, renames,
+//              removes or changes a file fails.
 //   rlimits    always: address space (--as), largest file (--fsize), CPU
 //              seconds (--cpu), no core files, 64 open files (--nofile).
-// The test always gets a clean environment (PATH, LANG, HOME, and at most one --env).
+// The test always gets a clean environment (PATH, LANG, HOME, and the --env ones, at most 4).
 // The status descriptor receives one line when the test has ended:
 // "exit N", "signal N", or "error MESSAGE" (the launcher could not start it).
 // It is closed (close-on-exec) in the test process itself.
@@ -34,8 +47,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <linux/futex.h>
+#include <sys/mount.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -117,6 +134,23 @@ static void install_seccomp(const char* exec_path, char* const* exec_argv) {
                                "epoll_pwait", "epoll_pwait2"};
   for (size_t i = 0; i < sizeof no_sleeping / sizeof *no_sleeping; ++i)
     deny(ctx, no_sleeping[i], EPERM);
+  // Nor any other wait that ends by itself after a while: with no timer and no other process
+  // of its own, a process that blocks then blocks for good, and the grader's idle rule stops it.
+  const char* no_timed_waits[] = {"rt_sigtimedwait", "semtimedop", "mq_timedreceive",
+                                  "mq_timedsend", "io_getevents", "io_pgetevents", "futex_waitv",
+                                  "timer_settime", "timerfd_settime"};
+  for (size_t i = 0; i < sizeof no_timed_waits / sizeof *no_timed_waits; ++i)
+    deny(ctx, no_timed_waits[i], EPERM);
+  // futex: the waits that take a timeout (argument 3) may not have one (glibc's own locks
+  // wait without one, and a single-threaded process never waits on them anyway).
+  const int futex_waits[] = {FUTEX_WAIT, FUTEX_LOCK_PI, FUTEX_WAIT_BITSET, FUTEX_WAIT_REQUEUE_PI,
+                             13 /* FUTEX_LOCK_PI2 */};
+  for (size_t i = 0; i < sizeof futex_waits / sizeof *futex_waits; ++i) {
+    struct scmp_arg_cmp cmp[2] = {{1, SCMP_CMP_MASKED_EQ, 0x7f, (scmp_datum_t)futex_waits[i]},
+                                  {3, SCMP_CMP_NE, 0, 0}};
+    if (seccomp_rule_add_array(ctx, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(futex), 2, cmp) != 0)
+      fail("futex");
+  }
   // No network.
   const char* no_network[] = {"socket", "socketpair", "connect", "bind", "listen", "accept",
                               "accept4"};
@@ -159,12 +193,79 @@ static void install_seccomp(const char* exec_path, char* const* exec_argv) {
   seccomp_release(ctx);
 }
 
+// Creates every missing folder of `path` (absolute) below the current root.
+static void make_parents(const char* path) {
+  char buf[4096];
+  if (strlen(path) >= sizeof buf) {
+    errno = ENAMETOOLONG;
+    fail("view path");
+  }
+  strcpy(buf, path);
+  for (char* p = buf + 1; *p; ++p) {
+    if (*p != '/') continue;
+    *p = 0;
+    if (mkdir(buf, 0755) != 0 && errno != EEXIST) fail("mkdir (view)");
+    *p = '/';
+  }
+}
+
+static void bind_read_only(const char* from, const char* to) {
+  if (mount(from, to, NULL, MS_BIND, NULL) != 0) fail(from);
+  if (mount(NULL, to, NULL, MS_BIND | MS_REMOUNT | MS_RDONLY | MS_NOSUID | MS_NODEV, NULL) != 0)
+    fail("remount read-only (view)");
+}
+
+// In the namespace's init (process 1 of the new PID namespace, in its own mount namespace):
+// nothing mounted here reaches the host; /proc becomes this namespace's own; with a view, the
+// root becomes a tmpfs holding only the view's files, each bound read-only at its own path.
+static void private_mounts(const char* root, const char** files, int n) {
+  if (mount(NULL, "/", NULL, MS_REC | MS_PRIVATE, NULL) != 0) fail("mount (private)");
+  if (!root) {
+    if (mount("proc", "/proc", "proc", MS_NOSUID | MS_NODEV | MS_NOEXEC, NULL) != 0)
+      fail("mount /proc");
+    return;
+  }
+  if (mount("wb-view", root, "tmpfs", MS_NOSUID | MS_NODEV, "size=1m,mode=0755") != 0)
+    fail("mount tmpfs (view)");
+  char path[4096];
+  for (int k = 0; k < n; ++k) {
+    if (snprintf(path, sizeof path, "%s%s", root, files[k]) >= (int)sizeof path) {
+      errno = ENAMETOOLONG;
+      fail("view path");
+    }
+    make_parents(path);
+    int fd = open(path, O_WRONLY | O_CREAT | O_CLOEXEC, 0755);
+    if (fd < 0) fail("create (view)");
+    close(fd);
+    bind_read_only(files[k], path);
+  }
+  if (snprintf(path, sizeof path, "%s/proc", root) >= (int)sizeof path) fail("view path");
+  if (mkdir(path, 0555) != 0 && errno != EEXIST) fail("mkdir /proc (view)");
+  if (mount("proc", path, "proc", MS_NOSUID | MS_NODEV | MS_NOEXEC, NULL) != 0)
+    fail("mount /proc (view)");
+  // The old root goes: pivot_root puts it under the new one, and it is then detached.
+  if (snprintf(path, sizeof path, "%s/old-root", root) >= (int)sizeof path) fail("view path");
+  if (mkdir(path, 0700) != 0) fail("mkdir (view)");
+  if (syscall(SYS_pivot_root, root, path) != 0) fail("pivot_root (view)");
+  if (chdir("/") != 0) fail("chdir (view)");
+  if (umount2("/old-root", MNT_DETACH) != 0) fail("umount old root (view)");
+  if (rmdir("/old-root") != 0) fail("rmdir (view)");
+  if (mount(NULL, "/", NULL, MS_BIND | MS_REMOUNT | MS_RDONLY | MS_NOSUID | MS_NODEV, NULL) != 0 &&
+      mount(NULL, "/", NULL, MS_REMOUNT | MS_RDONLY | MS_NOSUID | MS_NODEV, NULL) != 0)
+    fail("remount / read-only (view)");
+}
+
 int main(int argc, char** argv) {
-  int use_ns = 0, use_seccomp = 0;
+  int use_ns = 0, use_seccomp = 0, use_proc = 0;
   long uid = -1;
   unsigned long long as = 0, fsize = 0, cpu = 0, nofile = 64;
   const char* cwd = NULL;
-  char* extra_env = NULL;
+  enum { kMaxEnv = 4, kMaxView = 64 };
+  char* extra_env[kMaxEnv] = {NULL};
+  int n_env = 0;
+  const char* view_root = NULL;
+  const char* view[kMaxView];
+  int n_view = 0;
   int i = 1;
   for (; i < argc; ++i) {
     const char* a = argv[i];
@@ -173,6 +274,8 @@ int main(int argc, char** argv) {
       break;
     } else if (!strcmp(a, "--ns")) {
       use_ns = 1;
+    } else if (!strcmp(a, "--proc")) {
+      use_proc = 1;
     } else if (!strcmp(a, "--seccomp")) {
       use_seccomp = 1;
     } else if (i + 1 < argc && !strcmp(a, "--status-fd")) {
@@ -189,8 +292,13 @@ int main(int argc, char** argv) {
       nofile = strtoull(argv[++i], NULL, 10);
     } else if (i + 1 < argc && !strcmp(a, "--cwd")) {
       cwd = argv[++i];
-    } else if (i + 1 < argc && !strcmp(a, "--env") && strchr(argv[i + 1], '=')) {
-      extra_env = argv[++i];
+    } else if (i + 1 < argc && !strcmp(a, "--env") && strchr(argv[i + 1], '=') &&
+               n_env < kMaxEnv) {
+      extra_env[n_env++] = argv[++i];
+    } else if (i + 1 < argc && !strcmp(a, "--view-root") && argv[i + 1][0] == '/') {
+      view_root = argv[++i];
+    } else if (i + 1 < argc && !strcmp(a, "--view") && argv[i + 1][0] == '/' && n_view < kMaxView) {
+      view[n_view++] = argv[++i];
     } else {
       fprintf(stderr, "wb-sandbox: unknown argument '%s'\n", a);
       return 125;
@@ -198,8 +306,12 @@ int main(int argc, char** argv) {
   }
   if (i >= argc) {
     fprintf(stderr, "usage: wb-sandbox --status-fd N [--ns] [--uid U] [--seccomp] [--as B] "
-                    "[--fsize B] [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE] -- "
-                    "PROGRAM ARGS...\n");
+                    "[--fsize B] [--cpu S] [--nofile N] [--cwd DIR] [--env NAME=VALUE]... [--proc] "
+                    "[--view-root DIR --view FILE...] -- PROGRAM ARGS...\n");
+    return 125;
+  }
+  if ((view_root != NULL) != (n_view > 0) || ((view_root || use_proc) && !use_ns)) {
+    fprintf(stderr, "wb-sandbox: --view-root and --view go together; they and --proc need --ns\n");
     return 125;
   }
   if (status_fd >= 0) fcntl(status_fd, F_SETFD, FD_CLOEXEC);
@@ -210,7 +322,8 @@ int main(int argc, char** argv) {
   if (getppid() != grader) return 125;
   char** child_argv = argv + i;
 
-  if (use_ns && unshare(CLONE_NEWPID | CLONE_NEWNET | CLONE_NEWIPC | CLONE_NEWUTS) != 0)
+  if (use_ns &&
+      unshare(CLONE_NEWPID | CLONE_NEWNS | CLONE_NEWNET | CLONE_NEWIPC | CLONE_NEWUTS) != 0)
     fail("unshare (namespaces)");
   pid_t init = fork();
   if (init < 0) fail("fork");
@@ -222,6 +335,7 @@ int main(int argc, char** argv) {
   }
   // The init of the namespace (or, without --ns, a plain reaper).
   prctl(PR_SET_PDEATHSIG, SIGKILL);  // the grader killed the launcher: end everything
+  if (use_proc || view_root) private_mounts(view_root, view, n_view);
   pid_t test = fork();
   if (test < 0) fail("fork");
   if (test == 0) {
@@ -231,7 +345,11 @@ int main(int argc, char** argv) {
     if (cpu) limit(RLIMIT_CPU, cpu, "RLIMIT_CPU");
     limit(RLIMIT_CORE, 0, "RLIMIT_CORE");
     limit(RLIMIT_NOFILE, nofile, "RLIMIT_NOFILE");
-    if (cwd && chdir(cwd) != 0) fail("chdir");
+    if (view_root) {
+      if (chdir("/") != 0) fail("chdir /");
+    } else if (cwd && chdir(cwd) != 0) {
+      fail("chdir");
+    }
     if (uid >= 0) {
       if (setgroups(0, NULL) != 0) fail("setgroups");
       if (setresgid((gid_t)uid, (gid_t)uid, (gid_t)uid) != 0) fail("setresgid");
@@ -243,7 +361,8 @@ int main(int argc, char** argv) {
     }
     if (use_seccomp) install_seccomp(child_argv[0], child_argv);
     // A clean environment: nothing of the grader's (tokens, paths) reaches the test.
-    char* env[] = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8", "HOME=/nonexistent", extra_env, NULL};
+    char* env[4 + kMaxEnv] = {"PATH=/usr/bin:/bin", "LANG=C.UTF-8", "HOME=/nonexistent"};
+    for (int k = 0; k < n_env; ++k) env[3 + k] = extra_env[k];
     execve(child_argv[0], child_argv, env);
     fail("exec");
   }

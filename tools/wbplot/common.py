@@ -159,6 +159,19 @@ def save_figure(fig, path):
             os.remove(tmp)
 
 
+def summary_line(stdout):
+    """The JSON summary a run prints on the last non-empty line of its standard output
+    (docs/run-contract.md, "The summary line") as a dict, or None when there is none (no
+    output, not JSON, or JSON that is not an object)."""
+    import json
+    lines = [s for s in stdout.splitlines() if s.strip()]
+    try:
+        j = json.loads(lines[-1]) if lines else None
+    except ValueError:
+        return None
+    return j if isinstance(j, dict) else None
+
+
 def finish_frame(fig, path, inside=False):
     """What every saved figure and every animation frame gets: the stub mark when the run's
     summary says the run is a stub's (runinfo), and its facts for the report's checks

@@ -21,21 +21,12 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 from wbplot import claims as wclaims  # noqa: E402
 from wbplot import recipes  # noqa: E402
-from wbplot.common import InputError  # noqa: E402
+from wbplot.common import InputError, summary_line  # noqa: E402
 
 
 def rel(p):
     r = os.path.relpath(p, ROOT)
     return p if r.startswith("..") else r
-
-
-def summary_of(stdout):
-    lines = [s for s in stdout.splitlines() if s.strip()]
-    try:
-        j = json.loads(lines[-1]) if lines else None
-    except json.JSONDecodeError:
-        return None
-    return j if isinstance(j, dict) else None
 
 
 def lab_plugin(lab):
@@ -98,7 +89,7 @@ def produce(lab, stem, what, bin_dir, out_root, help_cache, verbose):
     p = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True)
     if p.returncode != 0:
         return (p.stderr.strip().splitlines() or [f"exit status {p.returncode}"])[-1]
-    s = summary_of(p.stdout)
+    s = summary_line(p.stdout)
     if s is not None:
         with open(os.path.join(out, name + "-summary.json"), "w", encoding="utf-8") as f:
             json.dump(s, f)

@@ -26,7 +26,7 @@ import zipfile
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CASES = os.path.join(REPO, "tests", "hostile")
-TEST_UIDS = range(61000, 62000)  # tools/grade's test users (TEST_UID_BASE)
+TEST_UIDS = range(1 << 20, 1 << 30)  # tools/grade's test users (grader/sandbox.py TEST_UID_RANGE)
 GRADE_ARGS = "--timeout 3 --build-timeout 120"  # bounds the infinite loop and the slow compile
 # A case's "grade_args" (case.json) go after these: the slow compile's own, shorter build
 # limit (an honest build of its lab takes seconds) spares the suite minutes of a busy core.
@@ -196,7 +196,13 @@ class Run:
         """Returns (score or None, reasons, problems)."""
         self.submission(case)
         build = os.path.join(self.ag, "grade-build")
-        keep = {"build", os.path.join("src", "labs"), "screened.json", ".lock", "cwd", "run"}
+        keep = {"build", os.path.join("src", "labs"), "screened.json", ".lock", "cwd", "run",
+                "view", "wb-hostile-view.txt"}
+        probe = os.path.join(self.ag, "grade-build", "wb-hostile-view.txt")
+        if case.get("plant_view_probe"):  # world-readable, beside the build: the worker's view
+            with open(probe, "w") as f:       # must not hold it
+                f.write(self.secret + "\n")
+            os.chmod(probe, 0o644)
         source = os.path.join(self.ag, "source")  # the project as Gradescope holds it
         before = dict(procs=processes(), tmp=tmp_entries(), checkout=checkout_files(),
                       build=tree_digest(build, keep), source=tree_digest(source))
@@ -206,12 +212,17 @@ class Run:
                                           + (["--no-screen"] if no_screen else [])))
         problems = []
         try:
+            started = time.monotonic()
             r = subprocess.run(["bash", os.path.join(self.ag, "source", "run_autograder")],
                                env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                timeout=CASE_TIMEOUT)
             out = r.stdout.decode("utf-8", "replace")
             if r.returncode != 0:
                 problems.append(f"run_autograder failed (status {r.returncode}): {out[-600:]}")
+            took = time.monotonic() - started
+            if case.get("max_seconds") and took > case["max_seconds"]:
+                problems.append(f"run_autograder took {took:.0f} s, more than the "
+                                f"{case['max_seconds']} s an idle test may make it take")
         except subprocess.TimeoutExpired:
             problems.append(f"run_autograder did not finish in {CASE_TIMEOUT} s")
             out = ""
@@ -229,7 +240,12 @@ class Run:
             score = data["score"]
             if self.token in text or self.token in out:
                 problems.append("a planted secret (another student's file, the grader's "
-                                "environment) appears in the results or the log")
+                                "environment, a file beside the build) appears in the results "
+                                "or the log")
+            for word in case.get("forbidden_in_results", []):
+                if word in text:
+                    problems.append(f"the results show '{word}': the lab's code saw what it "
+                                    "must not (another process, the tests, the build)")
             for t in data.get("tests", []):
                 if t["status"] == "failed":
                     lines = t["output"].strip().splitlines()
@@ -265,6 +281,8 @@ class Run:
             problems.append(f"files left behind: {sorted(new_tmp)}")
             for p in new_tmp:
                 shutil.rmtree(p, ignore_errors=True) if os.path.isdir(p) else os.remove(p)
+        if os.path.exists(probe):
+            os.remove(probe)
         changed = diff(before["checkout"], checkout_files())
         if changed:
             problems.append(f"the checkout changed: {changed[:5]}")

@@ -11,12 +11,21 @@
 #   - the mutants' failure signatures (which tests each fails, at which
 #     assertion) must equal the stored tests/mutants/<lab>/signatures.json, the
 #     data the grader's hints come from (tools/wbgrade_hints.py); --signatures
-#     rewrites it, --leave-one-out measures the hints from it (no build).
+#     rewrites it, --leave-one-out measures the hints from it (no build);
+#   - every variant is judged the same way when run again: each failed test is run a
+#     second time (and a variant the grader judged is graded a second time), and a
+#     difference in which tests fail or in their failure texts is FLAKY;
+#   - every mutant is caught by a wide margin: its widest failing check misses by at
+#     least margins.WEAK times its tolerance (tools/wbtools/margins.py), or its header
+#     says why not ('# weak: ...');
+#   - a mutant whose header has '# both-paths: ...' is judged twice, from its tests
+#     linked directly and through the grader's worker: both must fail the same tests
+#     (what the worker's proxies hide from the verdict is a gap).
 # Each variant is graded by tools/grade's machinery in one scratch build per
 # lab, so a variant recompiles only the files that differ from the last one
 # (grade_files below is the only call into it).
 # Exit status: 0 all as expected, 1 a mutant survived / an alternative lost
-# points / a mutant file is broken, 2 bad input.
+# points / a mutant file is broken / a variant is FLAKY, 2 bad input.
 
 import argparse
 import concurrent.futures
@@ -51,6 +60,7 @@ grade = load_grade()
 sys.path.insert(0, TOOLS)
 import wbgrade_hints as hints  # noqa: E402
 from wbtools import diagnosis as diag  # noqa: E402
+from wbtools import margins  # noqa: E402
 
 
 def grade_files(grader, lab, files):
@@ -73,7 +83,8 @@ def grade_files(grader, lab, files):
 # grader's own verdict code (grader.verdict.judge) reads each report. That is taken only when
 # every test ended the plain way: the process exited, its report is complete, and nothing in
 # it could read differently through the worker (no exception, crash, output or time-out):
-# else the variant goes through the grader itself, as each lab's solution always does. The
+# else the variant goes through the grader itself. Each lab's solution is judged the same
+# way (tools/check grades every solution through the grader in the stage before). The
 # stored signatures, made by the grader (--signatures runs everything through it), are
 # compared with what the direct run found: a mutant the two would judge differently fails
 # the check as stale.
@@ -82,13 +93,13 @@ DIRECT_TIMEOUT = 20.0  # s, one test case run directly (the slowest solution tes
 UNSURE = (b"<Exception", b"<FatalErrorCondition", b"<StdOut", b"<StdErr", b"<Warning")
 
 
-def direct_files(grader, lab, files, probes=None):
-    """Grades `files` from <lab>-tests-direct; None when the grader itself must judge them
-    (the build failed, or a test did not end the plain way). With `probes` (a dict), the
+def direct_build(grader, lab, files, probes=None):
+    """Builds <lab>-tests-direct with `files` in place of the lab's student files. Returns
+    (binary, [TestCase]), or None when the grader itself must judge them (the build failed:
+    the grader reports the compile error in its own words). With `probes` (a dict), the
     lab's probes are built in the same build and their records put there (diagnosis.py)."""
     from grader.project import pristine_files
     from grader.worker import worker_files
-    from grader.verdict import judge as verdict, read_report
     pristine = pristine_files(grader.repo)
     pristine.update(worker_files(grader.repo, grade.known_labs(grader.repo)))
     tests = grader.test_lists([lab], pristine)[lab]
@@ -111,19 +122,33 @@ def direct_files(grader, lab, files, probes=None):
                            "-j", str(grader.jobs)], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, timeout=600)
     if proc.returncode != 0 or not os.path.isfile(binary):
-        return None  # the grader reports the compile error in its own words
+        return None
+    grade.log(f"mutants: {lab}: built {lab}-tests-direct in {time.monotonic() - t0:.1f} s")
     if with_probes:  # built with the tests: only run them (diagnosis.record)
         recs, _ = diag.record(grader, lab, files, built=True)
         if recs is not None:
             probes.update(recs)
-    t1 = time.monotonic()
+    return binary, tests
+
+
+def heldout_env(seed, count=1):
+    return dict(os.environ, WB_HELDOUT_SEED=str(seed), WB_HELDOUT_SEEDS=str(count))
+
+
+def direct_run(grader, lab, binary, tests, again=False):
+    """Runs `tests` from the direct binary, one process each, and judges each report with the
+    grader's own verdict code. Returns the graded tuple (as grade_files), or None when the
+    grader itself must judge them (a test did not end the plain way)."""
+    from grader.verdict import judge as verdict, read_report
+    from grader import heldout
 
     def one(t):
         nonce = "wb-" + secrets.token_hex(8)
         try:
             p = subprocess.run([binary, t.name, "-w", "NoTests", "-r", "xml", "-n", nonce],
                                cwd=grader.cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, timeout=min(grader.timeout, DIRECT_TIMEOUT))
+                               stderr=subprocess.PIPE, timeout=min(grader.timeout, DIRECT_TIMEOUT),
+                               env=heldout_env(grader.seed))
         except subprocess.TimeoutExpired:
             return None
         if p.returncode < 0 or p.stderr.strip() or any(u in p.stdout for u in UNSURE):
@@ -134,16 +159,127 @@ def direct_files(grader, lab, files, probes=None):
         return verdict(t, ("exit", p.returncode), p.stdout, "", nonce, grader.timeout,
                        grader.src + "/")
 
+    t0 = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(grader.jobs) as pool:
         results = list(pool.map(one, tests))
-    grade.log(f"mutants: {lab}: built {lab}-tests-direct in {t1 - t0:.1f} s, "
-              f"ran {len(tests)} test processes in {time.monotonic() - t1:.1f} s")
+    grade.log(f"mutants: {lab}: ran {len(tests)} test processes{' again' if again else ''} in "
+              f"{time.monotonic() - t0:.1f} s")
     if any(r is None for r in results):
         return None
+    heldout.gate(results)  # as the grader does
     score = sum(r.score for r in results)
     return ("", score, sum(t.points for t in tests),
             [(r.test.name, list(r.test.tags), r.status == "passed", r.output or r.reason)
              for r in results])
+
+
+# ------------------------------------------------------- the held-out checks alone
+# docs/grading.md, "Held-out checks": no correct implementation may ever fail a held-out check
+# (the solution and every alternative, for many seeds), and the held-out checks alone (the
+# tests tagged [held-out], the public tests left out) must catch at least HELDOUT_AIM of each
+# lab's catalogued mutants, for every seed.
+
+HELDOUT_AIM = 0.9
+
+
+def heldout_failures(binary, cwd, seed, count=1, timeout=300):
+    """The held-out tests of a direct binary that fail with `count` seeds from `seed` (one
+    process, WB_HELDOUT_SEEDS): {test name: first failure text}; every one on a crash."""
+    import xml.etree.ElementTree as ET
+    try:
+        p = subprocess.run([binary, "[held-out]", "-w", "NoTests", "-r", "xml"], cwd=cwd,
+                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, timeout=timeout, env=heldout_env(seed, count))
+        root = ET.fromstring(p.stdout)
+    except (subprocess.TimeoutExpired, ET.ParseError):
+        return {"(all)": "did not finish, or no complete report"}
+    failed = {}
+    for tc in root.iter("TestCase"):
+        res = tc.find("OverallResult")
+        if res is None or res.get("success") != "true":
+            infos = [" ".join("".join(e.itertext()).split())[:200] for e in tc.iter()
+                     if e.tag in ("Info", "Exception", "FatalErrorCondition")]
+            failed[tc.get("name")] = "; ".join(infos[-3:]) or "failed"
+    if p.returncode != 0 and not failed:
+        failed["(all)"] = f"exit status {p.returncode}"
+    return failed
+
+
+def measure_heldout(grader, lab, files, expected, args):
+    """For a correct variant: the held-out failures over args.heldout_seeds seeds (one
+    process). For a mutant: {seed: caught?} over args.heldout_mutant_seeds seeds."""
+    built = direct_build(grader, lab, files)
+    if built is None:
+        return None
+    binary = built[0]
+    if expected == "100":
+        return heldout_failures(binary, grader.cwd, args.heldout_first, args.heldout_seeds)
+    return {s: bool(heldout_failures(binary, grader.cwd, s))
+            for s in range(args.heldout_first, args.heldout_first + args.heldout_mutant_seeds)}
+
+
+def print_heldout(labs, rows, args):
+    """The held-out measurement's table; False when an aim is missed."""
+    ok = True
+    print(f"\nheld-out checks alone (tests tagged [held-out]), seeds from {args.heldout_first:#x}:")
+    print(f"{'lab':<11} {'correct variants':<28} {'mutants caught, worst seed':<28} "
+          f"{'best seed':<10} never caught")
+    for lab in labs:
+        mine = [r for r in rows if r.lab == lab and r.heldout is not None]
+        good = [r for r in mine if r.expected == "100"]
+        bad = [r for r in good if r.heldout]
+        muts = [r for r in mine if r.expected == "< 100"]
+        seeds = range(args.heldout_first, args.heldout_first + args.heldout_mutant_seeds)
+        per_seed = [sum(1 for r in muts if r.heldout[s]) for s in seeds] if muts else [0]
+        worst, best = min(per_seed), max(per_seed)
+        never = [r.variant for r in muts if not any(r.heldout.values())]
+        sometimes = [f"{r.variant} ({sum(r.heldout.values())}/{len(r.heldout)})" for r in muts
+                     if any(r.heldout.values()) and not all(r.heldout.values())]
+        share = worst / len(muts) if muts else 1.0
+        ok &= not bad and share >= HELDOUT_AIM
+        print(f"{lab:<11} {f'{len(good) - len(bad)}/{len(good)} pass {args.heldout_seeds} seeds':<28} "
+              f"{f'{worst}/{len(muts)} ({100 * share:.0f}%)':<28} {f'{best}/{len(muts)}':<10} "
+              f"{', '.join(never) or '-'}")
+        for r in bad:
+            for t, why in list(r.heldout.items())[:3]:
+                print(f"    {r.variant}: FAILED {t}: {why}")
+        if sometimes:
+            print(f"    caught for some seeds only: {', '.join(sometimes)}")
+    print(f"aim: every correct variant passes every seed; at least {100 * HELDOUT_AIM:.0f} % of "
+          "each lab's mutants caught for every seed")
+    return ok
+
+
+# ------------------------------------------------------------ run again, compare
+# A variant judged twice on the same tree must be judged the same way: the same tests
+# failed, each with the same failure text as a signature keeps it (wbgrade_hints.failure_text:
+# numbers blanked). Run again, at a small cost (tools/check's mutants stage, ~1 % of it):
+# every test that failed, in the direct path (the run is seconds; the build is most of a
+# variant's time and is not repeated), and the whole grading of a variant the grader judged
+# (a crash, an exception, a time-out: where undefined behaviour and the machine's load show).
+
+
+def judged(graded):
+    """{test name: (passed?, the failure text a signature keeps)} of a graded tuple."""
+    return {name: (passed, "" if passed else hints.failure_text(output))
+            for name, _, passed, output in graded[3]}
+
+
+def differences(first, second):
+    """[(test, what the first run gave, what the second gave)] for the tests of `second` that
+    the two runs judged differently (graded tuples; `second` may hold fewer tests)."""
+    a, b = judged(first), judged(second)
+    return [(name, a.get(name), b[name]) for name in sorted(b) if a.get(name) != b[name]]
+
+
+def flaky_verdict(diffs):
+    """The row's verdict for a variant judged differently when run again."""
+    def said(j):
+        return "(not run)" if j is None else "passed" if j[0] else f"failed: {j[1][:120]!r}"
+    name, a, b = diffs[0]
+    return (f"FLAKY: judged differently when run again ({len(diffs)} test(s)), e.g. {name!r}: "
+            f"first {said(a)}, then {said(b)}: the test or the variant depends on something "
+            "else than its input (undefined behaviour, time, the machine's load)")
 
 
 class PatchError(Exception):
@@ -263,7 +399,9 @@ class Row:
         self.got, self.verdict, self.ok, self.details = "", "", False, []
         self.signature = None  # {failed test: assertion class} of a graded mutant
         self.comments = []
-        self.how = ""  # "direct" or "grader ..." (see direct_files)
+        self.how = ""  # "direct" or "grader ..." (see direct_build, direct_run)
+        self.margin = None  # a caught mutant's widest miss over its tolerance (margins.py)
+        self.heldout = None  # --heldout-seeds: see measure_heldout
         self.probes = None  # {probe id: record}: the diagnosis probes' outputs (diagnosis.py)
 
 
@@ -357,7 +495,14 @@ def judge(row, graded, expected, comments):
     if missed:
         row.verdict = "caught, but not by " + ", ".join(missed)
         return
-    row.ok, row.verdict = True, "caught"
+    row.margin = margins.best([r[3] for r in failed])
+    shown = margins.describe(row.margin)
+    if row.margin is not None and row.margin < margins.WEAK and not header_value(comments, "weak"):
+        row.verdict = (f"WEAK: its widest failing check misses by {shown} times its tolerance "
+                       f"(at least {margins.WEAK:g}): add a test that catches it widely, or say "
+                       "why not in '# weak: ...' (docs/grading.md, Margins)")
+        return
+    row.ok, row.verdict = True, f"caught (margin {shown})"
 
 
 def print_rows(rows, verbose):
@@ -484,18 +629,52 @@ def run_lab(repo, grader, lab, args, stop):
             row.got = "-"
         else:
             grade.log(f"mutants: {lab}: {name}")
-            graded = None
+            if args.heldout_seeds and name != "solution":  # the measurement only
+                row.heldout = measure_heldout(grader, lab, files, expected, args)
+                row.got, row.verdict, row.ok = "-", "measured", row.heldout is not None
+                continue
+            graded = again = None
             recorded = {}
-            if name != "solution" and not args.through_grader:
-                graded = direct_files(grader, lab, files, recorded)
+            if not args.through_grader:
+                built = direct_build(grader, lab, files, recorded)
+                graded = direct_run(grader, lab, *built) if built else None
                 row.how = "direct" if graded else "grader (the direct run was not plain)"
+                failed = [t for t in built[1] if t.name in
+                          {r[0] for r in graded[3] if not r[2]}] if graded else []
+                if failed and not args.no_rerun:
+                    again = direct_run(grader, lab, built[0], failed, again=True)
+                    if again is None:  # plain the first time, not the second
+                        again = ("", 0, 0, [(t.name, t.tags, False, "(the run again was not "
+                                             "plain: a crash, an exception, a time-out)")
+                                            for t in failed])
             if graded is None:
                 graded = grade_files(grader, lab, files)
                 row.how = row.how or "grader"
+                if not args.no_rerun and not args.signatures:
+                    again = grade_files(grader, lab, files)
             if name == "solution":
                 all_tests = sorted(r[0] for r in graded[3])
             judge(row, graded, expected, comments)
-            if recorded:  # recorded with the direct tests
+            if row.ok and header_value(comments, "both-paths"):
+                both_paths(row, graded, grader, lab, files)
+            diffs = differences(graded, again) if again else []
+            if diffs:
+                row.ok, row.verdict = False, flaky_verdict(diffs)
+                row.details += [f"run again: {n}: first {a}, then {b}" for n, a, b in diffs]
+            if args.heldout_seeds:
+                row.heldout = measure_heldout(grader, lab, files, expected, args)
+            elif expected == "100" and args.ci_seeds:  # a few fresh seeds on every run
+                built = direct_build(grader, lab, files)
+                from grader.heldout import random_seed
+                first = random_seed()
+                failed = heldout_failures(built[0], grader.cwd, first, args.ci_seeds) \
+                    if built else {"(build)": "the direct tests do not build"}
+                if failed:
+                    row.ok, row.verdict = False, f"LOST POINTS on held-out seeds from {first:#x}"
+                    row.details += [f"failed: {t}: {why}" for t, why in failed.items()]
+            if args.heldout_seeds:
+                pass  # the measurement: no probes
+            elif recorded:  # recorded with the direct tests
                 row.probes = recorded
             elif not graded[0]:  # it compiles: what its probes give
                 row.probes, why = diag.record(grader, lab, files)
@@ -513,7 +692,7 @@ def run_lab(repo, grader, lab, args, stop):
         if not row.ok and not args.keep_going:
             stop.set()
             return rows
-    if all_tests is None or solution is None:
+    if all_tests is None or args.heldout_seeds or solution is None:
         return rows
     # Every variant of the lab was graded: its catalogue is known. The skeleton's probe
     # outputs are measured again only when what they depend on changed (or --signatures).
@@ -553,7 +732,7 @@ def mid_lab(repo, labs, args):
     root = args.build_dir
     if root is None:
         tmp = root = tempfile.mkdtemp(prefix="wb-mutants-")
-    grader = grade.Grader(repo, os.path.join(root, "0"), args.jobs, args.timeout)
+    grader = grade.Grader(repo, os.path.join(root, "0"), args.jobs, args.timeout, seed=args.seed)
     problems = []
     try:
         for lab in labs:
@@ -572,6 +751,27 @@ def mid_lab(repo, labs, args):
         print(p)
     print(f"mutants: mid-lab: {len(problems)} problem(s) in {', '.join(labs)}")
     return 1 if problems else 0
+
+
+def both_paths(row, graded, grader, lab, files):
+    """'# both-paths:': the tests linked directly and the grader's worker must fail the same
+    tests (the worker's proxies must not hide what the student's code does)."""
+    if row.how == "direct":
+        direct = graded
+    else:
+        built = direct_build(grader, lab, files)
+        direct = direct_run(grader, lab, *built) if built else None
+    through = graded if row.how.startswith("grader") else grade_files(grader, lab, files)
+    if direct is None:
+        row.ok, row.verdict = False, "BOTH PATHS: the direct run was not plain"
+        return
+    fails = [sorted(r[0] for r in g[3] if not r[2]) for g in (direct, through)]
+    row.how += "; both paths compared"
+    if fails[0] != fails[1]:
+        row.ok = False
+        row.verdict = ("BOTH PATHS DIFFER: linked directly it fails " + (", ".join(fails[0]) or
+                       "nothing") + "; through the grader's worker " +
+                       (", ".join(fails[1]) or "nothing"))
 
 
 def main(argv):
@@ -601,6 +801,10 @@ def main(argv):
     p.add_argument("--through-grader", action="store_true",
                    help="grade every mutant through the grader (sandboxed test and worker "
                         "processes) instead of first running the tests linked straight with it")
+    p.add_argument("--no-rerun", action="store_true",
+                   help="do not run again, to compare, the failed tests of each variant (and "
+                        "the whole grading of one the grader judged); a variant judged "
+                        "differently the second time is FLAKY")
     p.add_argument("--refresh-hints", action="store_true",
                    help="no build: rewrite only the hint, kind and task of each mutant in the stored "
                         "signatures from the patches' headers (after editing a '# hint:'); the "
@@ -623,9 +827,25 @@ def main(argv):
                         "task's diagnosis must be the whole-lab one, each skeleton task 'not "
                         "started' (builds; exit 1 otherwise)")
     p.add_argument("--markdown", action="store_true", help="with --leave-one-out: a Markdown table")
+    p.add_argument("--seed", default="1", metavar="N",
+                   help="the held-out inputs' seed of every grading (default 1: the stored "
+                        "signatures hold for it)")
+    p.add_argument("--ci-seeds", type=int, default=3, metavar="N",
+                   help="also run the held-out tests of the solution and every alternative with N "
+                        "fresh random seeds (default 3, printed when one fails; 0: none)")
+    p.add_argument("--heldout-seeds", type=int, default=0, metavar="N",
+                   help="measure the held-out checks instead (docs/grading.md): the solution and "
+                        "every alternative must pass N seeds (1000 for the record), and the held-out "
+                        "tests alone must catch at least 90 %% of the mutants for each of "
+                        "--heldout-mutant-seeds seeds")
+    p.add_argument("--heldout-mutant-seeds", type=int, default=20, metavar="M",
+                   help="with --heldout-seeds: seeds per mutant (default 20)")
     p.add_argument("-v", "--verbose", action="store_true", help="list the failed tests of every variant "
                    "(with --leave-one-out: every mutant's outcome)")
     args = p.parse_args(argv)
+    from grader import heldout
+    args.seed = heldout.parse_seed(args.seed)
+    args.heldout_first = heldout.random_seed()
     repo = grade.repo_root()
     known = grade.known_labs(repo)
     for lab in args.lab:
@@ -656,7 +876,9 @@ def main(argv):
     stop = threading.Event()
 
     def run_group(k, group):
-        grader = grade.Grader(repo, os.path.join(root, str(k)), args.jobs, args.timeout)
+        grader = grade.Grader(repo, os.path.join(root, str(k)), args.jobs, args.timeout,
+                              seed=args.seed)
+        grader.direct_tests = True
         grader.diagnosis = False  # the catalogue is measured directly (diagnosis.record)
         try:
             for lab in group:
@@ -675,18 +897,31 @@ def main(argv):
             shutil.rmtree(tmp, ignore_errors=True)
     rows = [r for lab in labs for r in results.get(lab, [])]
     print_rows(rows, args.verbose)
+    if args.heldout_seeds:
+        return 0 if print_heldout(labs, rows, args) else 1
     bad = [r for r in rows if not r.ok]
     mut = [r for r in rows if r.expected == "< 100"]
+    flaky = sum(1 for r in rows if r.verdict.startswith("FLAKY"))
     print(f"\nmutants: {sum(r.ok for r in mut)} of {len(mut)} caught; "
           f"{sum(r.ok for r in rows if r.expected == '100')} of "
           f"{sum(1 for r in rows if r.expected == '100')} correct variants kept 100"
+          + (f"; {flaky} FLAKY (judged differently when run again)" if flaky else "")
           + (" (stopped at the first wrong one: --keep-going runs them all)" if stop.is_set()
              else ""))
-    direct = sum(1 for r in mut if r.how == "direct")
+    weak = [r for r in mut if r.margin is not None and r.margin < margins.WEAK]
+    print(f"mutants: {len(weak)} caught within a factor {margins.WEAK:g} of a tolerance"
+          + (": " + ", ".join(f"{r.lab}/{r.variant} ({margins.describe(r.margin)})" for r in weak)
+             if weak else ""))
+
+    def direct(rs):
+        return f"{sum(1 for r in rs if r.how == 'direct')} of {len(rs)}"
     alts = [r for r in rows if r.expected == "100" and r.variant != "solution"]
-    print(f"mutants: {direct} of {len(mut)} mutants and {sum(1 for r in alts if r.how == 'direct')} "
-          f"of {len(alts)} alternatives judged from their tests run directly, the others (and "
-          "each solution) through the grader")
+    sols = [r for r in rows if r.variant == "solution"]
+    again = "" if args.no_rerun or args.signatures else (
+        " (each failed test run again, to compare)")
+    print(f"mutants: {direct(mut)} mutants, {direct(alts)} alternatives and {direct(sols)} "
+          f"solutions judged from their tests run directly{again}, the others through the "
+          "grader" + ("" if again == "" else " (graded twice, to compare)"))
     return 1 if bad else 0
 
 

@@ -27,6 +27,8 @@ import tarfile
 import tempfile
 import time
 
+from . import answers
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 # Shipped (filtered per lab where they hold per-lab folders or files).
@@ -303,6 +305,16 @@ def build_prebuilt(stage, tmp):
             tail = p.stdout.decode("utf-8", "replace").strip().splitlines()[-20:]
             raise PackError(f"the prebuilt framework does not build: {' '.join(cmd)}\n"
                             + "\n".join(tail))
+    # Compiled only (wbtools/answers.py): the provided code that does a packed task's job is
+    # in prebuilt/ (just compiled from the real source), and its source in the pack is the
+    # replacement that calls the student's own function.
+    packed = [l for l in os.listdir(os.path.join(stage, "labs"))
+              if os.path.isdir(os.path.join(stage, "labs", l))]
+    for rel, lab in answers.COMPILED_ONLY.items():
+        if lab in packed and os.path.isfile(os.path.join(stage, rel)):
+            shutil.copyfile(os.path.join(answers.FALLBACKS, rel), os.path.join(stage, rel))
+            check_compiles(build, os.path.join(stage, rel))
+    check_no_answers(stage, packed)
     out = os.path.join(stage, "prebuilt")
     os.makedirs(out)
     rows = []
@@ -377,6 +389,54 @@ def build_prebuilt_grader(stage, tmp):
         raise PackError("the prebuilt grader binaries do not build:\n" + "\n".join(tail))
     print(f"tools/pack: compiled the grader's prebuilt tests and probes in "
           f"{time.monotonic() - t0:.1f} s", flush=True)
+
+
+def check_compiles(build, path):
+    """PackError unless `path` (a replacement of a compiled-only file) compiles with the command
+    the prebuilt build compiled the real file with: a build that cannot use prebuilt/
+    compiles it, and no other check would."""
+    import shlex
+    with open(os.path.join(build, "compile_commands.json"), encoding="utf-8") as f:
+        entries = json.load(f)
+    entry = next((e for e in entries if os.path.realpath(e["file"]) == os.path.realpath(path)),
+                 None)
+    if entry is None:
+        raise PackError(f"{path}: the prebuilt build does not compile it")
+    args = entry.get("arguments") or shlex.split(entry["command"])
+    kept, skip = [], False
+    for a in args:  # no dependency file: -MD, -MMD, and -MT/-MF/-MQ with their argument
+        if skip:
+            skip = False
+        elif a in ("-MT", "-MF", "-MQ"):
+            skip = True
+        elif a not in ("-MD", "-MMD"):
+            kept.append(a)
+    args = kept
+    if "-o" in args:
+        args[args.index("-o") + 1] = os.devnull
+    p = subprocess.run(args, cwd=entry["directory"], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT)
+    if p.returncode != 0:
+        raise PackError(f"the replacement of a compiled-only file does not compile: {path}\n" +
+                        p.stdout.decode("utf-8", "replace")[-2000:])
+
+
+def check_no_answers(stage, labs):
+    """PackError when a source the pack ships computes what a packed task's solution computes
+    (wbtools/answers.py): provided code and the skeletons."""
+    shipped = {}
+    for top in ("framework", "labs"):
+        for dirpath, _, names in os.walk(os.path.join(stage, top)):
+            for n in names:
+                path = os.path.join(dirpath, n)
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    shipped[os.path.relpath(path, stage).replace(os.sep, "/")] = f.read()
+    bad = [(rel, sol, share) for rel, sol, share, why in answers.overlaps(shipped, labs) if not why]
+    if bad:
+        raise PackError("the pack would ship a task's answer: " + "; ".join(
+            f"{rel} holds {100 * share:.0f} % of solutions/{sol}" for rel, sol, share in bad) +
+            " (ship it compiled only, or make it call the student's function: "
+            "tools/wbtools/answers.py)")
 
 
 # ------------------------------------------------------------------ verify

@@ -15,10 +15,23 @@ tests/<lab>/), so a new lab is checked without anyone remembering it:
             (<!-- not-a-claim: ... -->)
   asserts   every REQUIRE/CHECK in tests/<lab>/*.cpp carries words a student can act on: a
             wbtest::require_* helper with a message, or an INFO/CAPTURE in scope before it
+  nanfree   no comparison in tests/<lab>/ can be passed by a NaN: no maxCoeff()/minCoeff()
+            compared with a tolerance or inside an assertion (wbtest::max_abs_diff, max_abs),
+            no running maximum or minimum by std::max/std::min (wbtest::worst_of, least_of);
+            and every task has a [held-out] test (tests/common/heldout.h)
+  answers   no provided source of the pack of all labs computes what a task's solution
+            computes (tools/wbtools/answers.py: the fast path ships compiled only)
   reportdoc docs/report.md names every figure the last report drew (build/report), and
             names no figure file the report does not draw
   stubfigs  the student pack's plot commands, on each lab's skeleton run of its first
             scene, draw figures that say "STUB RUN" (wbplot/stubfigs.py; a few seconds)
+  testnames every graded test file tests/<lab>/*.cpp is named test_<task>_<what>.cpp
+            (<task> a TODO(<task>) of labs/<lab>/, <what> lower-case words joined by _),
+            every test case in it carries the tag [<task>], and every task has such a file:
+            the tests of task F5 are in tests/forces/test_F5_*.cpp
+  docrefs   what every Markdown file of the repository quotes from the code exists there:
+            the flags of a tool's or a lab's command, the arguments of a task function or
+            a tool's Python function, the paths (tools/wbtools/docrefs.py says how)
 
 With no stage, all of them. Exit status: 0 every stage passed, 1 a stage found something
 (each finding on one line: file, what, what to do), 2 bad input (a flag, a missing build)."""
@@ -36,8 +49,10 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.dont_write_bytecode = True
 
 from wbplot import recipes  # noqa: E402
+from wbplot.common import summary_line  # noqa: E402
 
-STAGES = ["stubs", "periods", "claims", "asserts", "reportdoc", "stubfigs"]
+STAGES = ["stubs", "periods", "claims", "asserts", "nanfree", "answers", "reportdoc", "stubfigs",
+          "testnames", "docrefs"]
 RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
 # The smallest error a skeleton's sweep may show for an integrator, relative to the scene
 # size: a stub that does nothing is off by O(1) of the motion, rounding by 1e-16; a whole
@@ -59,15 +74,6 @@ def labs():
 
 def scenes(lab):
     return sorted(glob.glob(os.path.join(ROOT, "scenes", lab, "*.json")))
-
-
-def summary_of(stdout):
-    lines = [s for s in stdout.splitlines() if s.strip()]
-    try:
-        j = json.loads(lines[-1]) if lines else None
-    except json.JSONDecodeError:
-        return None
-    return j if isinstance(j, dict) else None
 
 
 def run(argv, timeout=RUN_TIMEOUT):
@@ -96,7 +102,7 @@ def stage_stubs(build, out, verbose):
         exe = skeleton(lab, build)
         for scene in scenes(lab):
             status, stdout, stderr = run([exe, "--scene", rel(scene)])
-            s = summary_of(stdout)
+            s = summary_line(stdout)
             where = f"{rel(scene)} on the skeleton ({rel(exe)})"
             if status != 0 or s is None:
                 why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
@@ -414,6 +420,174 @@ def stage_asserts(build, out, verbose):
                                 "(what was expected, what came out, what that usually "
                                 "means), or use a wbtest::require_* helper with a message "
                                 "(docs/grading.md, \"Words on every assertion\")")
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# nanfree: a value that came back from student code may be NaN anywhere (docs/grading.md,
+# "Every value from the worker is hostile"). Eigen's maxCoeff() may skip a NaN that is not
+# the first entry and std::max(acc, NaN) returns acc: both let a NaN pass a tolerance.
+
+_CMP = r"(?<![<>=!])(?:<=|>=|==|!=|<(?![<=])|>(?![>=]))"  # a comparison, not << or >>
+NAN_COMPARE = re.compile(r"\.(max|min)Coeff\([^()]*\)\s*" + _CMP + "|" + _CMP +
+                         r"\s*[\w.()]*\.(max|min)Coeff\(")
+NAN_ACCUMULATE = re.compile(r"\b(\w+)\s*=\s*std::(max|min)\(\s*\1\s*,")
+
+
+def lint_nanfree(path):
+    with open(path, encoding="utf-8") as f:
+        raw = f.read()
+    src = _strip_comments_and_strings(raw)
+    findings = []
+    for m in NAN_COMPARE.finditer(src):
+        findings.append((raw.count("\n", 0, m.start()) + 1,
+                         "a maxCoeff()/minCoeff() compared: Eigen may skip a NaN there; use "
+                         "wbtest::max_abs_diff(got, expected) or wbtest::max_abs(x), which are "
+                         "+infinity for a NaN or an infinity"))
+    for m in ASSERT.finditer(src):  # inside an assertion: REQUIRE(x.maxCoeff() ...)
+        depth, i = 1, m.end()
+        while i < len(src) and depth:
+            depth += {"(": 1, ")": -1}.get(src[i], 0)
+            i += 1
+        if re.search(r"\.(max|min)Coeff\(", src[m.end():i]):
+            findings.append((raw.count("\n", 0, m.start()) + 1,
+                             "a maxCoeff()/minCoeff() inside an assertion: use "
+                             "wbtest::max_abs_diff or wbtest::max_abs (NaN-safe)"))
+    for m in NAN_ACCUMULATE.finditer(src):
+        findings.append((raw.count("\n", 0, m.start()) + 1,
+                         f"a running {m.group(2)}imum by std::{m.group(2)}: a NaN is dropped "
+                         f"there; use wbtest::{'worst_of' if m.group(2) == 'max' else 'least_of'}"))
+    return sorted(set(findings))
+
+
+def stage_nanfree(build, out, verbose):
+    findings = []
+    for lab in labs():
+        files = sorted(glob.glob(os.path.join(ROOT, "tests", lab, "*.cpp")) +
+                       glob.glob(os.path.join(ROOT, "tests", lab, "*.h")) +
+                       glob.glob(os.path.join(ROOT, "tests", lab, "kernels", "*")))
+        tasks, held = set(), set()
+        for path in files:
+            findings += [f"{rel(path)}:{line}: {what}" for line, what in lint_nanfree(path)]
+            with open(path, encoding="utf-8") as f:
+                for tags in re.findall(r'TEST_CASE\(\s*(?:"[^"]*"\s*)+,\s*"([^"]*)"', f.read()):
+                    task = re.search(r"\[([A-Z]\d+)\]", tags)
+                    if task:
+                        tasks.add(task.group(1))
+                        if "[held-out]" in tags.lower():
+                            held.add(task.group(1))
+        findings += [f"tests/{lab}/: task {t} has no test tagged [held-out]: its points could be "
+                     "earned by replaying the public tests' answers (tests/common/heldout.h, "
+                     "docs/grading.md \"Held-out checks\")" for t in sorted(tasks - held)]
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# testnames: one naming scheme for graded test files, the task's own
+
+TEST_FILE = re.compile(r"^test_([A-Z][0-9]+)_([a-z0-9]+(?:_[a-z0-9]+)*)\.cpp$")
+_LITERALS = r'((?:"(?:[^"\\\n]|\\.)*"\s*)+)'
+TEST_CASE = re.compile(r"\bTEST_CASE\(\s*" + _LITERALS + r"(?:,\s*" + _LITERALS + r")?\)")
+
+
+def lab_tasks(lab):
+    """The tasks of a lab, in order: the TODO(<task>) tags of its student files."""
+    found = set()
+    for path in glob.glob(os.path.join(ROOT, "labs", lab, "*")):
+        if os.path.isfile(path):
+            with open(path, encoding="utf-8") as f:
+                found |= set(re.findall(r"TODO\(([A-Z][0-9]+)\)", f.read()))
+    return sorted(found, key=lambda t: (t[0], int(t[1:])))
+
+
+def test_cases(text):
+    """[(name, tags)] of the TEST_CASEs of a test file (adjacent literals joined), and the
+    number of TEST_CASE( it holds (more than read: one the pattern cannot read)."""
+    def joined(lits):
+        return "".join(re.findall(r'"((?:[^"\\\n]|\\.)*)"', lits or ""))
+    cases = [(joined(m.group(1)), joined(m.group(2))) for m in TEST_CASE.finditer(text)]
+    return cases, len(re.findall(r"\bTEST_CASE\(", text))
+
+
+def test_name_findings(lab, files, tasks, read):
+    """The findings for one lab's graded test files (names in tests/<lab>/, a reader of their
+    text): the naming scheme, the tags, a file for every task."""
+    findings, covered = [], set()
+    where = f"tests/{lab}"
+    for name in files:
+        m = TEST_FILE.match(name)
+        if not m:
+            findings.append(f"{where}/{name}: graded test files are named test_<task>_<what>.cpp "
+                            f"(<task> one of the TODO tags of labs/{lab}/: "
+                            f"{', '.join(tasks) or 'none'}; <what> lower-case words joined by _, "
+                            "e.g. test_F5_spring.cpp): rename it")
+            continue
+        task = m.group(1)
+        if task not in tasks:
+            findings.append(f"{where}/{name}: names task {task}, but labs/{lab}/ has no "
+                            f"TODO({task}) (its tasks: {', '.join(tasks) or 'none'})")
+            continue
+        covered.add(task)
+        cases, n = test_cases(read(name))
+        if len(cases) != n:
+            findings.append(f"{where}/{name}: {n - len(cases)} TEST_CASE(...) not read as "
+                            "TEST_CASE(\"name\", \"[tags]\"): write name and tags as string "
+                            "literals")
+        for case, tags in cases:
+            if f"[{task}]" not in tags:
+                findings.append(f"{where}/{name}: test \"{case}\" lacks the tag [{task}] of "
+                                "the task its file is named after: tag it, or move it to its "
+                                "task's file")
+    for task in tasks:
+        if task not in covered:
+            findings.append(f"{where}/: task {task} has no test file test_{task}_<what>.cpp")
+    return findings
+
+
+def stage_testnames(build, out, verbose):
+    findings = []
+    for lab in labs():
+        d = os.path.join(ROOT, "tests", lab)
+        if not os.path.isdir(d):
+            findings.append(f"tests/{lab}/: missing: every lab has graded tests")
+            continue
+
+        def read(name):
+            with open(os.path.join(d, name), encoding="utf-8") as f:
+                return f.read()
+        files = sorted(n for n in os.listdir(d) if n.endswith(".cpp")
+                       and os.path.isfile(os.path.join(d, n)))
+        findings += test_name_findings(lab, files, lab_tasks(lab), read)
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# answers: the student pack holds no task's answer (tools/wbtools/answers.py)
+
+def stage_answers(build, out, verbose):
+    from . import answers
+    everything = labs()
+    found = answers.overlaps(answers.repo_shipped(everything), everything)
+    if verbose:
+        for rel, sol, share, why in found:
+            if why:
+                print(f"answers: {rel} holds {100 * share:.0f} % of solutions/{sol}: allowed: {why}")
+    return [f"{rel} holds {100 * share:.0f} % of solutions/{sol}: a source the pack ships computes "
+            "what the task's solution computes; ship it compiled only or make it call the "
+            "student's function (tools/wbtools/answers.py)" for rel, sol, share, why in found
+            if not why]
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# docrefs: what the docs quote from the code exists there (tools/wbtools/docrefs.py)
+
+def stage_docrefs(build, out, verbose):
+    from wbtools import docrefs
+    findings, counts = docrefs.check(ROOT)
+    if verbose or not findings:
+        print(f"pattern: docrefs: {counts['docs']} Markdown files: {counts['flags']} flags, "
+              f"{counts['calls']} calls and {counts['paths']} paths quoted, checked")
     return findings
 
 

@@ -14,7 +14,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 from wbplot import cli as plot_cli  # noqa: E402
-from wbplot.common import InputError, write_text_atomic  # noqa: E402
+from wbplot.common import InputError, summary_line, write_text_atomic  # noqa: E402
 from wbplot import sweep as wsweep  # noqa: E402
 from wbplot import recipes  # noqa: E402
 from wbplot.claims import strip_markers  # noqa: E402
@@ -147,17 +147,6 @@ def plot(report, lab, args):
     return True
 
 
-def summary_of(stdout):
-    lines = [s for s in stdout.splitlines() if s.strip()]
-    if not lines:
-        return None
-    try:
-        j = json.loads(lines[-1])
-    except json.JSONDecodeError:
-        return None
-    return j if isinstance(j, dict) else None
-
-
 def solution_run(report, lab, exe, argv_tail, what, timeout, save=None):
     """One run of a solution executable; a failure is an exit status other than 0. With
     `save`, the summary is also written to that file (tools/claims reads it)."""
@@ -166,7 +155,7 @@ def solution_run(report, lab, exe, argv_tail, what, timeout, save=None):
         why = err.strip().splitlines()[-1] if err.strip() else f"exit status {status}"
         report.fail(f"{lab}: {what}: {why}" + (f" (exit status {status})" if status else ""))
         return None, why
-    s = summary_of(out)
+    s = summary_line(out)
     if s is None and "--sweep" not in argv_tail:
         report.fail(f"{lab}: {what}: no JSON summary on the last line of stdout")
         return None, "no summary line"

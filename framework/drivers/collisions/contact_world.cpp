@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <tuple>
 
 #include "collide_particles.h"
 #include "collide_plane.h"
@@ -35,9 +37,36 @@ constexpr double kSkin = 1e-9;
 constexpr double kSlopFraction = 0.01;
 constexpr double kPushBeta = 0.2;
 constexpr int kAccumulatedIterations = 10;  // default "iterations" of the accumulated solver
+// The cost model's rates of the collision phase (docs/scenes.md, "Cost"), measured
+// with the solution's functions on the default scenes (the pile: 10^4 discs, 10.5
+// ms per step): the phase's fixed work per step, the broad phase per particle
+// (grid_pairs: 65 ns at 10^4 spread discs), per estimated candidate pair (the
+// estimate counts cells 4 radii wide: grid_pairs reports about 2/5 of them, the
+// narrow phase keeps most of those) its narrow test, the accumulated solver's
+// bookkeeping (prepare, warm start, the kept totals' table), and its impulse in
+// one pass or iteration; one particle against one plane in one pass.
+constexpr double kSecondsPerContactStep = 0.3e-6;
+constexpr double kSecondsPerBroadParticle = 40e-9;
+constexpr double kSecondsPerCandidate = 10e-9;
+constexpr double kSecondsPerKeptContact = 55e-9;
+constexpr double kSecondsPerContactPass = 7e-9;
+constexpr double kSecondsPerPlaneTest = 4e-9;
+// Memory: the pair lists (grid_pairs reports about 2/5 of the estimate: 8 bytes
+// each in the candidates and the contacts) up to the running check's limit, and a
+// solved contact of the accumulated solver (its Contact, key and kept totals).
+constexpr double kBytesPerEstimatedPair = 0.4 * 2 * 8;
+constexpr double kBytesPerSolvedContact = 120;
+
 // The stub warning compares grid_pairs (C3) with the brute force only up to this many
 // particles: 4000^2 / 2 = 8e6 pair tests, a few milliseconds once per run.
 constexpr Eigen::Index kWarnBruteForceMax = 4000;
+
+// A length for a message: three significant digits (the run's numbers are in its outputs).
+std::string three_digits(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -116,13 +145,12 @@ std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings)
   return planes;
 }
 
-double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
+namespace {
+
+// The estimate on cells given as doubles (any finite positions): sorted, grouped,
+// each group's neighbours found by binary search. O(n log n).
+double pairs_on_sorted_cells(const Mat2X& x, double size) {
   const Eigen::Index n = x.cols();
-  if (n < 2 || !(radius.maxCoeff() > 0)) return 0;
-  // Cells as wide as the largest grown diameter (a radius plus a margin of at
-  // most the largest radius), as grid_pairs may use. Cell coordinates stay
-  // doubles: no conversion of a huge or infinite quotient to an integer.
-  const double size = 4 * radius.maxCoeff();
   std::vector<std::pair<double, double>> cells(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
     cells[std::size_t(i)] = {std::floor(x(1, i) / size), std::floor(x(0, i) / size)};
@@ -153,36 +181,168 @@ double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
   return total;
 }
 
+// The same on integer cells (|cell| < 2^30 in each coordinate), counted in a
+// hash table: O(n), what the broad phase's running check can afford every step.
+double pairs_on_hashed_cells(const Mat2X& x, double size) {
+  const Eigen::Index n = x.cols();
+  constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  std::size_t slots = 16;
+  while (slots < 2 * std::size_t(n)) slots *= 2;
+  std::vector<std::uint64_t> keys(slots, kEmpty);
+  std::vector<double> counts(slots, 0.0);
+  const auto key = [](std::int64_t row, std::int64_t col) {
+    return (std::uint64_t(row + (std::int64_t(1) << 31)) << 32) |
+           std::uint64_t(col + (std::int64_t(1) << 31));
+  };
+  const auto slot = [&](std::uint64_t k) {
+    std::size_t s = std::size_t((k * 0x9e3779b97f4a7c15ULL) >> 20) & (slots - 1);
+    while (keys[s] != kEmpty && keys[s] != k) s = (s + 1) & (slots - 1);
+    return s;
+  };
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::uint64_t k =
+        key(std::int64_t(std::floor(x(1, i) / size)), std::int64_t(std::floor(x(0, i) / size)));
+    const std::size_t s = slot(k);
+    keys[s] = k;
+    counts[s] += 1.0;
+  }
+  const auto count = [&](std::int64_t row, std::int64_t col) {
+    const std::size_t s = slot(key(row, col));
+    return keys[s] == kEmpty ? 0.0 : counts[s];
+  };
+  double total = 0;
+  for (std::size_t s = 0; s < slots; ++s) {
+    if (keys[s] == kEmpty) continue;
+    const double c = counts[s];
+    const auto row = std::int64_t(keys[s] >> 32) - (std::int64_t(1) << 31);
+    const auto col = std::int64_t(keys[s] & 0xffffffffULL) - (std::int64_t(1) << 31);
+    total += c * (c - 1) / 2;
+    total += c * (count(row, col + 1) + count(row + 1, col - 1) + count(row + 1, col) +
+                  count(row + 1, col + 1));
+  }
+  return total;
+}
+
+}  // namespace
+
+double candidate_pairs_estimate(const Mat2X& x, const VecX& radius) {
+  const Eigen::Index n = x.cols();
+  if (n < 2 || !(radius.maxCoeff() > 0)) return 0;
+  // Cells as wide as the largest grown diameter (a radius plus a margin of at
+  // most the largest radius), as grid_pairs may use. Positions whose cells are
+  // beyond 2^30 (discs near 1e308) are counted on cells kept as doubles: no
+  // conversion of a huge quotient to an integer.
+  const double size = 4 * radius.maxCoeff();
+  const double reach = std::max(std::abs(x.minCoeff()), std::abs(x.maxCoeff())) / size;
+  if (reach < 0x1p30 - 2) return pairs_on_hashed_cells(x, size);
+  return pairs_on_sorted_cells(x, size);
+}
+
+double pairs_per_step(const Scene& scene) {
+  if (scene.n() < 2 || !(scene.radius.maxCoeff() > 0)) return 0;
+  return candidate_pairs_estimate(scene.x, scene.radius);
+}
+
+void check_radii(const Scene& scene) {
+  // The collision phase forms 4 max(radius) (its cells), r_i + r_j and (r_i + r_j)^2
+  // (the narrow phase), and moves particles by overlaps: all finite and resolvable
+  // below kMaxRadius.
+  for (Eigen::Index i = 0; i < scene.n(); ++i) {
+    if (scene.radius[i] <= kMaxRadius) continue;
+    throw InputError(scene.file + ": " + particle_key(scene, i) + ".radius: got " +
+                     num(scene.radius[i]) +
+                     ", expected a radius of at most 1e150 m (the collision phase squares sums "
+                     "of radii: 4 max(radius) and (r_i + r_j)^2 must stay finite)");
+  }
+}
+
+InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
+                                 const std::vector<PlaneDef>& planes) {
+  InitialOverlaps o;
+  const auto note = [&](double depth, int a, int b) {
+    if (!(depth > kSkin)) return;  // touching is not overlapping (and NaN is neither)
+    ++o.count;
+    if (depth > o.deepest) o.deepest = depth, o.a = a, o.b = b;
+  };
+  const Eigen::Index n = x.cols();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      const PlaneDef& p = planes[k];
+      const double d = (x.col(i) - p.point).dot(p.n);
+      if (d < -p.thickness) continue;  // beyond a thin wall's back face: not in contact
+      note(radius[i] - d, int(i), -1 - int(k));
+    }
+  }
+  if (n < 2 || !(radius.maxCoeff() > 0)) return o;
+  // The pairs of a uniform grid of cells 4 max(radius) wide, as candidate_pairs_estimate
+  // counts them (one step's broad phase as the cost model estimates it), the particles
+  // sorted by cell.
+  const double size = 4 * radius.maxCoeff();
+  std::vector<std::tuple<double, double, int>> cells(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    cells[std::size_t(i)] = {std::floor(x(1, i) / size), std::floor(x(0, i) / size), int(i)};
+  }
+  std::sort(cells.begin(), cells.end());
+  const auto first_in = [&](double row, double col) {
+    return std::lower_bound(cells.begin(), cells.end(), std::make_tuple(row, col, -1));
+  };
+  const auto test = [&](int i, int j) {
+    note(radius[i] + radius[j] - (x.col(i) - x.col(j)).norm(), std::min(i, j), std::max(i, j));
+  };
+  for (auto it = cells.begin(); it != cells.end(); ++it) {
+    const auto [row, col, i] = *it;
+    for (auto jt = std::next(it);
+         jt != cells.end() && std::get<0>(*jt) == row && std::get<1>(*jt) == col; ++jt)
+      test(i, std::get<2>(*jt));
+    // The forward neighbours, each once and never the particle's own cell: beyond 2^53
+    // cells from the origin col + 1 == col (discs near 1e308), and a cell that is its
+    // own neighbour would test every particle in it against itself.
+    std::pair<double, double> next[4];
+    int count = 0;
+    for (const std::pair<double, double>& cell : {std::pair<double, double>{row, col + 1},
+                                                  {row + 1, col - 1},
+                                                  {row + 1, col},
+                                                  {row + 1, col + 1}}) {
+      if (cell == std::make_pair(row, col) || std::find(next, next + count, cell) != next + count)
+        continue;
+      next[count++] = cell;
+    }
+    for (int q = 0; q < count; ++q) {
+      const auto [r, c] = next[q];
+      for (auto jt = first_in(r, c);
+           jt != cells.end() && std::get<0>(*jt) == r && std::get<1>(*jt) == c; ++jt)
+        test(i, std::get<2>(*jt));
+    }
+  }
+  return o;
+}
+
 ContactWorld::ContactWorld(const Scene& scene)
     : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
-  cost_warnings = forces_.cost_warnings;
+  check_radii(scene);
   planes_ = read_planes(scene, settings_);
   w_ = m_.cwiseInverse();
   any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
-  // The work of one step, estimated before the first: every particle against
-  // every plane in every pass, and the broad phase's candidate pairs.
-  const double passes =
-      settings_.iterations + (settings_.shock ? 2 : 0) + (settings_.ccd ? 1 : 0);
-  const double plane_tests = double(scene.n()) * double(planes_.size()) * passes;
-  if (plane_tests > kMaxPlaneTests) {
-    throw InputError(scene.file + ": planes: " + std::to_string(scene.n()) + " particles x " +
-                     std::to_string(planes_.size()) + " planes x " + num(passes) +
-                     " passes (contact.iterations, + 2 with shock_propagation, + 1 with ccd) = " +
-                     num(plane_tests) + " particle-plane tests per step, expected at most " +
-                     num(kMaxPlaneTests) + " (minutes per step)");
-  }
-  const double pairs = any_radius_ ? candidate_pairs_estimate(scene.x, r_) : 0.0;
-  if (pairs > kMaxCandidatePairs) {
-    throw InputError(scene.file + ": particles: their initial positions and radii give about " +
-                     num(pairs) +
-                     " candidate pairs for the broad phase (particles in neighbouring cells of "
-                     "4 largest radii), expected at most " +
-                     num(kMaxCandidatePairs) + " (spread them out or use fewer)");
-  }
-  if (plane_tests + pairs * settings_.iterations > kSlowContactWork) {
-    cost_warnings.push_back(scene.file + ": about " + num(plane_tests) +
-                            " particle-plane tests and " + num(pairs * settings_.iterations) +
-                            " pair tests per step: expect seconds per step");
+  // The running check of the broad phase's work (docs/scenes.md, "Cost").
+  pairs_ = WorkMeter(scene.file, "candidate pairs (estimated)",
+                     std::max(pairs_per_step(scene), kPilePairs * double(scene.n())),
+                     "the particles crowd together far more than in their initial state "
+                     "(a pile of equal discs has about " +
+                         num(kPilePairs) +
+                         " per particle); spread them out, use fewer, or smaller radii");
+  // A scene that starts with overlaps is said once, with the count and the deepest.
+  const InitialOverlaps o = initial_overlaps(scene.x, r_, planes_);
+  if (o.count > 0) {
+    const std::string with =
+        o.b >= 0
+            ? "particles " + std::to_string(o.a) + " and " + std::to_string(o.b)
+            : "particle " + std::to_string(o.a) + " and planes[" + std::to_string(-1 - o.b) + "]";
+    initial_notes_.push_back(scene.file + ": " + std::to_string(o.count) +
+                             (o.count == 1 ? " overlap" : " overlaps") +
+                             " at t = 0 (discs with discs or planes), the deepest " +
+                             three_digits(o.deepest) + " m (" + with +
+                             "): the collision phase pushes them apart by moving positions "
+                             "only, which adds no kinetic energy");
   }
   // "Up" for the stacking pass: against the sum of the uniform gravity terms
   // (each already checked by ForceWorld), summed scaled by 2^-30 so that the
@@ -230,11 +390,16 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   // is the distance two particles close in one step (2 h max |v|), at most
   // the largest radius.
   contacts_.clear();
+  pairs_.next_step();
   if (any_radius_ && x.cols() >= 2) {
     if (timing) t0 = Clock::now();
     const double margin =
         std::min(2 * h * std::sqrt(v.colwise().squaredNorm().maxCoeff()), r_.maxCoeff());
     r_grown_ = r_.array() + margin;
+    // The work the broad phase may do, counted before it is done (and so before
+    // its pairs are allocated) when all pairs together could pass the limit.
+    const double n = double(x.cols());
+    if (pairs_.over(n * (n - 1) / 2)) pairs_.count(candidate_pairs_estimate(x, r_grown_));
     // grid_pairs is handed positions whose span, plus the largest diameter,
     // is finite in each coordinate. Positions near +-1e308 (or radii near it)
     // are scaled by 1/8 first (span / 8 + 4 radii / 8 < 1.8e308): an exact
@@ -360,9 +525,21 @@ void ContactWorld::pair_response(double h, int i, double mj, int j, double e, Ma
 }
 
 // The accumulated solver (C5): this step's contacts, each with the totals it kept
-// from the last step; prepare and warm start every contact, `iterations` passes of
-// solve_contact; the impulses act before this step's position update (x0 + h dv);
-// then what overlap is left beyond the slop is removed by moving positions only.
+// from the last step, in two phases.
+//   Impacts, one at a time: `iterations` passes over the contacts with e > 0; each one
+//   closing faster than resting_speed gets C5's one-shot impulse (prepare_contact on
+//   the current velocities with no stored totals, then one solve_contact): the
+//   restitution law on its current approach, as C1 and C2 apply it. Each such impulse
+//   reflects one contact's normal velocity (times e), so an elastic impact keeps the
+//   kinetic energy exactly however many contacts meet in one step. Solved together
+//   instead, with restitution targets taken before the step, a cluster of contacts
+//   (discs that touch two others at once, overlaps at t = 0) ends its iterations off
+//   the targets and gains or loses energy: +0.9 % for an elastic gas in 50 steps.
+//   Contacts, together: prepare every contact on the velocities the impacts left,
+//   warm start with the last step's totals, `iterations` passes of solve_contact;
+//   these totals carry resting contact from step to step and are kept.
+// The impulses act before this step's position update (x0 + h dv); then what overlap
+// is left beyond the slop is removed by moving positions only.
 void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
   // Keys: a * M + b for a pair, a * M + n + k for particle a and plane k.
   const std::uint64_t n = std::uint64_t(x.cols()), M = n + planes_.size();
@@ -402,6 +579,21 @@ void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
     }
   }
   const Mat2X v0 = v;
+  impacted_.assign(solved_.size(), 0);
+  // Impacts, one at a time (only scenes with restitution pay for this phase).
+  const bool elastic =
+      std::any_of(restitution_.begin(), restitution_.end(), [](double e) { return e > 0; });
+  for (int it = 0; elastic && it < settings_.iterations; ++it) {
+    for (std::size_t c = 0; c < solved_.size(); ++c) {
+      if (!(restitution_[c] > 0)) continue;
+      Contact one = solved_[c];
+      one.Pn = 0, one.Pt = 0;
+      prepare_contact(w_, v, restitution_[c], settings_.rest_speed, one);
+      if (!(one.bias > 0)) continue;  // not an impact (any more)
+      impacted_[c] |= solve_contact(w_, one, v) > 0;
+    }
+  }
+  // Contacts, together.
   for (std::size_t c = 0; c < solved_.size(); ++c) {
     prepare_contact(w_, v, restitution_[c], settings_.rest_speed, solved_[c]);
   }
@@ -418,7 +610,7 @@ void ContactWorld::accumulated(double h, Mat2X& x, Mat2X& v) const {
     const Vec2 rel = k.b >= 0 ? Vec2(v0.col(k.a) - v0.col(k.b)) : Vec2(v0.col(k.a));
     const bool approaching = rel.dot(k.n) < 0;
     solver_hits_.seen += approaching;
-    solver_hits_.answered += approaching && k.Pn > 0;
+    solver_hits_.answered += approaching && (k.Pn > 0 || impacted_[c]);
     kept_[keys_[c]] = {k.Pn, k.Pt};
   }
   push_apart(x);
@@ -502,8 +694,42 @@ std::vector<std::string> ContactWorld::warnings(const Mat2X& x, const Mat2X& v) 
   return out;
 }
 
+void contact_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
+  forces_step_cost(scene, it, c);
+  if (!scene.doc.contains("planes") && !scene.doc.contains("contact")) return;
+  ContactSettings settings;
+  const std::vector<PlaneDef> planes = read_planes(scene, settings);
+  const double n = double(scene.n()), np = double(planes.size());
+  const double pairs = pairs_per_step(scene);
+  const bool accumulated = settings.solver == Solver::kAccumulated;
+  const double passes = settings.iterations + (settings.shock ? 2 : 0) + (settings.ccd ? 1 : 0);
+  const std::string iters =
+      " x " + std::to_string(settings.iterations) + (accumulated ? " iterations" : " passes");
+  c.step.add("collision phase: its fixed work", "", 1, kSecondsPerContactStep);
+  c.step.add("broad phase: " + std::to_string(scene.n()) + " particles", "particles", n,
+             kSecondsPerBroadParticle);
+  if (pairs > 0) {
+    c.step.add("candidate pairs: about " + num(std::round(pairs)) + " per step", "particles",
+               pairs, kSecondsPerCandidate,
+               kOverrunFactor * std::max(pairs, kPilePairs * n) * kBytesPerEstimatedPair +
+                   (accumulated ? pairs * kBytesPerSolvedContact : 0.0));
+    c.step.add("contact impulses: " + num(std::round(pairs)) + " candidate pairs" + iters,
+               "contact.iterations", pairs * settings.iterations, kSecondsPerContactPass);
+    if (accumulated) {
+      c.step.add("contact bookkeeping: " + num(std::round(pairs)) + " candidate pairs",
+                 "particles", pairs, kSecondsPerKeptContact);
+    }
+  }
+  if (np > 0) {
+    c.step.add("plane tests: " + std::to_string(scene.n()) + " particles x " + num(np) +
+                   " planes x " + num(accumulated ? 1 : passes) + " passes",
+               "planes", n * np * (accumulated ? 1 : passes), kSecondsPerPlaneTest);
+  }
+}
+
 void use_collisions(LabInfo& info) {
   use_forces(info);
+  info.step_cost = contact_step_cost;
   info.scene_keys.push_back("planes");
   info.scene_keys.push_back("contact");
   info.make_world = [](const Scene& scene) -> std::unique_ptr<World> {

@@ -60,20 +60,40 @@ struct ContactSettings {
   bool shock = false;     // "shock_propagation": a last, bottom-up pass for stacks
 };
 
-// Limits of one collision step, checked on the initial state before the first
-// step (docs/scenes.md, "collisions"): particle-plane tests per step
-// (particles x planes x passes), the broad phase's candidate pairs (estimated
-// by candidate_pairs_estimate: 8 bytes each, twice, and a test per pass), and
-// the work above which a run warns that its steps are slow. Measured with the
-// solution: 10^7 candidate pairs take 2.6 s of CPU and 212 MB for one step.
-constexpr double kMaxPlaneTests = 1e9;
-constexpr double kMaxCandidatePairs = 1e7;
-constexpr double kSlowContactWork = 1e7;
+// The collision phase's part of the cost model (docs/scenes.md, "Cost"): the
+// candidate pairs it expects per step are the initial state's estimate, and at
+// least kPilePairs per particle (discs of one radius piled up: a cell of 4 radii
+// holds about 4.6 of them, so a particle meets about 21 in its own and the
+// neighbouring cells). A step whose broad phase would pass kOverrunFactor times
+// that stops the run (WorkMeter), before its pairs are made.
+constexpr double kPilePairs = 24;
+// A radius above this is refused: the phase forms 4 max(radius) and
+// (r_i + r_j)^2, finite below 1e153 with room.
+constexpr double kMaxRadius = 1e150;
 
 // An upper bound of the pairs a uniform grid of cells 4 max(radius) wide
 // tests (each particle against its own and the neighbouring cells), in
 // O(n log n) time and O(n) memory, defined for any finite positions.
 double candidate_pairs_estimate(const Mat2X& x, const VecX& radius);
+
+// The candidate pairs per step the cost model expects of a scene (above).
+double pairs_per_step(const Scene& scene);
+
+// The cost model's terms of a collisions scene for one integrator: its forces
+// (forces_step_cost) and the collision phase after every step.
+void contact_step_cost(const Scene& scene, const Integrator& it, StepCost& c);
+
+// Overlaps at t = 0 (docs/scenes.md, "collisions"): pairs of discs, and discs with planes,
+// that overlap by more than the contact skin; the deepest (m) and what it joins (particles
+// a < b, or particle a and plane -1 - b when b < 0). A scene that starts with overlaps warns
+// once with the count and the deepest.
+struct InitialOverlaps {
+  long count = 0;
+  double deepest = 0;
+  int a = -1, b = -1;
+};
+InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
+                                 const std::vector<PlaneDef>& planes);
 
 // Reads "planes" and "contact" (throws InputError naming the key).
 std::vector<PlaneDef> read_planes(const Scene& scene, ContactSettings& settings);
@@ -89,10 +109,13 @@ class ContactWorld : public World {
   explicit ContactWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return forces_.dynamics(); }
   Energy energy(const Mat2X& x, const Mat2X& v) const override { return forces_.energy(x, v); }
+  std::vector<const Force*> terms() const override { return forces_.terms(); }
   void after_step(double h, Mat2X& x, Mat2X& v) const override;
   // A stub's signature: contacts that approached and got no impulse from C1,
   // C2 or C4 in the whole run, a broad phase (C3) that misses pairs.
   std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
+  // The scene's overlaps at t = 0, if any (initial_overlaps): one sentence.
+  std::vector<std::string> initial_notes() const override { return initial_notes_; }
 
   const std::vector<PlaneDef>& planes() const { return planes_; }
   const ContactSettings& settings() const { return settings_; }
@@ -115,10 +138,12 @@ class ContactWorld : public World {
   std::vector<PlaneDef> planes_;
   ContactSettings settings_;
   bool any_radius_ = false;
+  std::vector<std::string> initial_notes_;
   Vec2 up_ = Vec2::Zero();  // against the scene's uniform gravity (0 without one)
   bool timing_ = false;
   mutable PhaseTimes times_;
-  mutable Mat2X x_prev_;  // positions after the previous step (continuous check)
+  mutable WorkMeter pairs_;  // the broad phase's candidate pairs, step by step
+  mutable Mat2X x_prev_;     // positions after the previous step (continuous check)
   mutable Pairs candidates_, contacts_, sorted_;
   mutable std::vector<std::pair<double, int>> order_;  // (height, contact) for shock_pass
   // The accumulated solver: this step's contacts, and every contact's totals (Pn, Pt)
@@ -127,7 +152,8 @@ class ContactWorld : public World {
   mutable std::vector<Contact> solved_;
   mutable std::vector<std::uint64_t> keys_;
   mutable std::vector<double> restitution_;
-  mutable std::vector<int> plane_;  // the plane of each contact, -1 for a pair
+  mutable std::vector<int> plane_;      // the plane of each contact, -1 for a pair
+  mutable std::vector<char> impacted_;  // the contact got an impact's impulse this step
   mutable std::unordered_map<std::uint64_t, std::pair<double, double>> kept_, next_;
   // Approaching contacts seen, and those the student's function answered
   // with an impulse: planes (C1), pairs (C2), sliding with friction (C4), the

@@ -21,8 +21,35 @@ namespace {
 
 const Range kNonNegative{0.0};
 const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
-// Above this many particles an all-pairs force warns that each step is slow.
-constexpr Eigen::Index kQuadraticWarnParticles = 5000;
+
+// The cost model's rates of the force terms (docs/scenes.md, "Cost"), measured
+// with the solution's functions: seconds per particle (or pair, spring) per force
+// evaluation, and per potential evaluation (the divergence rule's energy, every
+// step). accumulate_forces' own work (zeroing f, a = f/m) is kSecondsPerParticle.
+constexpr double kSecondsPerParticle = 4e-9;
+constexpr double kSecondsPerGravity = 2e-9;
+constexpr double kSecondsPerNewtonPair = 5e-9;
+constexpr double kSecondsPerNewtonPotentialPair = 6e-9;
+constexpr double kSecondsPerAttractor = 6e-9;
+constexpr double kSecondsPerDamping = 1e-9;
+constexpr double kSecondsPerSpring = 12e-9;
+constexpr double kSecondsPerSpringPotential = 6e-9;
+constexpr double kSecondsPerBoidsPair = 4e-9;
+constexpr double kSecondsPerVortex = 6e-9;
+constexpr double kSecondsPerNoise = 40e-9;        // one psi: 4 lattice gradients and the fade
+constexpr double kSecondsPerObstacle = 3e-9;      // one disc's distance, in one psi
+constexpr double kBytesPerSpring = 56;            // SpringDef
+constexpr double kSecondsPerSpringBuilt = 60e-9;  // made from its entry or generator
+
+// Curl noise (docs/scenes.md, forces): a position is resolvable when its lattice
+// coordinate x / scale has at least a cell's worth of bits below 2^53 (floor and
+// the cell offset exact), and the difference step h when it moves the largest
+// position by at least 2^-36 of it (the central difference keeps ~16 bits).
+constexpr double kMaxLatticeCoordinate = 0x1p40;
+constexpr double kMinStepFraction = 0x1p-36;
+// The largest |grad N| of the gradient noise (N is quintic-faded gradient noise of
+// unit gradients: |grad N| < 1 + 2 * 15/8 on a cell, a bound with room).
+constexpr double kNoiseGradientBound = 5.0;
 
 class UniformGravity : public Force {
  public:
@@ -34,6 +61,9 @@ class UniformGravity : public Force {
     return -(g_.transpose() * x).dot(m);  // -sum m_i g . x_i
   }
   std::string type() const override { return "gravity"; }
+  void bound(const Mat2X&, const Mat2X&, const VecX& m, VecX& b) const override {
+    b += g_.cwiseAbs().maxCoeff() * m;
+  }
 
  private:
   Vec2 g_;
@@ -56,6 +86,19 @@ class NewtonGravity : public Force {
     return V;
   }
   std::string type() const override { return "newton"; }
+  // |f_i| <= sum_j G m_i m_j / (r^2 + eps^2) (a pair at one point without softening
+  // has no direction: skipped, as in the potential).
+  void bound(const Mat2X& x, const Mat2X&, const VecX& m, VecX& b) const override {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      for (Eigen::Index j = i + 1; j < x.cols(); ++j) {
+        const double s = (x.col(j) - x.col(i)).squaredNorm() + eps_ * eps_;
+        if (!(s > 0)) continue;
+        const double f = G_ * m[i] * m[j] / s;
+        b[i] += f;
+        b[j] += f;
+      }
+    }
+  }
 
  private:
   double G_, eps_;
@@ -76,6 +119,12 @@ class Attractor : public Force {
     return V;
   }
   std::string type() const override { return "attractor"; }
+  void bound(const Mat2X& x, const Mat2X&, const VecX& m, VecX& b) const override {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      const double r2 = (x.col(i) - c_).squaredNorm();
+      if (r2 > 0) b[i] += GM_ * m[i] / r2;
+    }
+  }
 
  private:
   Vec2 c_;
@@ -89,6 +138,9 @@ class Damping : public Force {
     add_damping(v, b_, f);
   }
   std::string type() const override { return "damping"; }
+  void bound(const Mat2X&, const Mat2X& v, const VecX&, VecX& b) const override {
+    b += b_ * v.cwiseAbs().colwise().maxCoeff().transpose();
+  }
 
  private:
   double b_;
@@ -101,6 +153,25 @@ class Boids : public Force {
     add_boids(x, v, m, p_, f);
   }
   std::string type() const override { return "boids"; }
+  // |s_i| <= w_sep sum_{0 < r_ij < R_sep} 1/r_ij + w_align (max_j |v_j| + |v_i|)
+  //          + w_coh R_coh + goal_weight, and f_i = m_i s_i.
+  void bound(const Mat2X& x, const Mat2X& v, const VecX& m, VecX& b) const override {
+    const Eigen::Index n = x.cols();
+    const double vmax = n > 0 ? v.colwise().norm().maxCoeff() : 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sep = 0;
+      if (p_.separation.weight > 0) {
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const double r = (x.col(i) - x.col(j)).norm();
+          if (r > 0 && r < p_.separation.radius) sep += 1.0 / r;
+        }
+      }
+      const double s = p_.separation.weight * sep +
+                       p_.alignment.weight * (vmax + v.col(i).norm()) +
+                       p_.cohesion.weight * p_.cohesion.radius + p_.goal_weight;
+      b[i] += m[i] * s;
+    }
+  }
 
  private:
   BoidsParams p_;
@@ -113,6 +184,12 @@ class Vortex : public Force {
     add_vortex(x, v, p_, f);
   }
   std::string type() const override { return "vortex"; }
+  // |u| <= |omega| R (the Rankine vortex is fastest at its core's edge).
+  void bound(const Mat2X&, const Mat2X& v, const VecX&, VecX& b) const override {
+    b += (p_.drag * (std::abs(p_.omega) * p_.core + v.colwise().norm().array()))
+             .matrix()
+             .transpose();
+  }
 
  private:
   VortexParams p_;
@@ -125,6 +202,16 @@ class CurlNoise : public Force {
     add_curl_noise(x, v, p_, f);
   }
   std::string type() const override { return "curl-noise"; }
+  // |u| <= |grad psi| + (15/8) |psi| / d0 (the ramp's slope) with
+  // |grad psi| <= 5 U / 0.883 + |wind| and |psi| <= U L / 0.883 + |wind| |x|.
+  void bound(const Mat2X& x, const Mat2X& v, const VecX&, VecX& b) const override {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      const double psi = k_ + wind_ * x.col(i).norm();
+      const double u = kNoiseGradientBound * k_ / scale_ + wind_ + 15.0 / 8.0 * psi / p_.ramp;
+      b[i] += p_.b * (u + v.col(i).norm());
+    }
+  }
+  double k_ = 0, scale_ = 1, wind_ = 0;  // U L / 0.883, L, |wind|: for the bound
 
  private:
   CurlNoiseParams p_;
@@ -140,6 +227,38 @@ Eigen::Index particle_index(const JsonObject& o, const char* key, std::int64_t n
     o.fail(key, o.has(key) ? &o.raw().at(key) : nullptr,
            "a particle index, but the scene has no particles");
   return Eigen::Index(o.integer(key, 0, n - 1));
+}
+
+// What a curl-noise entry derives from its numbers, finite and resolvable
+// (docs/scenes.md, forces): the difference step h > 0; the potential's size
+// U L / 0.883; every particle's lattice coordinate x / L, at most 2^40 (so that
+// floor and the cell offset are exact); h at least 2^-36 of the largest
+// coordinate (so that x + h differs from x by h to 16 bits).
+void check_curl_noise(const JsonObject& o, const Scene& scene, double amplitude, double scale,
+                      const CurlNoiseParams& p) {
+  const char* step_key = scale <= p.ramp ? "scale" : "ramp";
+  const json* step_value = o.has(step_key) ? &o.raw().at(step_key) : &o.raw().at("scale");
+  if (!(p.h > 0)) {
+    o.fail(step_key, step_value,
+           "a length whose 10^-4 (the curl's difference step) is still a positive number");
+  }
+  if (!std::isfinite(amplitude * scale / kNoiseGradientRms)) {
+    o.fail("amplitude", &o.raw().at("amplitude"),
+           "an amplitude whose product with scale (" + num(scale) +
+               "), the potential's size U L / 0.883, is finite");
+  }
+  const double xmax = scene.n() > 0 ? scene.x.cwiseAbs().maxCoeff() : 0.0;
+  if (!(xmax / scale <= kMaxLatticeCoordinate)) {
+    o.fail("scale", &o.raw().at("scale"),
+           "a scale of at least 2^-40 times the largest particle coordinate (" + num(xmax) +
+               " m), so that x / scale is a lattice coordinate the noise resolves");
+  }
+  if (!(p.h >= kMinStepFraction * xmax)) {
+    o.fail(step_key, step_value,
+           "a length whose 10^-4, the curl's difference step " + num(p.h) +
+               " m, is at least 2^-36 of the largest particle coordinate (" + num(xmax) +
+               " m), so that x + h differs from x (else the flow silently vanishes)");
+  }
 }
 
 BoidRule boid_rule(const JsonObject& o, const char* key) {
@@ -167,6 +286,34 @@ void Springs::add(const Mat2X& x, const Mat2X& v, const VecX&, Mat2X& f) const {
   }
 }
 
+void Springs::bound(const Mat2X& x, const Mat2X& v, const VecX&, VecX& b) const {
+  for (const SpringDef& s : springs) {
+    const Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
+    const Vec2 vj = s.j < 0 ? Vec2::Zero() : Vec2(v.col(s.j));
+    const double f =
+        s.k * std::abs((x.col(s.i) - xj).norm() - s.rest) + s.kd * (v.col(s.i) - vj).norm();
+    b[s.i] += f;
+    if (s.j >= 0) b[s.j] += f;
+  }
+}
+
+std::string Springs::blame(const Mat2X& x, const Mat2X& v) const {
+  // The first spring whose force or energy is not finite, and the entry it came from.
+  for (std::size_t k = 0; k < springs.size(); ++k) {
+    const SpringDef& s = springs[k];
+    const Vec2 xj = s.j < 0 ? s.anchor : Vec2(x.col(s.j));
+    const Vec2 vj = s.j < 0 ? Vec2::Zero() : Vec2(v.col(s.j));
+    const double stretch = (x.col(s.i) - xj).norm() - s.rest;
+    const double f = s.k * std::abs(stretch) + s.kd * (v.col(s.i) - vj).norm();
+    if (std::isfinite(f) && std::isfinite(0.5 * s.k * stretch * stretch)) continue;
+    std::string where = key;
+    for (const auto& [first, entry] : origins)
+      if (first <= k) where = entry;
+    return where;
+  }
+  return key;
+}
+
 double Springs::potential(const Mat2X& x, const VecX&) const {
   double V = 0;
   for (const SpringDef& s : springs) {
@@ -183,7 +330,7 @@ const std::vector<std::string>& force_types() {
   return types;
 }
 
-ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
+ForceList build_forces(const Scene& scene) {
   ForceList out;
   JsonObject top(scene.file, scene.doc, "");
   const json& list = top.array_or_empty("forces");
@@ -191,14 +338,7 @@ ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     JsonObject o = top.element("forces", k);
     std::string type = o.string("type");
-    if ((type == "newton" || type == "boids") && scene.n() > kQuadraticWarnParticles &&
-        warnings) {
-      const double n = double(scene.n());
-      warnings->push_back(one_line(scene.file) + ": " + o.path() + " (" + type +
-                          ") costs O(n^2): " + num(n * (n - 1) / 2) +
-                          " particle pairs per force evaluation for " +
-                          std::to_string(scene.n()) + " particles; expect slow steps");
-    }
+    const std::size_t before = out.size();
     if (type == "gravity") {
       o.only_keys({"type", "g"});
       out.push_back(std::make_unique<UniformGravity>(o.vec2("g")));
@@ -238,6 +378,7 @@ ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
         out.push_back(std::make_unique<Springs>());
         springs = static_cast<Springs*>(out.back().get());
       }
+      springs->origins.push_back({springs->springs.size(), o.path()});
       springs->springs.push_back(s);
     } else if (type == "boids") {
       o.only_keys({"type", "separation", "alignment", "cohesion", "goal", "goal_weight"});
@@ -263,7 +404,8 @@ ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
       const double amplitude = o.number("amplitude", kNonNegative);
       const double scale = o.number("scale", kPositive);
       const auto seed = std::uint64_t(o.integer("seed", 0, std::int64_t(1) << 53));
-      p.psi = noise_potential(seed, amplitude, scale, o.vec2_or("wind", Vec2::Zero()));
+      const Vec2 wind = o.vec2_or("wind", Vec2::Zero());
+      p.psi = noise_potential(seed, amplitude, scale, wind);
       p.ramp = o.number_or("ramp", scale, kPositive);
       const json& discs = o.array_or_empty("obstacles");
       for (std::size_t k = 0; k < discs.size(); ++k) {
@@ -272,17 +414,18 @@ ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings) {
         p.obstacles.push_back({d.vec2("center"), d.number("radius", kPositive)});
       }
       p.h = kCurlStepFraction * std::min(scale, p.ramp);
-      if (!(p.h > 0)) {
-        o.fail(scale <= p.ramp ? "scale" : "ramp",
-               &o.raw().at(scale <= p.ramp ? "scale" : "ramp"),
-               "a length whose 10^-4 (the curl's difference step) is still a positive number");
-      }
-      out.push_back(std::make_unique<CurlNoise>(std::move(p)));
+      check_curl_noise(o, scene, amplitude, scale, p);
+      auto term = std::make_unique<CurlNoise>(std::move(p));
+      term->k_ = amplitude * scale / kNoiseGradientRms;
+      term->scale_ = scale;
+      term->wind_ = wind.norm();
+      out.push_back(std::move(term));
     } else {
       std::string known;
       for (const auto& t : force_types()) known += (known.empty() ? "" : ", ") + t;
       o.fail("type", &o.raw().at("type"), "one of: " + known);
     }
+    if (out.size() > before) out.back()->key = o.path() + " (" + type + ")";
   }
   return out;
 }
@@ -320,7 +463,13 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
 }
 
 ForceWorld::ForceWorld(const Scene& scene)
-    : m_(scene.m), forces_(build_forces(scene, &cost_warnings)), dyn_(forces_, m_) {}
+    : m_(scene.m), forces_(build_forces(scene)), dyn_(forces_, m_) {}
+
+std::vector<const Force*> ForceWorld::terms() const {
+  std::vector<const Force*> out;
+  for (const auto& f : forces_) out.push_back(f.get());
+  return out;
+}
 
 Energy ForceWorld::energy(const Mat2X& x, const Mat2X& v) const {
   return wb::energy(forces_, x, v, m_);
@@ -336,9 +485,71 @@ std::vector<std::string> ForceWorld::warnings(const Mat2X& /*x*/, const Mat2X& /
       " force(s): are the forces lab's functions (F1-F8, accumulate_forces) still stubs?"};
 }
 
+void forces_step_cost(const Scene& scene, const Integrator& it, StepCost& c,
+                      double extra_springs) {
+  const double n = double(scene.n()), pairs = n * (n - 1) / 2;
+  const double evals = it.evals_per_step;
+  const std::string n_text = std::to_string(scene.n()) + " particles";
+  const std::string x_evals = " x " + std::to_string(it.evals_per_step) + " evaluations";
+  // Every term once per evaluation; the divergence rule's potentials once per step
+  // and per written step (--stats); the initial checks: a bound and a potential.
+  auto term = [&](const std::string& what, const std::string& key, double units, double per_eval,
+                  double per_potential) {
+    c.step.add(what + x_evals, key, units * evals, per_eval);
+    if (per_potential > 0) {
+      c.step.add(what + ": its potential (divergence rule)", key, units, per_potential);
+      c.record.add(what + ": its potential (stats)", key, units, per_potential);
+    }
+    c.once.add(what + ": initial checks", key, units, 2 * per_eval + per_potential);
+  };
+  c.step.add("accumulate_forces: " + n_text + x_evals, "", n * evals, kSecondsPerParticle);
+  const json* list = scene.doc.contains("forces") ? &scene.doc.at("forces") : nullptr;
+  double springs = extra_springs;
+  std::string spring_key = extra_springs > 0 ? "rope, cloth" : "";
+  for (std::size_t k = 0; list && list->is_array() && k < list->size(); ++k) {
+    const json& f = (*list)[k];
+    if (!f.is_object() || !f.contains("type") || !f.at("type").is_string()) continue;
+    const std::string type = f.at("type").get<std::string>();
+    const std::string key = "forces[" + std::to_string(k) + "]";
+    const std::string what = key + " (" + type + "): ";
+    if (type == "gravity") {
+      term(what + n_text, key, n, kSecondsPerGravity, kSecondsPerGravity);
+    } else if (type == "newton") {
+      term(what + num(pairs) + " pairs of " + n_text, key, pairs, kSecondsPerNewtonPair,
+           kSecondsPerNewtonPotentialPair);
+    } else if (type == "attractor") {
+      term(what + n_text, key, n, kSecondsPerAttractor, kSecondsPerAttractor);
+    } else if (type == "damping") {
+      term(what + n_text, key, n, kSecondsPerDamping, 0);
+    } else if (type == "spring") {
+      springs += 1;
+      if (spring_key.empty()) spring_key = key;
+    } else if (type == "boids") {
+      term(what + num(pairs) + " pairs of " + n_text, key, pairs, kSecondsPerBoidsPair, 0);
+    } else if (type == "vortex") {
+      term(what + n_text, key, n, kSecondsPerVortex, 0);
+    } else if (type == "curl-noise") {
+      const json* obstacles = f.contains("obstacles") ? &f.at("obstacles") : nullptr;
+      const double discs = obstacles && obstacles->is_array() ? double(obstacles->size()) : 0.0;
+      // 4 potentials per particle (central differences), each the noise and every disc.
+      term(what + n_text + " x 4 potentials x (the noise + " + num(discs) + " obstacles)",
+           key + ".obstacles", 4 * n, kSecondsPerNoise + discs * kSecondsPerObstacle, 0);
+    }
+  }
+  if (springs > 0) {
+    term("springs: " + num(springs), spring_key, springs, kSecondsPerSpring,
+         kSecondsPerSpringPotential);
+    c.once.add("springs: " + num(springs) + " (their definitions)", spring_key, springs,
+               kSecondsPerSpringBuilt, springs * kBytesPerSpring);
+  }
+}
+
 void use_forces(LabInfo& info) {
   info.make_world = [](const Scene& scene) -> std::unique_ptr<World> {
     return std::make_unique<ForceWorld>(scene);
+  };
+  info.step_cost = [](const Scene& scene, const Integrator& it, StepCost& c) {
+    forces_step_cost(scene, it, c);
   };
   std::string types;
   for (const auto& t : force_types()) types += (types.empty() ? "" : ", ") + t;

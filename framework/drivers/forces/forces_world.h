@@ -18,10 +18,18 @@ using ForceList = std::vector<std::unique_ptr<Force>>;
 // The force types a scene may name, for --help and error messages.
 const std::vector<std::string>& force_types();
 
-// Builds only what the scene declares; throws InputError on bad entries. A
-// force that will be slow adds a sentence to `warnings` (printed by the run
-// once everything is accepted).
-ForceList build_forces(const Scene& scene, std::vector<std::string>* warnings = nullptr);
+// Builds only what the scene declares; throws InputError on bad entries (and on
+// numbers whose derived quantities would not be finite or resolvable: a curl
+// noise's potential size, lattice coordinates and difference step). Each term's
+// key is its entry ("forces[2] (spring)").
+ForceList build_forces(const Scene& scene);
+
+// The cost model's terms of a scene's "forces" list for one integrator
+// (docs/scenes.md, "Cost"), read from the scene's numbers before anything is
+// built: each term per evaluation, the divergence rule's potentials per step,
+// the initial checks once; `extra_springs` more springs (a lab's generators).
+void forces_step_cost(const Scene& scene, const Integrator& it, StepCost& c,
+                      double extra_springs = 0);
 
 // One "spring" entry of a scene. All of a scene's springs form one Springs term.
 struct SpringDef {
@@ -35,9 +43,14 @@ struct SpringDef {
 class Springs : public Force {
  public:
   std::vector<SpringDef> springs;
+  // (first spring, scene entry) for each entry the springs came from, in order:
+  // "forces[3] (spring)", or a generator ("rope", "cloth").
+  std::vector<std::pair<std::size_t, std::string>> origins;
   void add(const Mat2X& x, const Mat2X& v, const VecX& m, Mat2X& f) const override;
   double potential(const Mat2X& x, const VecX& m) const override;
   std::string type() const override { return "spring"; }
+  void bound(const Mat2X& x, const Mat2X& v, const VecX& m, VecX& b) const override;
+  std::string blame(const Mat2X& x, const Mat2X& v) const override;
 };
 
 // The list's spring term, made (at the end) if it has none: where a lab's
@@ -71,6 +84,7 @@ class ForceWorld : public World {
   explicit ForceWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  std::vector<const Force*> terms() const override;
   // A scene with forces whose every evaluation gave zero: the forces' stubs.
   std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
   const ForceList& forces() const { return forces_; }

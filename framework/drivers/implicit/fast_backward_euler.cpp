@@ -539,6 +539,7 @@ struct FastBackwardEuler::Impl {
       beta = rz_new / rz;
       rz = rz_new;
       ++cg_iterations;
+      if (fo.cg_meter) fo.cg_meter->count(1);
     }
     return rr <= tol2;
   }
@@ -583,6 +584,8 @@ struct FastBackwardEuler::Impl {
   NewtonReport step(const Mat2X& f_ext, double h, const NewtonOptions& opt, Mat2X& x, Mat2X& v) {
     NewtonReport rep;
     const Eigen::Index n = net.n();
+    for (WorkMeter* m : {fo.cg_meter, fo.newton_meter})
+      if (m) m->next_step();
     for (Eigen::Index i = 0; i < n; ++i)
       if (net.is_pinned(i)) v.col(i).setZero();
     y = v;
@@ -593,6 +596,7 @@ struct FastBackwardEuler::Impl {
     // step to the next.
     assemble(x, v, x, v, f_ext, h, opt.definite);
     rep.scale = (v * net.m.asDiagonal()).norm() + b.norm() + h * f_ext.norm();
+    if (fo.newton_meter) fo.newton_meter->count(1);
     if (!solve(dv0, fo.cg_tol * rep.scale)) {
       rep.solver_failed = true;
     } else {
@@ -613,6 +617,7 @@ struct FastBackwardEuler::Impl {
       rep.residual = b.norm();
       rep.converged = rep.residual <= opt.tol * rep.scale;
       if (rep.converged || rep.iterations >= opt.max_iterations) break;
+      if (fo.newton_meter) fo.newton_meter->count(1);
       if (!solve(zero, std::max(kNewtonForcing * rep.residual, 0.1 * opt.tol * rep.scale))) {
         rep.solver_failed = true;
         break;

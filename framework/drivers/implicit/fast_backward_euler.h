@@ -23,6 +23,7 @@
 
 #include "backward_euler.h"
 #include "spring_network.h"
+#include "wb/cost.h"
 
 namespace wb {
 
@@ -42,6 +43,11 @@ struct FastSolverOptions {
   // 44 J), so a tighter solve buys nothing. In Newton's later iterations, CG
   // also stops at 1e-3 of the current residual |b| (inexact Newton).
   double cg_tol = 1e-2;
+  // The cost model's running checks (docs/scenes.md, "Cost"), counted as the work
+  // is done: CG iterations and Newton's linear solves. Null: not counted. Each
+  // step starts a new step of both.
+  WorkMeter* cg_meter = nullptr;
+  WorkMeter* newton_meter = nullptr;
 };
 
 // True when this build has SuiteSparse's CHOLMOD (CMake option WB_CHOLMOD).

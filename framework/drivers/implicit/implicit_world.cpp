@@ -3,7 +3,6 @@
 #include "implicit_world.h"
 
 #include <cmath>
-#include <iostream>
 #include <optional>
 
 #include "backward_euler_spring.h"
@@ -15,6 +14,8 @@ namespace {
 
 const Range kPositive{0.0, std::numeric_limits<double>::infinity(), true};
 const Range kNonNegative{0.0};
+// A relative tolerance a residual of doubles can meet (kMinTolerance), at most 1.
+const Range kTolerance{kMinTolerance, 1.0};
 
 std::string count_text(std::int64_t n) { return std::to_string(n); }
 
@@ -196,10 +197,10 @@ NewtonOptions read_newton(const Scene& s) {
   } else if (solver != "ldlt") {
     o.fail("solver", &o.raw().at("solver"), "one of: ldlt, cg");
   }
-  opt.tol = o.number_or("tol", opt.tol, kPositive);
+  opt.tol = o.number_or("tol", opt.tol, kTolerance);
   opt.max_iterations = int(o.integer_or("max_iterations", opt.max_iterations, 1, 1000));
   opt.definite = o.boolean_or("definite", opt.definite);
-  opt.cg_tol = o.number_or("cg_tol", opt.cg_tol, kPositive);
+  opt.cg_tol = o.number_or("cg_tol", opt.cg_tol, kTolerance);
   return opt;
 }
 
@@ -219,8 +220,58 @@ FastSolverOptions read_fast(const Scene& s) {
   } else if (solver != "auto") {
     o.fail("fast_solver", &o.raw().at("fast_solver"), "one of: auto, ldlt, cholmod, cg");
   }
-  fo.cg_tol = o.number_or("fast_cg_tol", fo.cg_tol, kPositive);
+  fo.cg_tol = o.number_or("fast_cg_tol", fo.cg_tol, kTolerance);
   return fo;
+}
+
+// The cost model's rates of the implicit integrators (docs/scenes.md, "Cost"),
+// measured with the solution (docs/benchmarks.md has more): one linear solve of
+// the lab's Newton step (assembly through I2, Eigen's SimplicialLDLT: ordering
+// and factorisation) takes about 1 us per particle of a chain (a rope: 1.5 us at
+// 10^4 to 3 * 10^5 beads, 0.5 us at 30), and kSecondsPerSolveGrid n^1.5
+// sqrt(1 + n / kGridCacheParticles) on a 2D grid (a cloth: 10.8 ms at 32 x 32,
+// 0.33 s at 100 x 100; the provided fast path's factorisation 33 s at 316 x 316:
+// past 10^4 particles the factor leaves the cache and the work grows as n^2). The
+// fast path's factorisation of a chain, its CG iteration per particle (19 to 24
+// ns), its assembly per spring, its analysis per particle. The factor's entries
+// (16 bytes each) per particle of a chain, per particle log2(particles) of a grid
+// (20 at 100 x 100, 24 at 316 x 316); the network's and the fast path's copies of a
+// spring.
+constexpr double kSecondsPerSolveChain = 1.0e-6;
+constexpr double kSecondsPerSolveGrid = 3.3e-7;
+constexpr double kGridCacheParticles = 1e4;
+constexpr double kSecondsPerSolveSpring = 20e-9;
+constexpr double kSecondsPerFastFactorChain = 0.2e-6;
+constexpr double kSecondsPerCgParticle = 22e-9;
+constexpr double kSecondsPerFastAssembly = 40e-9;
+constexpr double kSecondsPerFastAnalysis = 1.0e-6;
+constexpr double kFactorEntriesChain = 12;
+constexpr double kFactorEntriesGrid = 24;
+constexpr double kBytesPerFactorEntry = 16;
+constexpr double kBytesPerSystemSpring = 16 * 16;  // a spring's 4 blocks as triplets, and A
+// NetworkSpring, and the fast path's copy (blocks, positions in A, the pattern's
+// graph): a 1000 x 1000 cloth's 6 * 10^6 springs and 10^6 particles hold 0.9 GB in
+// an explicit step, 1.7 GB in a step of the fast path.
+constexpr double kBytesPerNetworkSpring = 64;
+constexpr double kBytesPerFastSpring = 120;
+constexpr double kSecondsPerSpringCopy = 40e-9;
+
+// A factorisation's time on a 2D grid of n particles (above).
+double grid_solve_seconds(double n) {
+  return kSecondsPerSolveGrid * std::pow(n, 1.5) * std::sqrt(1.0 + n / kGridCacheParticles);
+}
+
+// Which solve an implicit-lab integrator does each step (by its step function).
+enum class SolveKind { kNone, kNewton, kOneSolve, kFastNewton, kFastOneSolve };
+
+SolveKind solve_kind(const Integrator& it) {
+  if (it.step == backward_euler_adapter || it.step == implicit_trapezoid_adapter) {
+    return SolveKind::kNewton;
+  }
+  if (it.step == baraff_witkin_adapter) return SolveKind::kOneSolve;
+  if (it.step == backward_euler_fast_adapter) return SolveKind::kFastNewton;
+  if (it.step == baraff_witkin_fast_adapter) return SolveKind::kFastOneSolve;
+  return SolveKind::kNone;  // explicit, or backward-euler-1 (one 2 x 2 solve)
 }
 
 const ImplicitDynamics& implicit_dynamics(const Dynamics& dyn) {
@@ -270,16 +321,24 @@ void expand_implicit_scene(Scene& scene) {
     if (flags[i]) scene.v.col(Eigen::Index(i)).setZero();
 }
 
-ForceList implicit_forces(const Scene& scene, std::vector<std::string>* warnings) {
-  ForceList forces = build_forces(scene, warnings);
+ForceList implicit_forces(const Scene& scene) {
+  ForceList forces = build_forces(scene);
   const auto* gen = std::any_cast<GeneratedNetwork>(&scene.generated);
   if (!gen || (!gen->rope && !gen->cloth)) return forces;
   // Made in place, in the spring term the integrators read.
-  std::vector<SpringDef>& springs = spring_term(forces).springs;
+  Springs& term = spring_term(forces);
+  if (term.key.empty()) term.key = gen->rope ? "rope" : "cloth";
+  std::vector<SpringDef>& springs = term.springs;
   springs.reserve(springs.size() + std::size_t((gen->rope ? gen->rope->springs() : 0) +
                                                (gen->cloth ? gen->cloth->springs() : 0)));
-  if (gen->rope) rope_springs(*gen->rope, gen->rope_first, scene, springs);
-  if (gen->cloth) cloth_springs(*gen->cloth, gen->cloth_first, scene, springs);
+  if (gen->rope) {
+    term.origins.push_back({springs.size(), "rope"});
+    rope_springs(*gen->rope, gen->rope_first, scene, springs);
+  }
+  if (gen->cloth) {
+    term.origins.push_back({springs.size(), "cloth"});
+    cloth_springs(*gen->cloth, gen->cloth_first, scene, springs);
+  }
   return forces;
 }
 
@@ -288,7 +347,16 @@ ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
       opt_(read_newton(scene)),
       fast_opt_(read_fast(scene)),
       file_(scene.file),
-      inv_m_(scene.m.transpose().array().inverse()) {
+      inv_m_(scene.m.transpose().array().inverse()),
+      newton_(scene.file, "Newton linear solves", kTypicalNewtonIterations,
+              "newton.tol may be below what this scene's solve reaches, or the step too "
+              "large for Newton; newton.max_iterations caps the solves of a step"),
+      cg_(scene.file, "CG iterations (the fast path)",
+          kTypicalCgIterations * kTypicalNewtonIterations,
+          "newton.fast_cg_tol may be too small for this scene, or its springs too stiff for "
+          "CG (newton.fast_solver \"ldlt\" factorises instead)") {
+  fast_opt_.cg_meter = &cg_;
+  fast_opt_.newton_meter = &newton_;
   net_.m = scene.m;
   net_.pinned = read_pinned(scene);
   for (const auto& term : forces_) {
@@ -312,14 +380,6 @@ ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
   for (std::size_t k = 0; k < list.size(); ++k) {
     JsonObject o = top.element("forces", k);
     if (o.string("type") == "damping") net_.drag += o.number("b", kNonNegative);
-  }
-}
-
-ImplicitDynamics::~ImplicitDynamics() {
-  if (failed_ > 0) {
-    std::cerr << "implicit: " << file_ << ": " << failed_ << " of " << steps_
-              << " implicit steps did not converge (most Newton solves in one step: "
-              << max_iterations_ << ")\n";
   }
 }
 
@@ -354,27 +414,59 @@ void ImplicitDynamics::record(const char* integrator, const NewtonReport& r) con
   ++steps_;
   iterations_ += r.iterations;
   max_iterations_ = std::max(max_iterations_, r.iterations);
+  if (std::string(integrator).find("-fast") ==
+      std::string::npos) {  // the fast path counts its own
+    newton_.next_step();
+    newton_.count(r.iterations);
+  }
   if (r.converged && !r.solver_failed) return;
   count_unconverged();  // the run contract's share rule (docs/run-contract.md)
-  if (++failed_ <= 3) {
-    std::cerr << "implicit: " << file_ << ": " << integrator << " step " << steps_ << ": ";
-    if (r.iterations == 0 && !r.solver_failed) {
-      std::cerr << "the step did no linear solve and did not converge (see TODO(I4), "
-                   "TODO(I5))\n";
-    } else if (r.solver_failed) {
-      // r.iterations counts the solves that succeeded before the failed one.
-      std::cerr << "the linear solver failed on solve " << r.iterations + 1
-                << (r.iterations == 0 ? " (the step's first)" : "")
-                << "; the step keeps the last good iterate\n";
-    } else {
-      std::cerr << "Newton did not converge in " << r.iterations << " solves (residual "
-                << num(r.residual) << " > tol * scale = " << num(opt_.tol * r.scale) << ")\n";
-    }
+  if (++failed_ > 1) return;
+  first_failure_ = std::string(integrator) + " step " + std::to_string(steps_) + ": ";
+  if (r.iterations == 0 && !r.solver_failed) {
+    stub_failure_ = true;
+    first_failure_ +=
+        "the step did no linear solve: are backward_euler_step (TODO(I4)) and "
+        "implicit_trapezoid_step (TODO(I5)) still stubs?";
+  } else if (r.solver_failed) {
+    // r.iterations counts the solves that succeeded before the failed one.
+    first_failure_ += "the linear solver failed on solve " + std::to_string(r.iterations + 1) +
+                      (r.iterations == 0 ? " (the step's first)" : "") +
+                      "; the step keeps the last good iterate";
+  } else {
+    first_failure_ += "Newton did not converge in " + std::to_string(r.iterations) +
+                      " solves (residual " + num(r.residual) +
+                      " > tol * scale = " + num(opt_.tol * r.scale) + ")";
   }
 }
 
+std::string ImplicitDynamics::unconverged_warning() const {
+  if (failed_ == 0) return "";
+  return std::to_string(failed_) + " of " + std::to_string(steps_) +
+         " implicit steps did not converge (most Newton solves in one step: " +
+         std::to_string(max_iterations_) + "); the first, " + first_failure_;
+}
+
 ImplicitWorld::ImplicitWorld(const Scene& scene)
-    : m_(scene.m), forces_(implicit_forces(scene, &cost_warnings)), dyn_(forces_, scene) {}
+    : m_(scene.m), forces_(implicit_forces(scene)), dyn_(forces_, scene) {}
+
+std::vector<const Force*> ImplicitWorld::terms() const {
+  std::vector<const Force*> out;
+  for (const auto& f : forces_) out.push_back(f.get());
+  return out;
+}
+
+std::vector<std::string> ImplicitWorld::warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
+  const std::string w = dyn_.unconverged_warning();
+  if (w.empty() || !dyn_.unconverged_by_stub()) return {};
+  return {w};
+}
+
+std::vector<std::string> ImplicitWorld::notes() const {
+  const std::string w = dyn_.unconverged_warning();
+  if (w.empty() || dyn_.unconverged_by_stub()) return {};
+  return {w};
+}
 
 Energy ImplicitWorld::energy(const Mat2X& x, const Mat2X& v) const {
   return wb::energy(forces_, x, v, m_);
@@ -395,24 +487,74 @@ std::string backward_euler_1_check(const Integrator& self, const Dynamics& dyn) 
   return "";
 }
 
-std::string newton_check(const Integrator& self, const Dynamics& dyn) {
-  const ImplicitDynamics& d = implicit_dynamics(dyn);
-  const SpringNetwork& net = d.network();
-  const std::string size = std::to_string(2 * net.n()) + " unknowns (2 per particle) and " +
-                           std::to_string(net.springs.size()) + " springs";
-  if (net.n() > kMaxNewtonParticles) {
-    throw InputError(d.file() + ": " + self.name + ": each step solves a Newton system of " +
-                     size + ", expected at most " + std::to_string(2 * kMaxNewtonParticles) +
-                     " unknowns (" + std::to_string(kMaxNewtonParticles) +
-                     " particles: a cloth of that size takes minutes per step); use an "
-                     "explicit integrator or fewer particles");
+void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
+  const auto* gen = std::any_cast<GeneratedNetwork>(&scene.generated);
+  const double generated = gen ? double((gen->rope ? gen->rope->springs() : 0) +
+                                        (gen->cloth ? gen->cloth->springs() : 0))
+                               : 0.0;
+  forces_step_cost(scene, it, c, generated);
+  // The implicit executable links the sparse solvers (CHOLMOD, BLAS): its start
+  // takes about twice a particle lab's.
+  c.once.add("start: the sparse solvers' libraries", "", 1, kStartSeconds);
+  // Springs written in "forces". The cost is estimated before the forces are
+  // read (and refused if malformed), so every entry's shape is checked here.
+  double written = 0;
+  const json* list = scene.doc.contains("forces") ? &scene.doc.at("forces") : nullptr;
+  for (std::size_t k = 0; list && list->is_array() && k < list->size(); ++k) {
+    const json& f = (*list)[k];
+    written += f.is_object() && f.contains("type") && f.at("type").is_string() &&
+               f.at("type").get<std::string>() == "spring";
   }
-  if (net.n() > kNewtonWarnParticles) {
-    return d.file() + ": " + self.name + ": each step solves a Newton system of " + size +
-           " (a sparse factorisation per Newton iteration): expect up to seconds per step "
-           "(a cloth of 10^4 particles: about 1 s)";
+  const double springs = generated + written;
+  c.once.add("the spring network: " + num(springs) + " springs", "forces", springs,
+             kSecondsPerSpringCopy, springs * kBytesPerNetworkSpring);
+  const SolveKind kind = solve_kind(it);
+  if (kind == SolveKind::kNone) return;
+  const NewtonOptions opt = read_newton(scene);
+  const FastSolverOptions fo = read_fast(scene);
+  const double n = double(scene.n());
+  // A cloth, or many hand-written springs, is a 2D network (its factor fills in).
+  const bool grid = (gen && gen->cloth) || written > 1000;
+  const std::string shape = grid ? "a 2D network" : "a chain";
+  const std::string size =
+      std::to_string(scene.n()) + " particles, " + num(springs) + " springs (" + shape + ")";
+  const double entries =
+      grid ? kFactorEntriesGrid * n * std::log2(std::max(n, 2.0)) : kFactorEntriesChain * n;
+  const bool one = kind == SolveKind::kOneSolve || kind == SolveKind::kFastOneSolve;
+  const double solves = one ? 1 : std::min(double(opt.max_iterations), kTypicalNewtonIterations);
+  const double cap =
+      one ? 1 : std::min(double(opt.max_iterations), kOverrunFactor * kTypicalNewtonIterations);
+  const std::string key = one ? "--integrator" : "newton.max_iterations";
+  const std::string per =
+      one ? " x 1 solve" : " x " + num(solves) + " to " + num(cap) + " solves";
+  if (kind == SolveKind::kNewton || kind == SolveKind::kOneSolve) {
+    const double t = (grid ? grid_solve_seconds(n) : kSecondsPerSolveChain * n) +
+                     kSecondsPerSolveSpring * springs;
+    c.step.add(it.name + ": linear solves (I3 assembly, LDLT): " + size + per, key, solves, t,
+               entries * kBytesPerFactorEntry + springs * kBytesPerSystemSpring,
+               one ? 1 : double(opt.max_iterations));
+    return;
   }
-  return "";
+  // The provided fast path: its analysis once, then per solve a numeric
+  // factorisation or CG (auto: CG for a 2D network, a factorisation for a chain).
+  const bool direct =
+      fo.solver == FastSolverOptions::kAuto ? !grid : fo.solver != FastSolverOptions::kCG;
+  c.once.add(it.name + ": the pattern's analysis: " + size, "newton.fast_solver", n,
+             kSecondsPerFastAnalysis,
+             springs * kBytesPerFastSpring + (direct ? entries * kBytesPerFactorEntry : 0.0));
+  const double assembly = kSecondsPerFastAssembly * springs;
+  if (direct) {
+    const double t = (grid ? grid_solve_seconds(n) : kSecondsPerFastFactorChain * n) + assembly;
+    c.step.add(it.name + ": factorisations: " + size + per, key, solves, t, 0.0, cap);
+  } else {
+    const double iteration = kSecondsPerCgParticle * n;
+    c.step.add(
+        it.name + ": CG: " + size + per + " x about " + num(kTypicalCgIterations) + " iterations",
+        "newton.fast_cg_tol", solves * kTypicalCgIterations, iteration, 0.0,
+        kOverrunFactor * kTypicalCgIterations * kTypicalNewtonIterations);
+    c.step.add(it.name + ": assembly: " + num(springs) + " springs" + per, key, solves, assembly,
+               0.0, cap);
+  }
 }
 
 void backward_euler_1_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
@@ -470,6 +612,7 @@ void use_implicit(LabInfo& info) {
     return std::make_unique<ImplicitWorld>(scene);
   };
   info.expand_scene = expand_implicit_scene;
+  info.step_cost = implicit_step_cost;
   info.scene_keys = implicit_scene_keys();
   std::string types;
   for (const auto& t : force_types()) types += (types.empty() ? "" : ", ") + t;

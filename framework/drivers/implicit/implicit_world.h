@@ -71,16 +71,30 @@ struct GeneratedNetwork {
 void expand_implicit_scene(Scene& scene);
 
 // The scene's force terms (build_forces) with the generated springs added.
-ForceList implicit_forces(const Scene& scene, std::vector<std::string>* warnings = nullptr);
+ForceList implicit_forces(const Scene& scene);
 
-// The Newton integrators' limits (backward-euler, baraff-witkin,
-// implicit-trapezoid), from docs/benchmarks.md's CPU times per step: a
-// 10^4-particle cloth takes about 1.2 s per Newton step, a 10^5 one 23 s per
-// linear solve (the sparse factorisation of a 2D grid grows as n^1.5; one
-// baraff-witkin step of a 316 x 316 cloth: 34 s of CPU, 645 MB). Above
-// kNewtonWarnParticles a run warns; above kMaxNewtonParticles it is refused.
-constexpr Eigen::Index kNewtonWarnParticles = 20'000;
-constexpr Eigen::Index kMaxNewtonParticles = 100'000;
+// The smallest tolerances of the "newton" key (tol, cg_tol, fast_cg_tol): a
+// residual of doubles summed over many particles cannot go much below 2^-52 of
+// its scale, so a smaller one can never be met (every step would run to
+// max_iterations and fail).
+constexpr double kMinTolerance = 1e-14;
+
+// Newton's linear solves per step as the cost model counts them (docs/scenes.md,
+// "Cost"): typically this many (the default scenes take 1.1 to 3.9 per step; the
+// cap is newton.max_iterations), and a step that takes more than kOverrunFactor
+// times as many stops the run: 25, above the default cap of 20, so a default
+// scene never stops; a max_iterations of 1000 with a tolerance the solve cannot
+// meet does.
+constexpr double kTypicalNewtonIterations = 2.5;
+// The fast path's CG iterations per linear solve as the model counts them (the
+// stiff cloth of docs/benchmarks.md: 20 to 60).
+constexpr double kTypicalCgIterations = 40;
+
+// The cost model's terms of an implicit-lab scene for one integrator: its forces
+// (generated springs included), and for the implicit integrators the Newton
+// iterations, each an assembly and a sparse solve (the factorisation of a rope
+// grows as n, of a cloth as n^1.5 in time and n log n in memory).
+void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c);
 
 // Every force of the scene, with the spring network visible to the implicit
 // integrators (they downcast the Dynamics they receive to this class).
@@ -95,9 +109,13 @@ class ImplicitDynamics : public Dynamics {
   const std::string& file() const { return file_; }
   // The forces other than springs and drag (N), at (x, v): one counted evaluation.
   void external_forces(const Mat2X& x, const Mat2X& v, Mat2X& f) const;
-  // Keeps count of Newton's work; reports a step that did not converge on stderr.
+  // Counts Newton's work (the cost model's running check: WorkMeter) and keeps
+  // what a step that did not converge said, for the run's warnings.
   void record(const char* integrator, const NewtonReport& r) const;
-  ~ImplicitDynamics() override;
+  // One sentence on the steps that did not converge ("" when all did), and
+  // whether the first did no linear solve at all (what the lab's stubs do).
+  std::string unconverged_warning() const;
+  bool unconverged_by_stub() const { return stub_failure_; }
 
  protected:
   void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const override;
@@ -113,6 +131,10 @@ class ImplicitDynamics : public Dynamics {
   mutable bool external_only_ = false;
   mutable long steps_ = 0, iterations_ = 0, failed_ = 0;
   mutable int max_iterations_ = 0;
+  mutable std::string first_failure_;  // what the first step that failed said
+  mutable bool stub_failure_ = false;  // it did no linear solve
+  mutable WorkMeter newton_;           // Newton's linear solves, step by step
+  mutable WorkMeter cg_;               // the fast path's CG iterations, step by step
 };
 
 class ImplicitWorld : public World {
@@ -120,6 +142,11 @@ class ImplicitWorld : public World {
   explicit ImplicitWorld(const Scene& scene);
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
+  std::vector<const Force*> terms() const override;
+  // Steps whose Newton solve did not converge, said once at the end: a warning
+  // (the summary's) when the steps did no linear solve (the lab's stubs), else a note.
+  std::vector<std::string> warnings(const Mat2X& x, const Mat2X& v) const override;
+  std::vector<std::string> notes() const override;
 
  private:
   VecX m_;
@@ -127,10 +154,9 @@ class ImplicitWorld : public World {
   ImplicitDynamics dyn_;
 };
 
-// Integrator::check of the implicit integrators: backward-euler-1 takes one
-// anchored spring only; the Newton ones are within the limits above.
+// Integrator::check of backward-euler-1: one anchored spring only. (The size
+// of the other implicit integrators' systems is the cost model's.)
 std::string backward_euler_1_check(const Integrator& self, const Dynamics& dyn);
-std::string newton_check(const Integrator& self, const Dynamics& dyn);
 
 // The implicit integrators' wb::StepFn adapters.
 void backward_euler_1_adapter(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s);

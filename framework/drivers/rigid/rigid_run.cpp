@@ -1,15 +1,13 @@
-// The run contract for the rigid lab (docs/run-contract.md, "The rigid lab"):
-// the same flags, rules, atomic outputs and summary line as the particle labs,
-// with a 3D state. Sweep mode: work-precision on a torque-free body.
+// The rigid lab's scenes for the run contract's main (wb/lab.h; docs/run-contract.md,
+// "The rigid lab"): the same main, flags, cost model, outputs, step loop, sweep loop
+// and summary line as the particle labs; only the 3D state, its cost terms and its
+// errors are this lab's. Sweep mode: work-precision on a torque-free body.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <iostream>
-#include <optional>
+#include <memory>
 
 #include "rigid_world.h"
-#include "wb/cli.h"
-#include "wb/output.h"
+#include "wb/lab.h"
 #include "wb/run.h"
 
 namespace rigid {
@@ -63,13 +61,6 @@ void append_stats_row(std::string& buf, long step, double t, const Totals& s) {
   buf += '\n';
 }
 
-struct RunOptions {
-  const Integrator* integrator = nullptr;
-  double dt = 0;
-  long steps = 0, every = 1;
-  std::string out, stats;
-};
-
 // The floor of the run's energy scale (wb::energy_scale): the work gravity
 // and the point forces would do across the scene, sum of (m |g| + |F|) times
 // the scene size (the extent of the centres or their largest distance from
@@ -94,11 +85,11 @@ ordered_json vec_json(const Vec3& v) {
   return {n(v.x()), n(v.y()), n(v.z())};
 }
 
-ordered_json simulate(const Scene& scene, const RunOptions& opt,
-                      std::vector<std::string>& warnings) {
+// One run from the scene's initial state (the contract's step loop, wb::run_steps).
+wb::Summary simulate(const Scene& scene, const Integrator& integ, const wb::RunRequest& r,
+                     wb::RunFiles& files) {
   std::vector<Body> bodies = initial_bodies(scene);
-  wb::CsvFile trace(opt.out, "t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n");
-  wb::CsvFile stats(opt.stats, "step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz\n");
+  std::vector<std::string> warnings;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!(bodies[i].I_body.diagonal().minCoeff() > 0)) {
       warnings.push_back("body " + std::to_string(i) +
@@ -115,36 +106,36 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
   const Body first = bodies.front();
   wb::StepHooks hooks;
   hooks.step = [&] {
-    drift = std::max(drift, step(scene, *opt.integrator, opt.dt, bodies, state));
+    drift = std::max(drift, step(scene, integ, r.dt, bodies, state));
     angle = std::max(angle, state.hinge_angle);
     moved = moved || bodies.front().x != first.x || bodies.front().q.coeffs() != first.q.coeffs();
   };
   hooks.finite = [&] { return finite(bodies); };
   hooks.energy = [&] { return totals(scene, bodies).energy(); };
   hooks.record = [&](long k, double t) {
-    if (trace) {
-      append_trace_rows(trace.rows(), t, bodies);
-      trace.flush_if_large();
+    if (files.trace) {
+      append_trace_rows(files.trace.rows(), t, bodies);
+      files.trace.flush_if_large();
     }
-    if (stats) {
-      append_stats_row(stats.rows(), k, t, totals(scene, bodies));
-      stats.flush_if_large();
+    if (files.stats) {
+      append_stats_row(files.stats.rows(), k, t, totals(scene, bodies));
+      files.stats.flush_if_large();
     }
   };
-  const wb::LoopResult loop = wb::run_steps(opt.steps, opt.every, opt.dt, scale, hooks);
+  const wb::LoopResult loop = wb::run_steps(r.steps, r.every, r.dt, scale, hooks);
   const long k = loop.steps;
   if (k > 0 && !moved && loop.reason.empty()) {
     warnings.push_back("body 0 never moved or turned in " + std::to_string(k) +
                        " steps: is integrate_position (R4) still a stub?");
   }
   const Totals t1 = totals(scene, bodies);
-  trace.commit();
-  stats.commit();
+  files.trace.commit();
+  files.stats.commit();
 
   wb::Summary s;
   s.diverged = loop.reason;
   s.steps = k;
-  s.t = double(k) * opt.dt;
+  s.t = double(k) * r.dt;
   s.force_evals = k;  // one force accumulation per step
   s.wall_s = loop.wall_s;
   s.cpu_s = loop.cpu_s;
@@ -164,147 +155,165 @@ ordered_json simulate(const Scene& scene, const RunOptions& opt,
     s.extra["hinge_angle"] = std::isfinite(angle) ? ordered_json(angle) : ordered_json(nullptr);
   }
   s.warnings = warnings;
-  return wb::summary_json(s);
+  return s;
 }
 
-// ---- Sweep mode: every integrator over a ladder of step sizes on a torque-free scene,
-// against the exact conserved angular momentum and energy (docs/sweep.md, "rigid"). The
-// plan, the table and the summary are the contract's (wb/contract.h); only the state and
-// the errors are this lab's.
+// The rigid lab's rates (docs/scenes.md, "Cost"; measured with the solution on the
+// default scenes): a body's step (forces, velocities, positions, the totals of the
+// divergence rule), one contact point tested against a plane in one pass (or one
+// iteration of the accumulated solver and its push-out), a hinge's impulses, and
+// the memory of a body.
+constexpr double kSecondsPerBodyStep = 200e-9;
+constexpr double kSecondsPerPointTest = 30e-9;
+constexpr double kSecondsPerPointIteration = 50e-9;  // of a touching point (half of them)
+constexpr double kSecondsPerHingeStep = 150e-9;
+constexpr double kBytesPerBody = 600;
+constexpr double kBytesPerKeptPoint = 100;  // the accumulated solver keeps every point's Contact
 
-std::vector<wb::SweepRow> run_sweep(const LabInfo& info, const Scene& scene,
-                                    const wb::SweepPlan& plan, int repeats) {
-  if (!scene.torque_free()) {
-    throw InputError("--sweep: " + scene.file +
-                     ": expected a torque-free scene (no forces, planes or hinges): its exact "
-                     "angular momentum and energy are the initial ones");
+std::string count(std::size_t n) { return std::to_string(n); }
+
+}  // namespace
+
+void step_cost(const Scene& scene, wb::StepCost& c) {
+  const std::size_t n = scene.bodies.size(), np = scene.planes.size();
+  c.once.add("bodies: " + count(n), "bodies", 0, 0, double(n) * kBytesPerBody);
+  c.step.add("bodies: " + count(n), "bodies", double(n), kSecondsPerBodyStep);
+  if (!scene.hinges.empty()) {
+    c.step.add("hinges: " + count(scene.hinges.size()), "hinges", double(scene.hinges.size()),
+               kSecondsPerHingeStep);
   }
-  const std::vector<Body> start = initial_bodies(scene);
-  const Totals t0 = totals(scene, start);
-  const double Lscale = std::max(t0.L.norm(), 1e-300), Escale = std::max(t0.energy(), 1e-300);
-  const double blowup_scale =
-      wb::energy_scale(t0.kinetic, t0.potential, work_scale(scene, start));
-  std::vector<wb::SweepRow> rows;
-  const std::size_t total = plan.integrators.size() * plan.dts.size();
-  for (std::size_t i : plan.integrators) {
-    const Integrator& integ = info.integrators[i];
-    for (std::size_t d = 0; d < plan.dts.size(); ++d) {
-      wb::SweepRow row;
-      row.integrator = i;
-      row.dt = plan.dts[d];
-      row.steps = row.force_evals = plan.steps[d];
-      row.reference = "exact";
-      const double h = row.dt;
-      std::cerr << "sweep: " << integ.name << " dt=" << num(h) << " (" << rows.size() + 1 << "/"
-                << total << ")\n";
-      // Timed: the pure step loop, fastest of `repeats`.
-      row.wall_s = INFINITY;
-      for (int r = 0; r < repeats; ++r) {
-        std::vector<Body> bodies = start;
-        const auto t_start = std::chrono::steady_clock::now();
-        for (long k = 0; k < row.steps; ++k) step(scene, integ, h, bodies);
-        row.wall_s = std::min(
-            row.wall_s,
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
-      }
-      // Untimed: the errors along the run, and the contract's rule for a diverged run.
-      std::vector<Body> bodies = start;
-      double e_err = 0;
-      for (long k = 0; k < row.steps && !row.diverged; ++k) {
-        step(scene, integ, h, bodies);
-        const bool ok = finite(bodies);
-        const double E = ok ? totals(scene, bodies).energy() : NAN;
-        row.diverged = !wb::divergence(ok, E, blowup_scale, k + 1).empty();
-        if (!row.diverged) e_err = std::max(e_err, std::abs(E - t0.energy()));
-      }
-      bool moved = false;
-      for (std::size_t b = 0; b < bodies.size(); ++b) {
-        moved = moved || bodies[b].x != start[b].x ||
-                bodies[b].q.coeffs() != start[b].q.coeffs() || bodies[b].omega != start[b].omega;
-      }
-      if (row.steps > 0 && !moved && !row.diverged) {
-        std::cerr << "sweep: warning: " << integ.name << " at dt=" << num(h)
-                  << ": no body moved or turned in " << row.steps
-                  << " steps: its errors of 0 mean nothing (are R4 and R5 still stubs?)\n";
-      }
-      row.error = row.diverged ? INFINITY : (totals(scene, bodies).L - t0.L).norm() / Lscale;
-      row.energy_error = row.diverged ? INFINITY : e_err / Escale;
-      rows.push_back(row);
+  if (np > 0) {
+    double points = 0;  // contact candidates per plane (contact_points)
+    for (const BodyDef& d : scene.bodies) {
+      points += d.shape == BodyDef::kSphere ? 1 : d.shape == BodyDef::kBox ? 8 : 32;
+    }
+    // The passes solver stops when a pass applies no impulse (typically 2, at most
+    // kContactPasses); the accumulated one tests every point once, then runs its
+    // iterations and as many of push-out on the points that touch.
+    const double tests = points * double(np);
+    if (scene.solver == Solver::kPasses) {
+      c.step.add("contact tests: " + wb::num(points) +
+                     " points (8 per box, 1 per sphere, 32 per cylinder) x " + count(np) +
+                     " planes x 2 to " + std::to_string(kContactPasses) + " passes",
+                 "planes", tests * 2, kSecondsPerPointTest, 0.0, tests * kContactPasses);
+    } else {
+      c.step.add("contact tests: " + wb::num(points) +
+                     " points (8 per box, 1 per sphere, 32 per cylinder) x " + count(np) +
+                     " planes, then 2 x " + std::to_string(scene.iterations) +
+                     " iterations on those that touch",
+                 "contact.iterations", tests,
+                 kSecondsPerPointTest + 0.5 * 2.0 * scene.iterations * kSecondsPerPointIteration,
+                 tests * kBytesPerKeptPoint, tests * (1 + 2.0 * scene.iterations));
     }
   }
-  return rows;
+  c.record.add("trace and stats rows: " + count(n) + " bodies", "--out", double(n),
+               2 * wb::kSecondsPerTraceRow);
 }
 
-std::string help_footer(const LabInfo& info) {
-  std::vector<wb::IntegratorLine> lines;
-  for (const Integrator& it : info.integrators) lines.push_back({it.name, it.description, 1, 1});
-  std::string s = wb::integrators_help(lines);
-  s +=
-      "\nScene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
-      "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"
-      "contact (restitution, friction, solver accumulated|passes, iterations, resting_speed),\n"
-      "hinges (body, anchor, beta; with axis: revolute, without: a point (ball) joint).\n"
-      "See docs/scenes.md.\n";
-  s += "\nTrace (--out): t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (omega in the world frame).\n"
-       "Stats (--stats): step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz (L about the "
-       "origin).\n";
-  s += wb::sweep_help(
-      "On a torque-free scene only: error = |L(T) - L0| / |L0|,\n"
-      "energy_error = max |E - E0| / E0 (the exact values are the initial ones).");
-  return s + wb::help_scenes_and_docs(info.lab);
-}
+namespace {
+
+class RigidScene : public wb::LabScene {
+ public:
+  RigidScene(const LabInfo& info, Scene scene) : info_(info), scene_(std::move(scene)) {
+    file = scene_.file;
+    name = scene_.name;
+    dt = scene_.dt;
+    t_end = scene_.t_end;
+    integrator = scene_.integrator;
+  }
+
+  void cost(std::size_t /*integrator*/, wb::StepCost& c) const override { step_cost(scene_, c); }
+
+  std::vector<std::string> prepare(const std::vector<std::size_t>& /*integrators*/,
+                                   const wb::SweepPlan* sweep) override {
+    if (sweep && !scene_.torque_free()) {
+      throw InputError("--sweep: " + scene_.file +
+                       ": expected a torque-free scene (no forces, planes or hinges): its "
+                       "exact angular momentum and energy are the initial ones");
+    }
+    return initial_overlap_notes(scene_);
+  }
+
+  wb::Summary run(const wb::RunRequest& r, wb::RunFiles& files) override {
+    return simulate(scene_, info_.integrators.at(r.integrator), r, files);
+  }
+
+  // Sweep mode: every integrator over the ladder on a torque-free scene, against the
+  // exact conserved angular momentum and energy (docs/sweep.md, "rigid").
+  wb::SweepHooks sweep_hooks() override {
+    start_ = initial_bodies(scene_);
+    t0_ = totals(scene_, start_);
+    wb::SweepHooks h;
+    h.reset = [this] {
+      bodies_ = start_;
+      steps_ = 0;
+    };
+    h.steps = [this](std::size_t i, double dt, long n) {
+      const Integrator& integ = info_.integrators.at(i);
+      for (long k = 0; k < n; ++k) step(scene_, integ, dt, bodies_);
+      steps_ += n;
+    };
+    h.finite = [this] { return finite(bodies_); };
+    h.energy = [this] { return totals(scene_, bodies_).energy(); };
+    h.moved = [this] {
+      for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        if (bodies_[b].x != start_[b].x || bodies_[b].q.coeffs() != start_[b].q.coeffs() ||
+            bodies_[b].omega != start_[b].omega) {
+          return true;
+        }
+      }
+      return false;
+    };
+    h.evals = [this] { return steps_; };  // one force accumulation per step
+    h.unconverged = [] { return 0L; };
+    h.error = [this](double) {
+      return (totals(scene_, bodies_).L - t0_.L).norm() / std::max(t0_.L.norm(), 1e-300);
+    };
+    h.energy0 = t0_.energy();
+    h.energy_scale = std::max(t0_.energy(), 1e-300);
+    h.blowup_scale = wb::energy_scale(t0_.kinetic, t0_.potential, work_scale(scene_, start_));
+    h.reference = "exact";
+    h.unmoved = "its errors of 0 mean nothing (are R4 and R5 still stubs?)";
+    return h;
+  }
+
+ private:
+  const LabInfo& info_;
+  Scene scene_;
+  std::vector<Body> start_, bodies_;  // sweep mode: the initial and the current state
+  Totals t0_;
+  long steps_ = 0;
+};
 
 }  // namespace
 
 int run_rigid_lab(int argc, char** argv, const LabInfo& info) {
-  wb::FlagSpec spec;
-  spec.exe = info.lab + (info.side == "student" ? "" : "-" + info.side);
+  wb::LabSpec spec;
+  spec.lab = info.lab;
+  spec.side = info.side;
   spec.summary = info.summary;
-  spec.footer = help_footer(info);
+  for (const Integrator& it : info.integrators)
+    spec.integrators.push_back({it.name, it.description, 1, 1});
+  spec.help_sections = {
+      "Scene keys: bodies (shape box|sphere|cylinder, size|radius|length, m, x, v, q, omega),\n"
+      "forces (type gravity: g; type force: body, point, F), planes (point, normal),\n"
+      "contact (restitution, friction, solver accumulated|passes, iterations, resting_speed),\n"
+      "hinges (body, anchor, beta; with axis: revolute, without: a point (ball) joint).\n"
+      "See docs/scenes.md.\n",
+      "Trace (--out): t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz (omega in the world frame).\n"
+      "Stats (--stats): step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz (L about the "
+      "origin).\n"};
   spec.trace_columns = "t,id,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
   spec.stats_columns = "step,t,energy,kinetic,potential,px,py,pz,Lx,Ly,Lz";
   spec.sweep = true;
-  spec.sweep_help =
-      "Sweep mode: run the integrators over a ladder of step sizes (default dt*2^k, "
-      "k = 3..-6) to t_end on a torque-free scene and write one CSV row per run";
-  int status = 0;
-  const std::optional<wb::RunFlags> flags = wb::parse_run_flags(argc, argv, spec, status);
-  if (!flags) return status;
-  const std::string& exe = spec.exe;
-
-  return wb::guarded_main(exe, [&] {
-    const Scene scene = load_scene(flags->scene_file);
-    if (!flags->sweep_csv.empty()) {
-      std::vector<std::string> names;
-      for (const Integrator& it : info.integrators) names.push_back(it.name);
-      const int repeats = flags->repeats.value_or(3);
-      const wb::SweepPlan plan =
-          wb::plan_sweep(names, flags->sweep_integrators, flags->sweep_dts, flags->dt,
-                         flags->t_end, scene.dt, scene.t_end, scene.file, repeats);
-      wb::AtomicFile csv(flags->sweep_csv);  // an unwritable path fails before the runs
-      for (const auto& w : scene.cost_warnings) std::cerr << exe << ": warning: " << w << "\n";
-      const std::vector<wb::SweepRow> rows = run_sweep(info, scene, plan, repeats);
-      csv.write(wb::sweep_table(scene.name, names, rows));
-      csv.commit();
-      std::cout << wb::sweep_summary(flags->sweep_csv, rows).dump() << std::endl;
-      return 0;
-    }
-
-    RunOptions opt;
-    opt.integrator =
-        &wb::choose_integrator(info.integrators, *flags, scene.integrator, scene.file);
-    opt.dt = wb::step_size(*flags, scene.dt, scene.file);
-    opt.steps = wb::steps_to_take(*flags, scene.t_end, scene.file, opt.dt);
-    opt.every = flags->every.value_or(1);
-    opt.out = flags->out;
-    opt.stats = flags->stats;
-    for (const auto& w : scene.cost_warnings) std::cerr << exe << ": warning: " << w << "\n";
-    std::vector<std::string> warnings;
-    const ordered_json j = simulate(scene, opt, warnings);
-    for (const auto& w : warnings) std::cerr << exe << ": warning: " << w << "\n";
-    std::cout << j.dump() << std::endl;
-    return 0;
-  });
+  spec.sweep_scenes = "on a torque-free scene";
+  spec.sweep_errors =
+      "On a torque-free scene only: error = |L(T) - L0| / |L0|,\n"
+      "energy_error = max |E - E0| / E0 (the exact values are the initial ones).";
+  return wb::run_lab(argc, argv, spec,
+                     [&info](const wb::RunFlags& flags) -> std::unique_ptr<wb::LabScene> {
+                       return std::make_unique<RigidScene>(info, load_scene(flags.scene_file));
+                     });
 }
 
 }  // namespace rigid

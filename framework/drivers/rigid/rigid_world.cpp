@@ -3,13 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "apply_force.h"
 #include "body_inertia.h"
 #include "hinge.h"
 #include "integrate_position.h"
+#include "plane_contact.h"
 #include "wb/run.h"
+#include "world_inertia.h"
 
 namespace rigid {
 
@@ -89,6 +92,9 @@ constexpr double kMaxBodyQuantity = 1e300;
 // The limits as the messages write them (wb::num writes 1e-290 with 17 digits).
 constexpr const char* kInertiaScaleText = "from 1e-290 to 1e+290";
 constexpr const char* kMaxBodyQuantityText = "1e+300";
+// A hinge's anchor and its body's centre at most this many body sizes from the
+// origin (check_hinge).
+constexpr double kMaxHingeReach = 0x1p42;
 
 bool inertia_scale_ok(double m, double d) {
   const double s = m * (d * d);
@@ -218,32 +224,77 @@ void check_initial_totals(const Scene& s) {
                        "or size is so large that they overflow)");
 }
 
-// The contact work of one step (every contact point of every body against
-// every plane), checked before the planes are read: refused above
-// kMaxContactTests, a warning above kSlowContactTests.
-void check_contact_work(const JsonObject& top, Scene& s, std::size_t planes) {
-  double points = 0;  // contact candidates per plane (contact_points)
-  for (const BodyDef& d : s.bodies) {
-    points += d.shape == BodyDef::kSphere ? 1 : d.shape == BodyDef::kBox ? 8 : 32;
+// A body's smallest and largest dimension (box edges; radius; radius and length).
+double smallest_dimension(const BodyDef& d) {
+  if (d.shape == BodyDef::kBox) return d.size.minCoeff();
+  if (d.shape == BodyDef::kCylinder) return std::min(d.radius, d.length);
+  return d.radius;
+}
+double largest_dimension(const BodyDef& d) {
+  if (d.shape == BodyDef::kBox) return d.size.maxCoeff();
+  if (d.shape == BodyDef::kCylinder) return std::max(d.radius, d.length);
+  return d.radius;
+}
+
+// A point force's lever arm: its torque |point| |F| and the angular acceleration
+// it gives, |point| |F| / I_min (I_min >= m d_min^2 / 6, the scene's numbers), at
+// most kMaxBodyQuantity (largest components).
+void check_lever(const JsonObject& o, const char* key, const BodyDef& d, double arm, double F) {
+  const double I_min = d.body.m * (smallest_dimension(d) * smallest_dimension(d)) / 6;
+  const double torque = arm * F;
+  if (within_body_limit(torque) && within_body_limit(torque / I_min)) return;
+  o.fail(key, value_at(o, key),
+         "a point and a force F whose torque |point| |F| (" + wb::num(torque) +
+             " N m) and angular acceleration |point| |F| / I (I >= m d_min^2 / 6 = " +
+             wb::num(I_min) + ") are at most " + std::string(kMaxBodyQuantityText));
+}
+
+// A hinge's numbers, resolvable: its anchor and the body's centre within
+// kMaxHingeReach body sizes of the origin (the drift |x + R r - anchor| is a
+// difference of numbers of that size: rounded to 2^-52 of them, it stays 2^-10 of
+// the body), and the hinge's effective inverse mass 1/m + |r|^2 / I_min finite.
+void check_hinge(const JsonObject& o, const BodyDef& d, const Hinge& hg) {
+  const double size = largest_dimension(d);
+  const double reach = std::max(hg.anchor.cwiseAbs().maxCoeff(), d.body.x.cwiseAbs().maxCoeff());
+  const double I_min = d.body.m * (smallest_dimension(d) * smallest_dimension(d)) / 6;
+  const double r = hg.r_body.cwiseAbs().maxCoeff();
+  if (reach <= kMaxHingeReach * size && within_body_limit(1 / d.body.m + 3 * (r * r) / I_min)) {
+    return;
   }
-  const double tests = points * double(planes);
-  const std::string what = std::to_string(s.bodies.size()) + " bodies (" + wb::num(points) +
-                           " contact points: 8 per box, 1 per sphere, 32 per cylinder) x " +
-                           std::to_string(planes) + " planes = " + wb::num(tests) +
-                           " point-plane tests per step";
-  if (tests > kMaxContactTests) {
-    top.fail("planes", &top.raw().at("planes"),
-             "at most " + wb::num(kMaxContactTests) +
-                 " point-plane tests per step (minutes per "
-                 "step); the scene has " +
-                 what);
-  }
-  if (tests > kSlowContactTests) {
-    s.cost_warnings.push_back(s.file + ": " + what + ": expect seconds per step");
-  }
+  o.fail("anchor", &o.raw().at("anchor"),
+         "an anchor and a body centre within 2^42 body sizes (" + wb::num(kMaxHingeReach * size) +
+             " m) of the origin, so that the hinge's drift is resolvable at the body's scale "
+             "(this one reaches " +
+             wb::num(reach) + " m)");
 }
 
 }  // namespace
+
+std::vector<std::string> initial_overlap_notes(const Scene& s) {
+  constexpr double kOverlapTol = 1e-9;  // m: below this, rounding of a body set on the plane
+  long count = 0;
+  double deepest = 0;
+  std::size_t body = 0, plane = 0;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    for (std::size_t k = 0; k < s.planes.size(); ++k) {
+      const Plane& pl = s.planes[k];
+      double d = 0;
+      for (const Vec3& p : contact_points(s.bodies[i], s.bodies[i].body, pl))
+        d = std::max(d, (pl.point - p).dot(pl.normal));
+      if (!(d > kOverlapTol)) continue;
+      ++count;
+      if (d > deepest) deepest = d, body = i, plane = k;
+    }
+  }
+  if (count == 0) return {};
+  char depth[32];
+  std::snprintf(depth, sizeof depth, "%.3g", deepest);
+  return {s.file + ": " + std::to_string(count) + (count == 1 ? " overlap" : " overlaps") +
+          " of a body with a plane at t = 0, the deepest " + depth + " m (bodies[" +
+          std::to_string(body) + "] and planes[" + std::to_string(plane) +
+          "]): the contact pushes the bodies out by moving positions only, which adds no kinetic "
+          "energy"};
+}
 
 Scene load_scene(const std::string& file) {
   return scene_from_json(file, wb::read_json_file(file));
@@ -285,6 +336,8 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
       pf.body = body_index(f, s);
       pf.point_body = vec3_or(f, "point", Vec3::Zero());
       pf.F = vec3(f, "F");
+      check_lever(f, "point", s.bodies[pf.body], pf.point_body.cwiseAbs().maxCoeff(),
+                  pf.F.cwiseAbs().maxCoeff());
       s.point_forces.push_back(pf);
     } else {
       f.fail("type", &f.raw().at("type"), "one of: gravity, force");
@@ -295,7 +348,6 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
   }
   check_initial_totals(s);
   const wb::json& planes = top.array_or_empty("planes");
-  check_contact_work(top, s, planes.size());
   double heaviest = 0;
   for (const BodyDef& d : s.bodies) heaviest = std::max(heaviest, d.body.m);
   for (std::size_t i = 0; i < planes.size(); ++i) {
@@ -346,6 +398,7 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
       o.fail("anchor", &o.raw().at("anchor"),
              "a point whose offset from body " + std::to_string(hg.body) + "'s centre is finite");
     }
+    check_hinge(o, s.bodies[hg.body], hg);
     s.hinges.push_back(hg);
   }
   return s;
@@ -383,30 +436,15 @@ std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane&
 
 double resolve_plane_passes(Body& b, const std::vector<Vec3>& points, const Vec3& point,
                             const Vec3& n, double e, double mu) {
-  // One impulse at one point, with restitution and friction: the sliding left
-  // after the normal impulse is stopped, or takes at most mu jn (Coulomb).
+  // One impulse at one point, with restitution and friction: the lab's own contact (R6),
+  // prepared afresh (no totals kept, restitution at every closing speed) and solved once:
+  // the normal impulse stops the approach and bounces, the friction stops the sliding
+  // left after it or takes at most mu times the normal impulse (Coulomb).
   const auto impulse = [&](const Vec3& p) {
-    const Vec3 r = p - b.x;
-    const double vn = (b.v + b.omega.cross(r)).dot(n);
-    if (vn >= 0.0) return 0.0;  // separating or resting: no impulse
-    const Mat3 R = b.q.toRotationMatrix();
-    const Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
-    const auto inv_mass = [&](const Vec3& u) {
-      return 1.0 / b.m + u.dot((I_inv * r.cross(u)).cross(r));
-    };
-    const double jn = -(1.0 + e) * vn / inv_mass(n);
-    b.v += jn * n / b.m;
-    b.omega += I_inv * r.cross(jn * n);
-    const Vec3 u = b.v + b.omega.cross(r);
-    const Vec3 vt = u - u.dot(n) * n;
-    const double speed = vt.norm();
-    if (speed > 0.0) {
-      const Vec3 t = vt / speed;
-      const double jt = std::min(speed / inv_mass(t), mu * jn);
-      b.v -= jt * t / b.m;
-      b.omega -= I_inv * r.cross(jt * t);
-    }
-    return jn;
+    Contact c;
+    c.p = p;
+    prepare_contact(b, n, e, 0.0, c);
+    return solve_contact(b, c, n, mu);
   };
   double total = 0.0;
   for (int pass = 0; pass < kContactPasses; ++pass) {
@@ -429,19 +467,21 @@ namespace {
 // Split impulses (the position part of the accumulated solver): "push" impulses,
 // accumulated and >= 0 like the normal ones, on a pseudo-velocity (vp, wp) that
 // starts at 0 each step, aiming at a normal pseudo-velocity of kPushBeta / h times
-// each point's penetration. The position update uses v + vp and omega + wp, and the
-// body keeps its v and omega: the push moves the body out and adds no velocity.
+// each point's penetration. After the position update the body is moved by h vp and
+// turned by h wp, omega turned with it (step): the push moves the body out and changes
+// neither its velocities nor its kinetic energy.
 void push_out(const Body& b, const std::vector<Contact>& contacts,
               const std::vector<double>& depth, const Vec3& n, double h, int iterations, Vec3& vp,
               Vec3& wp) {
-  const Mat3 R = b.q.toRotationMatrix();
-  const Mat3 I_inv = R * b.I_body.diagonal().cwiseInverse().asDiagonal() * R.transpose();
+  // The lab's own world inverse inertia (R2), and each contact's effective mass along n as
+  // the lab's prepare_contact (R6) left it in the contact.
+  const Mat3 I_inv = world_inverse_inertia(b.q.toRotationMatrix(), b.I_body);
   std::vector<double> total(contacts.size(), 0.0);
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       if (!(depth[k] > 0)) continue;
       const Vec3& r = contacts[k].r;
-      const double inv_mass = 1.0 / b.m + n.dot((I_inv * r.cross(n)).cross(r));
+      const double inv_mass = 1.0 / contacts[k].mass_n;
       const double un = (vp + wp.cross(r)).dot(n);
       const double next = std::max(total[k] + (kPushBeta / h * depth[k] - un) / inv_mass, 0.0);
       const Vec3 J = (next - total[k]) * n;
@@ -520,15 +560,21 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
       push_out(bodies[i], touching, depth, pl.normal, h, scene.iterations, vp[i], wp[i]);
     }
   }
-  // Integrate positions (with the push-out's pseudo-velocities, which are not kept).
+  // Integrate positions (R4), then the push-out's pseudo-velocities move the bodies out
+  // without changing their velocities: a translation h vp, and a turn by h |wp| about wp
+  // that turns omega with the body. Its angular velocity in the body frame is kept, and so
+  // is its kinetic energy: turning the body under an unchanged world omega would change
+  // (1/2) omega . R I R^T omega (a box pushed out of the floor at t = 0 lost 2 % of it).
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     Body& b = bodies[i];
-    const Vec3 v = b.v, omega = b.omega;
-    b.v += vp[i];
-    b.omega += wp[i];
     integrate_position(b, h);
-    b.v = v;
-    b.omega = omega;
+    b.x += h * vp[i];
+    const double angle = h * wp[i].norm();
+    if (angle > 0) {
+      const Eigen::AngleAxisd turn(angle, wp[i] / wp[i].norm());
+      b.q = (Eigen::Quaterniond(turn) * b.q).normalized();
+      b.omega = turn * b.omega;
+    }
   }
   double drift = 0;
   state.hinge_angle = 0;

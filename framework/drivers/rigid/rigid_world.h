@@ -1,8 +1,9 @@
 // The rigid lab's glue: a 3D scene of rigid bodies (docs/scenes.md, "rigid"),
-// the step that calls the student's functions, the trace, the summary line and
-// the sweep. It shares the run contract of the particle labs (flags, summary,
-// atomic output, exit status 2 on bad input) by calling the same core
-// functions; only the state is its own (rigid::Body, 3D).
+// the step that calls the student's functions, the trace rows and the sweep's
+// errors. Everything else of the run contract (the main, flags, cost model,
+// outputs, step loop, sweep loop, summary line) is the particle labs' code, in
+// wb/lab.h and wb/contract.h (rigid_run.cpp is this lab's wb::LabScene); only the
+// state is its own (rigid::Body, 3D).
 #pragma once
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "plane_contact.h"
 #include "rigid_body.h"
+#include "wb/cost.h"
 #include "wb/input.h"
 
 namespace rigid {
@@ -67,18 +69,10 @@ struct Scene {
   int iterations = 10;       // accumulated: iterations per step
   double rest_speed = 0.05;  // accumulated: closing speeds (m/s) below this do not bounce
   std::vector<Hinge> hinges;
-  // Valid but slow (docs/scenes.md, "rigid"): printed as "<lab>: warning: ..."
-  // once the scene and the flags are accepted.
-  std::vector<std::string> cost_warnings;
   bool torque_free() const {
     return g.isZero(0) && point_forces.empty() && planes.empty() && hinges.empty();
   }
 };
-
-// Contact work of one step (every body's contact points against every plane):
-// refused above kMaxContactTests, a warning above kSlowContactTests.
-constexpr double kMaxContactTests = 1e8;
-constexpr double kSlowContactTests = 1e6;
 
 // Reads and checks a scene file; throws wb::InputError naming the key.
 Scene load_scene(const std::string& file);
@@ -86,6 +80,10 @@ Scene load_scene(const std::string& file);
 // every accepted scene has finite numbers, 1/m finite, an inertia scale
 // m d^2 within [1e-290, 1e290] and finite initial totals (docs/scenes.md).
 Scene scene_from_json(const std::string& file, const wb::json& doc);
+// A scene whose bodies start inside a plane: one sentence with the count of (body, plane)
+// pairs and the deepest point (the contact pushes them out by positions only, push_out);
+// none otherwise. Said once before the run (after the cost model accepted the scene).
+std::vector<std::string> initial_overlap_notes(const Scene& s);
 
 // The update of (v, omega) an integrator stands for (the student's R5 functions).
 using VelocityStep = void (*)(Body&, double);
@@ -134,6 +132,10 @@ Totals totals(const Scene& scene, const std::vector<Body>& bodies);
 
 // The contact candidates of a body against a plane (world points).
 std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane& plane);
+
+// The cost model's terms of a rigid scene (docs/scenes.md, "Cost"): its bodies,
+// hinges and contact tests per step, from the scene's numbers.
+void step_cost(const Scene& scene, wb::StepCost& c);
 
 struct LabInfo {
   std::string lab, side, summary;

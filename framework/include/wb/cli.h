@@ -24,6 +24,10 @@ struct RunFlags {
   std::vector<std::string> sweep_integrators;
   std::vector<double> sweep_dts;
   std::optional<int> repeats;
+  // The cost model (docs/scenes.md, "Cost"): the budget, and --estimate (print
+  // the estimate, run nothing).
+  std::optional<double> max_time, max_memory_mib;
+  bool estimate = false;
 };
 
 // What one executable offers and how its --help reads.
@@ -37,9 +41,16 @@ struct FlagSpec {
   std::string sweep_help;                    // what --sweep does, one sentence
 };
 
-// Parses and checks argv. Returns the flags; or, after --help (status 0) or a
-// bad flag (status 2, one line on stderr naming the flag, the value and what
-// was expected), sets `status` and returns nothing.
+// Parses and checks argv: InputError naming the flag, the value and what was
+// expected (a flag the chosen mode would not read is refused too: --dt beside
+// --dts, --every without --out or --stats). After --help, `help` holds the text
+// and the flags are empty. Writes nothing.
+RunFlags read_run_flags(int argc, const char* const* argv, const FlagSpec& spec,
+                        std::string& help);
+
+// read_run_flags for main(): returns the flags; or, after --help (printed,
+// status 0) or a bad flag (one line on stderr, status 2), sets `status` and
+// returns nothing.
 std::optional<RunFlags> parse_run_flags(int argc, char** argv, const FlagSpec& spec, int& status);
 
 // The number of steps a run takes: --steps, else round(T / h) with T from

@@ -87,6 +87,17 @@ struct Summary {
 // prints is not finite: "ok" with "energy": null cannot happen.
 ordered_json summary_json(const Summary& s);
 
+// The summary line printed last on stdout: the object as JSON on one line (bytes
+// that are not UTF-8, from a file name, become U+FFFD rather than an exception).
+void print_summary(const ordered_json& j);
+
+// Every line a lab executable writes on stderr, and the only function that writes
+// one: "<exe>: <kind>: <text>", kind "error", "warning" or "internal error", the
+// text as one_line() makes it (control bytes, line breaks and invalid UTF-8 escaped,
+// so a file name or a key from outside cannot split it). Diagnostics are warnings
+// or nothing.
+void say(const std::string& exe, const char* kind, const std::string& text);
+
 // main()'s body: runs `body`; bad input (InputError) prints one line and
 // returns 2, any other exception returns 1 ("internal error").
 int guarded_main(const std::string& exe, const std::function<int()>& body);
@@ -103,6 +114,9 @@ std::string integrators_help(const std::vector<IntegratorLine>& list);
 // The sweep paragraph: `what` says what the errors are measured against.
 std::string sweep_help(const std::string& what);
 
+// The --help paragraph on the cost model's flags (--max-time, --max-memory, --estimate).
+std::string budget_help();
+
 // ---- Sweep mode's ladder and table (docs/sweep.md).
 
 struct SweepPlan {
@@ -110,6 +124,7 @@ struct SweepPlan {
   std::vector<double> dts;
   std::vector<long> steps;  // round(T / dt) each
   double t_end = 0;
+  std::string ladder;  // who chose the step sizes, for messages: "--dts", "--dt" or "<file>: dt"
 };
 
 // Which integrators (--integrators, else all), which step sizes (--dts, else
@@ -131,12 +146,43 @@ struct SweepRow {
   bool diverged = false;
 };
 
-// The sweep's CSV text:
-//   scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status
+// The sweep's CSV header: scene,integrator,dt,steps,force_evals,wall_s,error,
+// energy_error,reference,status
+std::string sweep_columns();
+
+// The sweep's CSV text: the header (unless `header` is false), then one row per run.
 std::string sweep_table(const std::string& scene, const std::vector<std::string>& names,
-                        const std::vector<SweepRow>& rows);
+                        const std::vector<SweepRow>& rows, bool header = true);
 
 // The sweep's summary line: status ok, the file, how many runs and how many diverged.
 ordered_json sweep_summary(const std::string& csv, const std::vector<SweepRow>& rows);
+
+// ---- Sweep mode's loop, whatever the lab's state (docs/sweep.md).
+
+// What the loop needs of a lab's state: the particle labs' (framework/src/particle_lab.cpp)
+// and the rigid lab's (framework/drivers/rigid/rigid_run.cpp).
+struct SweepHooks {
+  std::function<void()> reset;  // back to the initial state
+  // `n` steps of size h with integrator `i` (a loop of its own: the timed runs
+  // measure the step, not a call per step)
+  std::function<void(std::size_t i, double h, long n)> steps;
+  std::function<bool()> finite;           // is the state finite?
+  std::function<double()> energy;         // its total energy (J)
+  std::function<bool()> moved;            // has the state changed since reset()?
+  std::function<long()> evals;            // force evaluations since reset()
+  std::function<long()> unconverged;      // steps whose implicit solve failed since reset()
+  std::function<double(double t)> error;  // the run's error, at its end (time t)
+  double energy0 = 0;                     // the initial total energy (J)
+  double energy_scale = 1;                // what makes an energy error relative
+  double blowup_scale = 0;                // the divergence rule's E_s (energy_scale())
+  std::string reference;                  // "exact" or "rk4"
+  std::string unmoved;                    // ends the warning of a run whose state never changed
+};
+
+// Runs every (integrator, step size) of the plan: an untimed run (divergence, the
+// largest energy error, the final error), then `repeats` timed runs of the pure step
+// loop (wall_s: the fastest). A run whose state never changed warns ("<exe>: warning:").
+std::vector<SweepRow> sweep_rows(const SweepPlan& plan, const std::vector<std::string>& names,
+                                 const SweepHooks& h, const std::string& exe, int repeats);
 
 }  // namespace wb

@@ -8,6 +8,7 @@ namespace wb {
 
 class Force {
  public:
+  std::string key;  // the scene entry it was built from ("forces[2]"), for messages
   virtual ~Force() = default;
   // Adds this term's force on every particle to f (2 x n). Never resizes f.
   //   x, v: positions and velocities (2 x n); m: masses (n).
@@ -16,6 +17,16 @@ class Force {
   virtual double potential(const Mat2X& /*x*/, const VecX& /*m*/) const { return 0.0; }
   // The scene "type" this term was built from ("gravity", "spring", ...).
   virtual std::string type() const = 0;
+  // Adds to b[i] an upper bound of the largest component of this term's f_i (N)
+  // at (x, v), from the term's own parameters (not the lab's functions), so that
+  // a scene whose forces overflow is refused before the first step
+  // (check_initial_state); the sum over the terms bounds the total. The default
+  // adds nothing.
+  virtual void bound(const Mat2X& /*x*/, const Mat2X& /*v*/, const VecX& /*m*/,
+                     VecX& /*b*/) const {}
+  // The scene entry to name when this term's bound or potential is not finite
+  // at (x, v): `key`, unless the term gathers several entries (the springs).
+  virtual std::string blame(const Mat2X& /*x*/, const Mat2X& /*v*/) const { return key; }
 };
 
 }  // namespace wb

@@ -58,8 +58,13 @@ inline Vec2 lattice_gradient(std::int64_t i, std::int64_t j, std::uint64_t seed)
 }  // namespace noise_detail
 
 // Gradient noise at p (in lattice units), seeded: the same (p, seed) gives the
-// same value on every platform. Values lie in about [-0.7, 0.7].
+// same value on every platform. Values lie in about [-0.7, 0.7]. Beyond 2^52
+// lattice units every double is a lattice point, where the noise is 0: it is 0
+// there (and for a p that is not finite) without converting the coordinate to an
+// integer, which would be undefined past 2^63.
 inline double gradient_noise(const Vec2& p, std::uint64_t seed) {
+  constexpr double kLatticeLimit = 0x1p52;
+  if (!(std::abs(p.x()) < kLatticeLimit && std::abs(p.y()) < kLatticeLimit)) return 0.0;
   const double fx = std::floor(p.x()), fy = std::floor(p.y());
   const auto i = std::int64_t(fx), j = std::int64_t(fy);
   const double tx = p.x() - fx, ty = p.y() - fy;  // position inside the cell, in [0, 1)

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "wb/contract.h"
+#include "wb/cost.h"
 #include "wb/dynamics.h"
+#include "wb/output.h"
 #include "wb/paths.h"
 #include "wb/scene.h"
 #include "wb/world.h"
@@ -32,6 +34,10 @@ struct LabInfo {
   std::function<void(Scene&)> expand_scene;
   std::vector<std::string> scene_keys;     // top-level scene keys the glue reads
   std::vector<std::string> help_sections;  // extra --help paragraphs (force types, keys)
+  // The cost model's terms of the glue for one integrator on a scene (docs/scenes.md,
+  // "Cost"): its forces, its after-step phase, its solver. Called before make_world:
+  // it reads the scene's numbers only.
+  std::function<void(const Scene&, const Integrator&, StepCost&)> step_cost;
 };
 
 // What one simulation produced: the summary line's fields.
@@ -56,20 +62,19 @@ struct RunOptions {
   double dt = 0;
   long steps = 0;
   long every = 1;
-  std::string out;    // trace CSV, empty for none
-  std::string stats;  // energy/momentum CSV, empty for none
+  CsvFile* trace = nullptr;  // t,id,x,y,vx,vy, opened before the run (wb/lab.h); null: none
+  CsvFile* stats = nullptr;  // step,t,energy,...; null: none
 };
-
-// Steps times particles above which a run warns on stderr that it will be slow.
-constexpr double kLongRunParticleSteps = 1e10;
 
 // A whole-number flag: decimal digits only, in [min, max], else InputError
 // naming the flag, the text and the range (no base prefixes, no clamping).
 std::int64_t parse_whole(const std::string& flag, const std::string& text, std::int64_t min,
                          std::int64_t max);
 
-// Refuses a scene whose initial energy or momentum is not finite (finite
-// input that overflows), naming the file and the values.
+// Refuses a scene whose initial forces, energy or momentum are not finite (finite
+// input that overflows), naming the scene key that caused it (World::terms()) and
+// the values. The forces are bounded with the terms' own bounds (Force::bound),
+// never computed by a lab's functions: the skeleton refuses what the solution does.
 void check_initial_state(const Scene& scene, const World& world);
 
 // The work the initial forces would do across the scene, sum of m_i |a_i(0)|
@@ -79,16 +84,16 @@ double particle_work_scale(const Scene& scene, const World& world);
 // Runs one scene from its initial state. Throws InputError for bad input.
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt);
 
-// Checks before a run that an output path can be written (not a directory,
-// its folder exists); throws InputError naming `flag`.
-void check_output_path(const std::string& flag, const std::string& path);
-
 // The integrator called `name`, or InputError naming `where` and the known names.
 const Integrator& find_integrator(const LabInfo& info, const std::string& name,
                                   const std::string& where);
 
-// main() of a particle lab: parses flags, runs, prints the summary; returns
-// the exit status (0 ok or diverged, 2 bad input, 1 internal error).
+// A run's summary line (wb::Summary) from its result.
+Summary summary_of(const RunResult& r);
+
+// main() of a particle lab: the run contract's main (wb::run_lab) with the
+// particle labs' scenes (framework/src/particle_lab.cpp); returns the exit status
+// (0 ok or diverged, 2 bad input, 1 internal error).
 int run_particle_lab(int argc, char** argv, const LabInfo& info);
 
 // The default scenes shipped for a lab (files under scenes/<lab>/), sorted,

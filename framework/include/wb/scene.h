@@ -49,6 +49,10 @@ Scene scene_from_json(const std::string& file, json doc, std::optional<std::uint
 // particle and `what` made it.
 void check_particles(const Scene& scene, const std::string& what);
 
+// The scene entry particle i came from, for messages: "particles[3]",
+// "emitters[1]", or "particle 70 (made by the scene's generators)".
+std::string particle_key(const Scene& scene, Eigen::Index i);
+
 // A deterministic uniform double in [0, 1) from a 64-bit draw.
 inline double unit_double(std::uint64_t r) { return double(r >> 11) * 0x1.0p-53; }
 

@@ -1,7 +1,10 @@
-// Sweep mode of the integration labs (euler, midpoint): every integrator over
-// a ladder of step sizes, one CSV row per run. See docs/sweep.md.
+// Sweep mode of the integration labs (euler, midpoint, implicit): every integrator
+// over a ladder of step sizes, one CSV row per run. See docs/sweep.md. The loop,
+// the plan and the table are the contract's (wb/contract.h); this is the
+// particle labs' state and reference.
 //   <lab> --scene S --sweep FILE.csv [--integrators a,b] [--dts list] [--repeats R]
 #pragma once
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,29 +37,41 @@ std::vector<double> default_dt_ladder(double dt);
 // The reference step of an "rk4" reference: the smallest swept dt / 16.
 constexpr double kReferenceRefinement = 16.0;
 
-struct SweepOptions {
-  std::string csv;                       // output file (written atomically)
-  std::vector<std::string> integrators;  // empty: every integrator of the lab
-  std::vector<double> dts;               // empty: default_dt_ladder(dt)
-  std::optional<double> dt;              // --dt: the ladder's base (else the scene's dt)
-  std::optional<double> t_end;           // --t-end (else the scene's t_end)
-  int repeats = 3;                       // wall_s = fastest of this many timed loops
-  bool progress = true;                  // one line per run on stderr
-  // Printed as "<exe>: warning: ..." once every option and integrator is
-  // accepted, before the first run, with the integrators' own (Integrator::check).
-  std::string exe = "sweep";
-  std::vector<std::string> warnings;
+// The "rk4" reference runs a sweep needs: for each distinct end time t of the
+// plan's runs, the number of RK4 steps to t at about the smallest dt / 16.
+struct ReferenceRun {
+  double t = 0;
+  long steps = 0;
 };
+std::vector<ReferenceRun> reference_runs(const SweepPlan& plan);
 
-// What the sweep wrote, for the summary line.
-struct SweepResult {
-  std::vector<SweepRow> rows;
+// Checks a sweep of a particle scene before it runs: at least one particle (its
+// errors are particle positions), an "rk4" reference of at most kMaxSteps steps.
+// InputError naming the scene or the flag that chose the ladder (`ladder`).
+void check_sweep(const Scene& scene, const ExactSolution& exact, const SweepPlan& plan,
+                 const std::string& ladder);
+
+// The particle labs' state in sweep mode (wb::sweep_rows): the scene's initial
+// state stepped by the lab's integrators and World; errors against `exact` or an
+// RK4 run at the smallest dt / 16, cached per end time. Warnings ("<exe>:
+// warning: ...") for a reference that diverged.
+class ParticleSweep {
+ public:
+  ParticleSweep(const LabInfo& info, const Scene& scene, const World& world,
+                const ExactSolution& exact, const SweepPlan& plan, std::string exe);
+  SweepHooks hooks();
+
+ private:
+  Mat2X reference_positions(double t);
+  const LabInfo& info_;
+  const Scene& scene_;
+  const World& world_;
+  ExactSolution exact_;
+  double h_ref_ = 0;
+  std::string exe_;
+  Mat2X x_, v_;
+  Scratch scratch_;
+  std::map<double, Mat2X> rk4_cache_;
 };
-
-// Runs the sweep and writes the CSV
-//   scene,integrator,dt,steps,force_evals,wall_s,error,energy_error,reference,status
-// Throws InputError for bad options or scene keys.
-SweepResult run_sweep(const LabInfo& info, const Scene& scene, const World& world,
-                      const SweepOptions& opt);
 
 }  // namespace wb

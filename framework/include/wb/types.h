@@ -1,7 +1,8 @@
 // Fixed-size Eigen typedefs shared by every lab.
 #pragma once
 #if defined(WB_HARDENED) && !defined(WB_HARDENED_INCLUDED)
-#error "a hardened build (WB_HARDENED) must include wb/hardened.h before anything (cmake/labs.cmake)"
+#error \
+    "a hardened build (WB_HARDENED) must include wb/hardened.h before anything (cmake/labs.cmake)"
 #endif
 #include <Eigen/Core>
 

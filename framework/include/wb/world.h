@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "wb/dynamics.h"
+#include "wb/force.h"
 #include "wb/scene.h"
 
 namespace wb {
@@ -28,19 +29,26 @@ class World {
   virtual const Dynamics& dynamics() const = 0;
   // Kinetic and potential energy at (x, v).
   virtual Energy energy(const Mat2X& x, const Mat2X& v) const = 0;
+  // The scene's force terms, each with its key and bound (check_initial_state
+  // checks the initial forces and potentials term by term). Default: none.
+  virtual std::vector<const Force*> terms() const { return {}; }
   // Called after every integrator step of size h, before the state is
   // recorded (collision detection and response). The default does nothing.
   virtual void after_step(double /*h*/, Mat2X& /*x*/, Mat2X& /*v*/) const {}
-  // Valid but slow: one sentence per cost rule the scene crosses (docs/scenes.md,
-  // "Limits"), printed as "<lab>: warning: ..." only once the whole scene and
-  // the flags are accepted.
-  std::vector<std::string> cost_warnings;
   // Plain sentences for the summary's "warnings" at the end of a run, ending
   // in (x, v): what a stub of the lab's functions did that would otherwise
   // pass for a result (a contact no function answered). The default: none.
   virtual std::vector<std::string> warnings(const Mat2X& /*x*/, const Mat2X& /*v*/) const {
     return {};
   }
+  // Plain sentences about a run that are not what a stub does (an implicit
+  // solve that did not converge on some steps): printed on stderr as warnings
+  // at the end of the run, not in the summary's "warnings" (which mean a stub).
+  virtual std::vector<std::string> notes() const { return {}; }
+  // Plain sentences about the scene itself, said once on stderr as warnings before
+  // the run (or sweep) starts: a scene that starts with overlapping discs. Not in
+  // the summary's "warnings" either. The default: none.
+  virtual std::vector<std::string> initial_notes() const { return {}; }
 };
 
 // Builds a scene's World; throws InputError for bad scene entries.

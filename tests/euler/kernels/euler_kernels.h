@@ -2,12 +2,20 @@
 // build a test's calls to the lab go to a separate worker process, and a call per step would
 // cost a million round trips; this function runs beside the lab's code, so it is one call
 // (docs/grading.md "Batching"). In an ordinary build it is a plain function.
+//
+// It runs beside student code: in the grader everything it returns comes from the worker and
+// is hostile. So it returns the states it passed through (checkpoints), and the tests compute
+// what they judge (energies) from those on their own side, after replaying a few segments,
+// chosen at random after the run, through the lab's step called one step at a time
+// (wbtest::check_segments, tests/common/heldout.h): a run that skipped steps or made up its
+// states fails there.
 #pragma once
 #include "wb/types.h"
 
 // n steps of the explicit (method 0) or semi-implicit (method 1) Euler step on the harmonic
-// oscillator a = -w^2 x (unit masses), the work arrays NaN on entry to every step, as the
-// tests' Run does. After step k (0-based) with k % sample == 0, the energy
-// E = 1/2 |v|^2 + 1/2 w^2 |x|^2 is sampled into [e_min, e_max] (which start as the caller's).
-void euler_oscillator_run(int method, double w, double h, long n, long sample, wb::Mat2X& x,
-                          wb::Mat2X& v, double& e_min, double& e_max);
+// oscillator a = -w^2 x (unit masses) from (x, v), the work arrays NaN on entry to every step,
+// as the tests' Run does; n must be a multiple of `every`. On return x, v are the final state
+// and xs, vs hold the state before the first step and after every `every` steps: checkpoint c
+// of particle i is column c * x.cols() + i (n / every + 1 checkpoints).
+void euler_oscillator_run(int method, double w, double h, long n, long every, wb::Mat2X& x,
+                          wb::Mat2X& v, wb::Mat2X& xs, wb::Mat2X& vs);

@@ -16,11 +16,25 @@
 
 namespace wbrpc {
 
+// A callback of a call under way, with the number of particles of that call (the columns of
+// its first 2 x n argument, -1 without one): the worker never chooses a size the trusted side
+// indexes with, so a callback's x, v, m, a, f must have exactly that many.
+template <class T>
+struct Registered {
+  const T* what;
+  std::int64_t n;
+};
+
 struct Session {
   Channel ch;
-  std::vector<const wb::Dynamics*> dyn;                                // callbacks of the calls
-  std::vector<const std::vector<std::unique_ptr<wb::Force>>*> forces;  // under way
-  std::vector<const PointFunction*> points;                            // (wb::Potential)
+  std::vector<Registered<wb::Dynamics>> dyn;                                // callbacks of
+  std::vector<Registered<std::vector<std::unique_ptr<wb::Force>>>> forces;  // the calls
+  std::vector<std::int64_t> particles;  // of each call under way (innermost last)
+  // Functions of a point (wb::Potential) the calls sent: COPIES, kept for the whole test
+  // process and never reused, so that the index a call sent names that call's function
+  // for good, as a copy the student's code keeps would linked directly (a static copy
+  // from an earlier call must still compute the earlier field, not the current one).
+  std::vector<PointFunction> points;
   std::exception_ptr callback_error;  // the first exception a callback threw in this call
   int depth = 0;
 };
@@ -33,13 +47,26 @@ void run_callback(Session& s, In& in);
 inline void put(Out& o, const wb::Dynamics& d) {
   Session& s = session();
   put(o, std::int32_t(s.dyn.size()));
-  s.dyn.push_back(&d);
+  s.dyn.push_back({&d, s.particles.empty() ? -1 : s.particles.back()});
 }
 inline void put(Out& o, const std::vector<std::unique_ptr<wb::Force>>& f) {
   Session& s = session();
   put(o, std::int32_t(s.forces.size()));
   put(o, std::int64_t(f.size()));
-  s.forces.push_back(&f);
+  s.forces.push_back({&f, s.particles.empty() ? -1 : s.particles.back()});
+}
+
+// The particles of a call: the columns of its first wb::Mat2X argument (-1 when it has none).
+template <class... A>
+std::int64_t particles_of(const A&... a) {
+  std::int64_t n = -1;
+  (
+      [&](const auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, wb::Mat2X>)
+          if (n < 0) n = x.cols();
+      }(a),
+      ...);
+  return n;
 }
 
 template <class Sig>
@@ -49,16 +76,18 @@ template <class R, class... A>
 struct Caller<R(A...)> {
   static R call(std::int32_t id, const char* name, A... a) {
     Session& s = session();
-    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size(), points0 = s.points.size();
+    const std::size_t dyn0 = s.dyn.size(), forces0 = s.forces.size();
     if (s.depth++ == 0) s.callback_error = nullptr;
-    struct Restore {
+    s.particles.push_back(particles_of(a...));
+    struct Restore {  // (the points are kept: see Session::points)
       Session& s;
-      std::size_t d, f, p;
+      std::size_t d, f;
       ~Restore() {
-        s.dyn.resize(d), s.forces.resize(f), s.points.resize(p);
+        s.dyn.resize(d, {nullptr, -1}), s.forces.resize(f, {nullptr, -1});
+        s.particles.pop_back();
         --s.depth;
       }
-    } restore{s, dyn0, forces0, points0};
+    } restore{s, dyn0, forces0};
     Out o;
     put(o, kCall), put(o, id);
     (put(o, a), ...);

@@ -6,8 +6,9 @@
 // doubles, quaternions as their 4 coefficients, sparse matrices as compressed columns,
 // std::vector and std::pair element by element, and the labs' structs field by field (the
 // generated <lab>_rpc.h, from the lab's headers: tools/grader/stubs.py). Reading never trusts the
-// other side: every size is checked against what is left of the message, every bool is
-// re-made from a byte, and a message larger than kMaxMessage is refused.
+// other side: every count is non-negative and checked by division against what is left of the
+// message (a product could wrap), every dimension is at most kMaxDim, every bool is re-made
+// from a byte, and a message larger than kMaxMessage is refused.
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -26,6 +27,10 @@ namespace wbrpc {
 
 constexpr std::uint32_t kMaxMessage = 64u << 20;  // bytes: larger is a protocol error
 constexpr std::size_t kMaxText = 2048;            // bytes of an error message kept
+// Rows, columns, non-zeros: at most what one message could fill with doubles, even where the
+// dimension itself takes no bytes (a sparse matrix's rows, an empty matrix's other side),
+// so that nothing the trusted side sizes from it (a dense copy, a column count) is huge.
+constexpr std::int64_t kMaxDim = kMaxMessage / sizeof(double);
 
 enum Kind : std::int32_t {
   kCall = 1,      // trusted -> worker: function id, arguments
@@ -77,10 +82,45 @@ std::enable_if_t<std::is_arithmetic_v<T> || std::is_enum_v<T>> get(In& in, T& v)
   }
 }
 
+// n elements of at least `elem` bytes each must fit in what is left of the message: checked by
+// division, never by a product that could wrap.
 inline void check_count(In& in, std::int64_t n, std::size_t elem) {
-  if (n < 0 || std::uint64_t(n) > in.left() / (elem ? elem : 1))
+  if (n < 0 || n > kMaxDim || std::uint64_t(n) > in.left() / (elem ? elem : 1))
     throw ProtocolError("a size larger than the message");
 }
+
+// The fewest bytes one value of T takes on the wire: what a vector's count is checked against
+// (a count of 10^7 "structs" in a 10 MB message would otherwise allocate gigabytes first).
+// The generated <lab>_rpc.h adds one for each of the lab's structs (the sum of its fields').
+template <class T, class = void>
+struct WireMin {
+  static constexpr std::size_t value = 1;
+};
+template <class T>
+struct WireMin<T, std::enable_if_t<std::is_arithmetic_v<T> || std::is_enum_v<T>>> {
+  static constexpr std::size_t value = std::is_same_v<T, bool> ? 1 : sizeof(T);
+};
+template <class S, int R, int C, int O, int MR, int MC>
+struct WireMin<Eigen::Matrix<S, R, C, O, MR, MC>> {
+  static constexpr std::size_t value =
+      16 + (R > 0 && C > 0 ? std::size_t(R) * std::size_t(C) * sizeof(S) : 0);
+};
+template <class S>
+struct WireMin<Eigen::Quaternion<S>> {
+  static constexpr std::size_t value = 16 + 4 * sizeof(S);
+};
+template <class A, class B>
+struct WireMin<std::pair<A, B>> {
+  static constexpr std::size_t value = WireMin<A>::value + WireMin<B>::value;
+};
+template <class T, class Al>
+struct WireMin<std::vector<T, Al>> {
+  static constexpr std::size_t value = 8;
+};
+template <>
+struct WireMin<std::string> {
+  static constexpr std::size_t value = 8;
+};
 
 // ---- Eigen dense matrices (fixed or dynamic size)
 template <class S, int R, int C, int O, int MR, int MC>
@@ -93,11 +133,17 @@ template <class S, int R, int C, int O, int MR, int MC>
 void get(In& in, Eigen::Matrix<S, R, C, O, MR, MC>& m) {
   std::int64_t r = 0, c = 0;
   get(in, r), get(in, c);
-  if ((R != Eigen::Dynamic && r != R) || (C != Eigen::Dynamic && c != C) || r < 0 || c < 0)
+  if ((R != Eigen::Dynamic && r != R) || (C != Eigen::Dynamic && c != C) || r < 0 || c < 0 ||
+      r > kMaxDim || c > kMaxDim)
     throw ProtocolError("a matrix of the wrong shape");
-  if (c > 0) check_count(in, r, sizeof(S) * std::size_t(c));
+  // r c entries must fit in what is left: by division, never by a product that could wrap
+  // (an empty matrix, r or c zero, takes no bytes whatever the other dimension).
+  if (r > 0 && c > 0 &&
+      (std::uint64_t(c) > in.left() / sizeof(S) ||
+       std::uint64_t(r) > in.left() / sizeof(S) / std::uint64_t(c)))
+    throw ProtocolError("a size larger than the message");
   m.resize(r, c);
-  in.raw(m.data(), std::size_t(r * c) * sizeof(S));
+  in.raw(m.data(), std::size_t(r) * std::size_t(c) * sizeof(S));
 }
 
 template <class S>
@@ -124,21 +170,31 @@ inline void put(Out& o, const Eigen::SparseMatrix<double>& a) {
 inline void get(In& in, Eigen::SparseMatrix<double>& a) {
   std::int64_t r = 0, c = 0, nnz = 0;
   get(in, r), get(in, c), get(in, nnz);
-  if (r < 0 || r > INT32_MAX) throw ProtocolError("a sparse matrix of the wrong shape");
+  if (r < 0 || c < 0 || nnz < 0 || r > kMaxDim || c >= kMaxDim || nnz > kMaxDim)
+    throw ProtocolError("a sparse matrix of the wrong shape");
   check_count(in, c + 1, sizeof(int));
   check_count(in, nnz, sizeof(int) + sizeof(double));
+  if (std::uint64_t(c + 1) * sizeof(int) + std::uint64_t(nnz) * (sizeof(int) + sizeof(double)) >
+      in.left())
+    throw ProtocolError("a size larger than the message");
   std::vector<int> outer(static_cast<std::size_t>(c + 1)), inner(static_cast<std::size_t>(nnz));
   std::vector<double> values(static_cast<std::size_t>(nnz));
   in.raw(outer.data(), outer.size() * sizeof(int));
   in.raw(inner.data(), inner.size() * sizeof(int));
   in.raw(values.data(), values.size() * sizeof(double));
   // A malformed structure would make Eigen read out of bounds: check it first.
-  if (outer[0] != 0 || outer[std::size_t(c)] != nnz) throw ProtocolError("bad sparse columns");
+  if (outer[0] != 0 || std::int64_t(outer[std::size_t(c)]) != nnz)
+    throw ProtocolError("bad sparse columns");
   for (std::int64_t k = 0; k < c; ++k)
     if (outer[std::size_t(k)] > outer[std::size_t(k + 1)])
       throw ProtocolError("bad sparse columns");
   for (int i : inner)
     if (i < 0 || i >= r) throw ProtocolError("a sparse row index out of range");
+  for (std::int64_t k = 0; k < c;
+       ++k)  // Eigen's compressed columns are sorted (it searches them)
+    for (int p = outer[std::size_t(k)] + 1; p < outer[std::size_t(k + 1)]; ++p)
+      if (inner[std::size_t(p - 1)] >= inner[std::size_t(p)])
+        throw ProtocolError("a sparse column whose rows are not increasing");
   a = Eigen::Map<const Eigen::SparseMatrix<double>>(r, c, nnz, outer.data(), inner.data(),
                                                     values.data());
 }
@@ -172,7 +228,7 @@ template <class T, class Al>
 void get(In& in, std::vector<T, Al>& v) {
   std::int64_t n = 0;
   get(in, n);
-  check_count(in, n, 1);  // every element takes at least one byte
+  check_count(in, n, WireMin<T>::value);  // every element takes at least that many bytes
   v.clear();
   v.resize(std::size_t(n));
   for (auto& e : v) {
@@ -200,8 +256,9 @@ inline std::string printable(const std::string& s) {
 }
 
 // A function of a point (wb::Potential, a field of a lab's struct) crosses as a callback: the
-// trusted side registers it and sends its index, the worker gets a proxy that asks the trusted
-// side for each value (client.cpp and worker_main.cpp define these, one side each).
+// trusted side keeps a copy of it and sends its index, the worker gets a proxy that asks the
+// trusted side for each value (client.cpp and worker_main.cpp define these, one side each). The
+// index is a value: it names that copy for the rest of the test, never a later function.
 using PointFunction = std::function<double(const Eigen::Matrix<double, 2, 1>&)>;
 void put(Out& o, const PointFunction& f);
 void get(In& in, PointFunction& f);

@@ -27,7 +27,10 @@ void handle_call(In& in) {
   }
 }
 
-// A function of a point whose values come from the trusted side (wb_rpc.h).
+// A function of a point whose values come from the trusted side (wb_rpc.h). The id names a
+// copy the trusted side keeps for the whole test (client.h, Session::points): a copy of
+// this proxy kept by the student's code from an earlier call computes that call's function,
+// as a kept std::function would linked directly.
 void get(In& in, PointFunction& f) {
   std::int32_t id = -1;
   get(in, id);

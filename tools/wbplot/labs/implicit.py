@@ -10,6 +10,7 @@ amplitude, against h*omega: the stability picture of this lab.
 """
 import math
 
+from ..common import summary_line
 from ..recipes import fmt_dt
 
 REPLACES_GENERIC = True
@@ -284,16 +285,6 @@ def cost_scene(beads, km, t_end, cloth=False):
     return doc
 
 
-def _summary(stdout):
-    import json
-    lines = [s for s in stdout.splitlines() if s.strip()]
-    try:
-        s = json.loads(lines[-1]) if lines else None
-    except ValueError:
-        return None
-    return s if isinstance(s, dict) else None
-
-
 def _run(exe, scene, integrator, dt, t_end, repeats, log, clock="wall_s"):
     """The fastest of `repeats` runs by the summary's `clock` (its summary), or the first
     failure."""
@@ -305,7 +296,7 @@ def _run(exe, scene, integrator, dt, t_end, repeats, log, clock="wall_s"):
         if log:
             log(" ".join(argv))
         p = subprocess.run(argv, capture_output=True, text=True)
-        s = _summary(p.stdout)
+        s = summary_line(p.stdout)
         if p.returncode != 0 or s is None:
             raise RuntimeError(f"{' '.join(argv)}: exit status {p.returncode}: "
                                + (p.stderr.strip().splitlines() or [""])[-1])

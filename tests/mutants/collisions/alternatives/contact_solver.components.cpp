@@ -16,7 +16,8 @@ void prepare_contact(const wb::VecX& w, const wb::Mat2X& v, double e, double thr
     c.mass_n = ma * mb / (ma + mb);
     un -= v.col(c.b).dot(c.n);
   }
-  c.bias = (-un > threshold) ? e * -un : 0.0;
+  // Closing faster than the threshold: bounce; closing slower: stop; leaving: -un.
+  c.bias = (-un > threshold) ? e * -un : std::min(0.0, -un);
 }
 
 void warm_start_contact(const wb::VecX& w, const Contact& c, wb::Mat2X& v) {

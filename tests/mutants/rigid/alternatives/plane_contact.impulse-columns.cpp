@@ -38,7 +38,7 @@ void prepare_contact(const rigid::Body& b, const rigid::Vec3& n, double e, doubl
   }
   c.mass_n = 1.0 / (n.transpose() * c.K * n).value();
   const double closing = -velocity_at(b, c.r).dot(n);
-  c.bias = closing > threshold ? e * closing : 0.0;
+  c.bias = closing > threshold ? e * closing : (closing < 0 ? closing : 0.0);
 }
 
 void warm_start_contact(rigid::Body& b, const Contact& c, const rigid::Vec3& n) {

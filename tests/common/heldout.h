@@ -1,0 +1,173 @@
+// Held-out inputs (docs/grading.md, "Held-out checks"): every task has a test tagged
+// [held-out] that checks the student's function on inputs drawn from a seeded generator, with
+// the expected values from the test's own closed forms and laws. The public tests' inputs are
+// in the student pack; these are not known before grading: on the autograder the seed is
+// secret and differs per submission, locally tools/grade draws one and prints it.
+//
+//   TEST_CASE("F5 held-out: random springs", "[forces][F5][held-out][3pts]") {
+//     for (wbtest::HeldOut& g : wbtest::held_out("F5")) {
+//       INFO(g.replay());            // which seed, and how to replay it
+//       const double k = g.uniform(0.5, 50.0);
+//       ...
+//     }
+//   }
+//
+// The seed: WB_HELDOUT_SEED (decimal or 0x hex; the grader sets it, given with --seed or
+// derived from the autograder's secret and the submission), else a fresh random one.
+// WB_HELDOUT_SEEDS=N checks N consecutive seeds from it in one process (tools/mutants
+// --heldout-seeds: the measurement that no correct implementation ever fails).
+// Each task draws from its own stream (the seed mixed with the task's id), so adding a draw to
+// one task changes no other task's inputs.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "wb/types.h"
+
+namespace wbtest {
+namespace {
+
+inline std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+inline std::uint64_t task_hash(const std::string& task) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : task) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+struct HeldOutSeeds {
+  std::uint64_t first = 0;
+  long count = 1;
+  bool given = false;  // from WB_HELDOUT_SEED (else drawn here)
+};
+
+inline HeldOutSeeds heldout_seeds() {
+  static const HeldOutSeeds seeds = [] {
+    HeldOutSeeds s;
+    if (const char* e = std::getenv("WB_HELDOUT_SEED"); e && *e) {
+      s.first = std::strtoull(e, nullptr, 0);
+      s.given = true;
+    } else {
+      std::random_device rd;
+      s.first = (std::uint64_t(rd()) << 32) ^ rd();
+    }
+    if (const char* e = std::getenv("WB_HELDOUT_SEEDS"); e && *e)
+      s.count = std::max(1L, std::strtol(e, nullptr, 10));
+    return s;
+  }();
+  return seeds;
+}
+
+inline std::string hex(std::uint64_t v) {
+  std::ostringstream s;
+  s << "0x" << std::hex << v;
+  return s.str();
+}
+
+// One seed's inputs of one task: uniform draws from mt19937_64 (fully specified), mapped to
+// doubles by us (not by a library distribution), so the same seed gives the same inputs on
+// every platform.
+class HeldOut {
+ public:
+  HeldOut(const std::string& task, std::uint64_t seed)
+      : task_(task), seed_(seed), gen_(splitmix64(seed ^ task_hash(task))) {}
+
+  std::uint64_t seed() const { return seed_; }
+  const std::string& task() const { return task_; }
+
+  // What a failure prints first: the inputs are not in the pack, so say how to see them again.
+  std::string replay() const {
+    return "held-out inputs of " + task_ + " from seed " + hex(seed_) +
+           " (replay: tools/grade ... --seed " + hex(seed_) +
+           ", or WB_HELDOUT_SEED=" + hex(seed_) + " when running the tests)";
+  }
+
+  double unit() { return double(gen_() >> 11) * 0x1.0p-53; }  // [0, 1)
+  double uniform(double lo, double hi) { return lo + (hi - lo) * unit(); }
+  // log-uniform in [lo, hi] (lo > 0): every order of magnitude as likely
+  double log_uniform(double lo, double hi) { return lo * std::exp(std::log(hi / lo) * unit()); }
+  // an integer in [lo, hi]
+  long integer(long lo, long hi) { return lo + long(gen_() % std::uint64_t(hi - lo + 1)); }
+  bool coin(double p = 0.5) { return unit() < p; }
+  double sign() { return coin() ? 1.0 : -1.0; }
+  // a magnitude in [lo, hi] with a random sign
+  double signed_uniform(double lo, double hi) { return sign() * uniform(lo, hi); }
+  wb::Vec2 vec2(double lo, double hi) { return wb::Vec2(uniform(lo, hi), uniform(lo, hi)); }
+  wb::Vec3 vec3(double lo, double hi) {
+    return wb::Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi));
+  }
+  wb::Vec2 unit2() {
+    const double a = uniform(0.0, 2.0 * M_PI);
+    return wb::Vec2(std::cos(a), std::sin(a));
+  }
+  wb::Vec3 unit3() {  // uniform on the sphere
+    const double z = uniform(-1.0, 1.0), a = uniform(0.0, 2.0 * M_PI), r = std::sqrt(1 - z * z);
+    return wb::Vec3(r * std::cos(a), r * std::sin(a), z);
+  }
+  wb::Mat2X points(Eigen::Index n, double lo, double hi) {
+    wb::Mat2X p(2, n);
+    for (Eigen::Index i = 0; i < n; ++i) p.col(i) = vec2(lo, hi);
+    return p;
+  }
+  wb::VecX values(Eigen::Index n, double lo, double hi) {
+    wb::VecX v(n);
+    for (Eigen::Index i = 0; i < n; ++i) v[i] = uniform(lo, hi);
+    return v;
+  }
+  template <class T>
+  const T& pick(const std::vector<T>& options) {
+    return options[std::size_t(integer(0, long(options.size()) - 1))];
+  }
+
+ private:
+  std::string task_;
+  std::uint64_t seed_;
+  std::mt19937_64 gen_;
+};
+
+// The generators of this run for one task: one per seed (one seed unless WB_HELDOUT_SEEDS).
+inline std::vector<HeldOut> held_out(const std::string& task) {
+  const HeldOutSeeds s = heldout_seeds();
+  std::vector<HeldOut> out;
+  for (long k = 0; k < s.count; ++k) out.emplace_back(task, s.first + std::uint64_t(k));
+  return out;
+}
+
+// The generator of a public test that needs secret randomness (which segments of a kernel's
+// run to replay): the run's seed, one stream per name.
+inline HeldOut run_generator(const std::string& name) {
+  return HeldOut(name, heldout_seeds().first);
+}
+
+// A kernel (tests/<lab>/kernels) runs beside the lab's code, in the worker: what it returns is
+// hostile. It returns checkpoints (the state every `every` steps); the test judges values it
+// computes from them, after checking that they are the orbit of the lab's own step: `segments`
+// segments drawn at random after the run (the run's seed) are replayed from their first
+// checkpoint by `replay(c)`, which steps `every` times one call at a time (through the worker,
+// in the grader) and compares the result with checkpoint c + 1. A run that skipped steps or
+// made up its states fails unless it gets every replayed segment right.
+template <class Replay>
+void check_segments(const std::string& name, long checkpoints, int segments, Replay replay) {
+  HeldOut g = run_generator(name + " segments");
+  for (int k = 0; k < segments && checkpoints > 1; ++k) {
+    const long c = g.integer(0, checkpoints - 2);
+    INFO(name << ": the run's states between checkpoints " << c << " and " << c + 1
+              << ", replayed one step at a time, must be the states the run returned "
+                 "(a run must take every step with the lab's own step function)");
+    replay(c);
+  }
+}
+
+}  // namespace
+}  // namespace wbtest

@@ -1,0 +1,141 @@
+"""The verdict (tools/grader/verdict.py): what decides a test's points from how its process
+ended and the test framework's XML report. Every byte of the report is hostile: these tests
+guard against a forged, foreign, partial or padded report passing, and against a failure
+whose reason says nothing a student can act on."""
+import signal
+
+import pytest
+
+from grader import common
+from grader.common import Defect
+from grader.verdict import GraderError, judge, read_report
+
+NONCE = "wb-0123456789abcdef"
+NAME = "E1 one step: positions move with the old velocities"
+TEST = common.TestCase("euler", NAME, 10, ["[E1]", "[10pts]"])
+SRC = "/scratch/src/"
+
+
+def report(body="", ok=True, name=NAME, nonce=NONCE, cases=1, extra=""):
+    """A report in the shape Catch 2.13's XML reporter writes (catch.hpp, XmlReporter)."""
+    f = "0" if ok else "1"
+    tc = "".join(f'<TestCase name="{name}" tags="[E1][10pts]" filename="{SRC}tests/euler/t.cpp" '
+                 f'line="12">{body}<OverallResult success="{str(ok).lower()}"/></TestCase>'
+                 for _ in range(cases))
+    totals = (f'<OverallResults successes="3" failures="{f}" expectedFailures="0"/>'
+              f'<OverallResultsCases successes="{1 if ok else 0}" failures="{f}" '
+              'expectedFailures="0"/>')
+    return (f'<?xml version="1.0" encoding="UTF-8"?>\n<Catch name="{nonce}">'
+            f'<Group name="{nonce}">{tc}{extra}{totals}</Group>{totals}</Catch>\n').encode()
+
+
+FAILED_EXPR = (f'<Info>explicit Euler velocity (particle 0)</Info>'
+               f'<Expression success="false" type="REQUIRE" filename="{SRC}tests/common/h.h" '
+               'line="40"><Original>near(got, expected)</Original>'
+               '<Expanded>false</Expanded></Expression>')
+
+
+def test_a_complete_passing_report_passes():
+    """Defect: an honest pass scored 0 (the parser stricter than Catch's own output)."""
+    assert read_report(report(), NAME, NONCE, SRC)[0] == "passed"
+    r = judge(TEST, ("exit", 0), report(), "", NONCE, 60, SRC)
+    assert (r.status, r.score) == ("passed", 10)
+
+
+def test_a_failed_assertion_gives_its_message_and_place_without_the_scratch_path():
+    """Defect: a failure whose reason is not the assertion's own words (the student cannot act
+    on it), or one that leaks the grader's scratch folder."""
+    verdict, reason, details = read_report(report(FAILED_EXPR, ok=False), NAME, NONCE, SRC)
+    assert verdict == "failed" and reason == "explicit Euler velocity (particle 0)"
+    assert "tests/common/h.h:40: REQUIRE( near(got, expected) ) failed" in details
+    assert SRC not in details
+
+
+@pytest.mark.parametrize("data,why", [
+    (None, "larger than"),
+    (b"", "no test report"),
+    (report(nonce="wb-guessed"), "does not belong to this run"),
+    (report(cases=2), "runs of this test case"),
+    (report(extra='<TestCase name="other"><OverallResult success="true"/></TestCase>'),
+     "of others"),
+    (report()[:-40], "incomplete"),
+    (b'<?xml version="1.0" encoding="UTF-8"?>\n<!DOCTYPE x [<!ENTITY a "b">]><Catch/>',
+     "not the one"),
+    (b"all tests passed\n" + report(), "not the one"),
+])
+def test_a_report_that_is_not_exactly_this_runs_is_missing(data, why):
+    """Defect: a forged report (printed by student code, guessed nonce, another test's, a
+    truncated or entity-laden one) is taken as the framework's verdict."""
+    verdict, reason, _ = read_report(data, NAME, NONCE, SRC)
+    assert verdict == "missing" and why in reason
+
+
+def test_a_passing_report_with_a_failed_expression_fails():
+    """Defect: totals written by student code say success while an assertion failed."""
+    assert read_report(report(FAILED_EXPR, ok=True), NAME, NONCE, SRC)[0] == "failed"
+
+
+def test_a_pass_needs_exit_status_zero():
+    """Defect: a complete passing report from a process that then exited non-zero (or was
+    killed) scores points. No byte of student code runs in the test process, so that is the
+    grader's own defect (docs/grading.md, "Blame"): GraderError, the lab not scored."""
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("exit", 3), report(), "", NONCE, 60, SRC)
+    assert "exited with status 3" in str(e.value) and "not of the submission" in str(e.value)
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("signal", signal.SIGKILL), report(), "", NONCE, 60, SRC)
+    assert "SIGKILL" in str(e.value)
+
+
+@pytest.mark.parametrize("status,words", [
+    (("timeout", 60), "timed out after 60 s"),
+    (("idle", 10), "used almost no CPU for 10 s"),
+])
+def test_how_the_process_ended_is_the_reason(status, words):
+    """Defect: a time-out or a sleeping test reported as a bare 'failed', which tells the
+    student nothing to act on."""
+    r = judge(TEST, status, b"", "", NONCE, 60, SRC)
+    assert r.score == 0 and words in r.reason
+
+
+def test_a_crash_of_the_trusted_side_is_the_graders_defect():
+    """Defect: a crash of the trusted test process (issue 29, "Blame") reported as the
+    student's fault ("exit() called in student code?")."""
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("signal", signal.SIGSEGV), b"", "", NONCE, 60, SRC)
+    assert "crashed (SIGSEGV" in str(e.value) and "the lab is not scored" in str(e.value)
+
+
+def test_leaving_in_the_middle_of_the_test_is_the_graders_defect():
+    """Defect: a report cut inside the test case read as a pass or blamed on the submission:
+    student code runs in the worker, never in the test process, so only the grader can cut
+    it."""
+    cut = report().split(b"<OverallResult")[0]
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("exit", 0), cut, "", NONCE, 60, SRC)
+    assert "incomplete" in str(e.value)
+
+
+def test_the_workers_end_explains_but_never_passes():
+    """Defect: the worker's status (student code's process) decides a pass, or its crash is
+    reported as the test's own."""
+    body = "<Failure>the lab's code stopped answering</Failure>"
+    r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC,
+              worker_status=("signal", signal.SIGSEGV))
+    assert r.score == 0 and r.reason.startswith("the lab's code crashed (SIGSEGV")
+    r = judge(TEST, ("exit", 0), report(), "", NONCE, 60, SRC, worker_status=("signal", 11))
+    assert r.score == 10
+
+
+def test_a_sandbox_that_cannot_start_is_the_graders_defect():
+    """Defect: the grader's own failure to start a process scored as the student's 0."""
+    with pytest.raises(Defect):
+        judge(TEST, ("error", "no seccomp"), b"", "", NONCE, 60, SRC)
+
+
+def test_output_is_capped_and_printable():
+    """Defect: a test that floods stdout or prints terminal escapes makes an unbounded or
+    forged result (fake lines in the table)."""
+    r = judge(TEST, ("exit", 1), report(FAILED_EXPR, ok=False), "\x1b[2J" + "x" * 100000, NONCE,
+              60, SRC)
+    assert "\x1b" not in r.output and len(r.output) < 20000

@@ -1,0 +1,155 @@
+"""tools/pattern's static stages (tools/wbtools/pattern.py: testnames; docrefs.py: docrefs):
+one naming scheme for graded test files, and docs that quote the code truthfully. Guards
+against a new test file named another way (a student looking for the tests of task F5 does
+not find them), and docs that quote a flag, a signature or a path the code no longer has."""
+import os
+
+import pytest
+
+from wbtools import docrefs, pattern
+
+TASKS = ["F1", "F5"]
+GOOD = 'TEST_CASE("F5 spring: the force is -k (L - rest)", "[forces][F5][6pts]") {}\n'
+
+
+def findings(files, texts=None, tasks=TASKS):
+    texts = texts or {}
+    return pattern.test_name_findings("forces", files, tasks, lambda n: texts.get(n, GOOD))
+
+
+def test_the_schemes_names_pass():
+    """Defect: the check refuses the one scheme (a check that fails right code)."""
+    assert findings(["test_F5_spring.cpp", "test_F1_uniform_gravity.cpp"],
+                    {"test_F1_uniform_gravity.cpp": GOOD.replace("F5", "F1")}) == []
+
+
+@pytest.mark.parametrize("name", ["explicit_euler_test.cpp", "test_spring.cpp",
+                                  "test_F5_Spring.cpp", "test_F5-spring.cpp", "F5_spring.cpp"])
+def test_other_schemes_fail(name):
+    """Defect: a test file named another way (the three schemes the tree once had:
+    test_F1_uniform_gravity.cpp, explicit_euler_test.cpp, ...) slips in."""
+    out = findings([name, "test_F1_x.cpp", "test_F5_y.cpp"],
+                   {"test_F1_x.cpp": GOOD.replace("F5", "F1")})
+    assert len(out) == 1 and out[0].startswith(f"tests/forces/{name}: graded test files are named")
+
+
+def test_a_file_for_an_unknown_task_or_a_task_without_a_file():
+    """Defect: a file named after a task the lab does not have, or a task whose tests a
+    student cannot find by its name."""
+    out = findings(["test_F7_boids.cpp"], {"test_F7_boids.cpp": GOOD.replace("F5", "F7")})
+    assert any("names task F7" in f for f in out)
+    assert any("task F1 has no test file" in f for f in out)
+    assert any("task F5 has no test file" in f for f in out)
+
+
+def test_every_case_carries_its_files_task_tag():
+    """Defect: a test of another task hidden in F5's file (filtered out of [F5] runs)."""
+    text = GOOD + 'TEST_CASE("F5 damper " "along the spring",\n  "[forces][F1][4pts]") {}\n'
+    out = findings(["test_F5_spring.cpp"], {"test_F5_spring.cpp": text}, ["F5"])
+    assert out == ['tests/forces/test_F5_spring.cpp: test "F5 damper along the spring" lacks '
+                   "the tag [F5] of the task its file is named after: tag it, or move it to "
+                   "its task's file"]
+
+
+def test_the_repositorys_labs_follow_the_scheme():
+    """Defect: a lab of the repository breaks the scheme (every lab, present and future)."""
+    assert pattern.stage_testnames(None, None, False) == []
+
+
+def write(root, rel, text):
+    path = os.path.join(root, rel)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+@pytest.fixture
+def repo(tmp_path):
+    """A small repository: a Python tool, a bash tool, a lab header and the labs' CLI."""
+    root = str(tmp_path)
+    write(root, "tools/pack", "#!/usr/bin/env -S sh -c 'exec start-python'\n"
+                              "from wbtools.pack import run\n")
+    write(root, "tools/wbtools/pack.py", "import argparse\ndef run():\n"
+          "    ap = argparse.ArgumentParser()\n    ap.add_argument('--verify')\n"
+          "    ap.add_argument('-o', '--out')\n\ndef commands_of(text, strict=False):\n"
+          "    pass\n")
+    write(root, "tools/check", "#!/usr/bin/env bash\ncase $a in\n  --quick) ;;\n"
+                               "  -h|--help) ;;\nesac\n")
+    write(root, "labs/forces/spring.h", "#pragma once\nvoid spring_force(const Vec2& xi, "
+                                        "const Vec2& xj, double k, Vec2& f);\n")
+    write(root, "framework/src/cli.cpp", 'app.add_option("--scene", s);\n'
+                                         'app.add_option("-o,--out", o);\n')
+    return root
+
+
+def doc_findings(root, text):
+    write(root, "docs/x.md", text)
+    return docrefs.check(root, ["docs/x.md"])
+
+
+def test_flags_of_tools_and_lab_executables(repo):
+    """Defect: a doc quotes a flag a tool or a lab executable does not have (renamed, removed,
+    or never there): the reader's command fails."""
+    found, counts = doc_findings(repo, "Run `tools/pack --verify --out p`, then\n```sh\n"
+                                       "tools/check --quick --fast\nbuild/bin/forces --scene "
+                                       "s.json --seed 3\nbuild/bin/forces-tests --list-tests\n"
+                                       "```\n")
+    assert counts["flags"] == 6
+    assert [f.split(": ", 1)[1].split(":")[0] for f in found] == [
+        "`tools/check --fast`", "`build/bin/forces --seed`"]
+
+
+def test_calls_quote_the_headers_parameters_and_the_codes_arity(repo):
+    """Defect: a doc quotes a task function with other arguments than its header (a student
+    writes the wrong signature) or a tool's function with an old signature (the hint hook's
+    hints_for once did)."""
+    found, counts = doc_findings(repo, "`spring_force(xi, xj, k, f)` `spring_force(xi, k, f)`"
+                                       " `commands_of(text)` `pack.commands_of(a, b, c)` "
+                                       "`commands_of(text, loose=True)` `sqrt(x)` "
+                                       "`commands_of(a, ...)`\n")
+    assert counts["calls"] == 5 and len(found) == 3
+    assert "the header declares spring_force(xi, xj, k, f)" in found[0]
+    assert "pack.commands_of(a, b, c)" in found[1] and "loose=True" in found[2]
+
+
+def test_paths_and_links_must_exist(repo):
+    """Defect: a doc names a file that moved or never existed (the tools' modules moved to
+    tools/wbtools/; a stale framework/src path was found this way)."""
+    found, counts = doc_findings(repo, "`tools/pack` `tools/report` `labs/<lab>/spring.h` "
+                                       "`labs/L/*.cpp` `framework/src/gone.cpp` [a](../tools/check)"
+                                       " [b](missing.md) [c](https://x.org)\n")
+    assert counts["paths"] == 7
+    assert len(found) == 4 and "`tools/report`" in found[0] and "labs/L/*.cpp" in found[1]
+    assert "gone.cpp" in found[2] and "missing.md" in found[3]
+
+
+def test_every_doc_of_the_repository_is_covered():
+    """Defect: a Markdown file the check never reads (a new doc, a README in a folder)."""
+    docs = docrefs.markdown_files()
+    for must in ("README.md", "docs/grading.md", "handouts/euler.md", "tools/pack.d/README.md",
+                 "tools/gradescope/README.md", "fuzz/README.md"):
+        assert must in docs
+
+
+# Test files written before the rule was checked, whose tests do not all have a docstring
+# yet: the rule holds for every other file, and for any new one.
+WITHOUT_DOCSTRINGS = {"tools/wbplot/tests/test_figure_rules.py", "tools/wbview/tests/test_view.py"}
+
+
+def test_every_unit_test_names_the_defect_it_guards():
+    """Defect: a unit test that does not say which defect class it guards (then nobody can
+    tell whether it still guards anything when the code moves)."""
+    import ast
+    import glob
+    root = os.path.dirname(docrefs.TOOLS)
+    missing = []
+    for path in sorted(glob.glob(os.path.join(docrefs.TOOLS, "*", "tests", "test_*.py"))):
+        rel = os.path.relpath(path, root)
+        if rel in WITHOUT_DOCSTRINGS:
+            continue
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read(), path)
+        missing += [f"{rel}: {node.name}" for node in tree.body
+                    if isinstance(node, ast.FunctionDef) and node.name.startswith("test_")
+                    and not (ast.get_docstring(node) or "").strip()]
+    assert missing == []
