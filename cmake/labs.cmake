@@ -235,6 +235,47 @@ function(wb_lab_worker lab side suffix)
   wb_use_pch(${worker} LAB)
 endfunction()
 
+# The diagnosis probes of one lab (tests/<lab>/probes/*.cpp, tests/common/wb_probe.h): fixed
+# inputs on which the grader calls a task's functions to tell mistakes apart. Never built by
+# default: <lab>[-solution]-probes links the lab's code in an ordinary build (an instructor's
+# look), the worker's stubs in the grader's (tools/grader/diagnose.py); <lab>-probes-direct,
+# with WB_DIRECT_TESTS, links the lab for tools/mutants, which records the catalogue's outputs.
+function(wb_lab_probes lab side suffix)
+  file(GLOB probe_sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/${lab}/probes/*.cpp)
+  if(NOT probe_sources)
+    return()
+  endif()
+  if(NOT TARGET ${lab}_probes_obj)
+    add_library(${lab}_probes_obj OBJECT ${probe_sources}
+                                         ${CMAKE_SOURCE_DIR}/tests/common/wb_probe_main.cpp)
+    target_include_directories(${lab}_probes_obj PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
+                                                         ${CMAKE_SOURCE_DIR}/tests/${lab}/probes
+                                                         ${CMAKE_SOURCE_DIR}/labs/${lab})
+    wb_lab_deps(${lab} deps)
+    foreach(dep IN LISTS deps)
+      target_include_directories(${lab}_probes_obj PRIVATE ${CMAKE_SOURCE_DIR}/labs/${dep})
+    endforeach()
+    target_link_libraries(${lab}_probes_obj PRIVATE wb_headers)
+    wb_use_pch(${lab}_probes_obj LAB)
+    # One translation unit per lab, as the tests: each file keeps its helpers in a namespace.
+    if(WB_UNITY_TESTS)
+      set_target_properties(${lab}_probes_obj PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
+                                                         UNITY_BUILD_BATCH_SIZE 0)
+    endif()
+  endif()
+  set(probes ${lab}${suffix}-probes)
+  add_executable(${probes} EXCLUDE_FROM_ALL $<TARGET_OBJECTS:${lab}_probes_obj>)
+  if(WB_WORKER_DIR)
+    target_link_libraries(${probes} PRIVATE ${lab}_client wb_headers)
+    if(WB_DIRECT_TESTS)
+      add_executable(${probes}-direct EXCLUDE_FROM_ALL $<TARGET_OBJECTS:${lab}_probes_obj>)
+      target_link_libraries(${probes}-direct PRIVATE ${lab}_${side} wb_headers)
+    endif()
+  else()
+    target_link_libraries(${probes} PRIVATE ${lab}_${side} wb_headers)
+  endif()
+endfunction()
+
 function(wb_add_lab lab side)
   wb_lab_library(${lab} ${side})
   wb_lab_glue(${lab} glue)
@@ -359,6 +400,7 @@ function(wb_add_lab lab side)
   else()
     target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
   endif()
+  wb_lab_probes(${lab} ${side} "${suffix}")
   catch_discover_tests(${tests}
     TEST_PREFIX "${side}/"
     EXTRA_ARGS -w NoTests

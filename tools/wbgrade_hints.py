@@ -1,165 +1,679 @@
-"""Names the likely mistake behind a set of failed tests, from the catalogue of known mistakes.
+"""Diagnosis of a failing task: what the student's functions do on fixed probe inputs, compared
+with what the solution and each catalogued mistake do on the same inputs.
 
-Pure standard library, no grader internals: the grader (or any tool) passes in what failed
-and the lab's stored signatures (tests/mutants/<lab>/signatures.json, written by
-`tools/mutants --signatures`), and gets back zero to three sentences for the student.
+Pure standard library, no grader internals, shipped in the student pack with the catalogue
+(tests/mutants/<lab>/signatures.json: numbers only, written by `tools/mutants --signatures`),
+so that a grade at home says what the autograder says. docs/grading.md, "Diagnosis", has the
+long version.
 
-    import wbgrade_hints
-    sigs = wbgrade_hints.load_signatures(repo, "forces")        # None when the lab has none
-    lines = wbgrade_hints.hints_for("forces", failed, all_tests, sigs)
+    import wbgrade_hints as wh
+    cat = wh.load_catalogue(repo, "forces")                 # None: no diagnosis, grading goes on
+    d = wh.diagnose(cat, "F3", outputs, failed_tests)       # outputs: {probe id: record}
+    print("\\n".join(d.lines()))
 
-`failed` is the list of failed test case names, or a dict {name: the grader's output for
-that test} (its first paragraph, the failure reason, tells apart mistakes that fail the same
-tests at different assertions: failure_text()).
-`all_tests` is every test case name of the lab (passed or failed).
-
-The closeness rule (docs/grading.md, "Failure signatures and hints"): each known mistake m
-has a signature S_m, the tests it fails, each with its failure text (failure_text: the
-reason, numbers blanked). With F the submission's failed tests, each test t weighted by
-w_t = log(1 + M / (1 + m_t)) (m_t of the M known mistakes fail it: a test every mistake
-fails tells little apart),
-    names = w(F & S_m) / w(F | S_m)          (weighted Jaccard index over test names)
-    pairs = w(tests of F & S_m that failed with the same text) / w(F | S_m)
-    score = (1 - ASSERTION_WEIGHT) names + ASSERTION_WEIGHT pairs.
-A mistake is close when score >= CLOSE. The closest one is named, with any other whose
-score is within TIE of it, up to MAX_HINTS sentences with different text. Nothing is said
-when nothing is close, when no test failed, or when every test failed (a skeleton, a build
-error, a crash at start: no pattern to match).
+A probe record is one JSON line of a probe binary (tests/common/wb_probe.h): the inputs given
+("in"), the outputs got ("out") or the exception ("error"). For one task the diagnosis is, in
+this order:
+  - "passed": every test of the task passed (nothing to say);
+  - "not started": every probe gives what the skeleton gives;
+  - "mistake": the outputs match a catalogued mistake on every probe (within the probes'
+    tolerance), and every mistake that matches is of one kind: its hint is named;
+  - "part": no catalogued mistake matches exactly, but the probes that go wrong are those that
+    go wrong for the catalogued mistakes of one part of the computation (a '# kind:') and of no
+    other (the rule: part_of below): that part is named, never a particular mistake;
+  - always, when some probe differs from the solution, a counterexample: the first such probe
+    in the order the probes are written (the simplest first), its inputs, expected and got, and
+    what differs (the sign, a constant factor, one component, one particle, what f held);
+  - "tests": every probe agrees with the solution, yet a test fails: the first failed test's
+    own message (it has the expected and actual values).
+A task's diagnosis depends only on that task's probes and tests: a task still at its skeleton
+never changes another's.
 """
-import functools
 import json
 import math
 import os
 import re
 
-SIGNATURES_VERSION = 1
-CLOSE = 0.7          # the least score (below) to name a mistake
-TIE = 0.1            # scores within TIE of the best are named together
-MAX_HINTS = 3        # at most this many mistakes are named
-RARITY_WEIGHTS = True  # weigh each test by how few known mistakes fail it
-ASSERTION_WEIGHT = 0.5  # weight of the (test, failure text) Jaccard index in the score
-
-_NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+CATALOGUE_VERSION = 2
+MAX_LIST = 3        # probes listed as "right on" / "wrong on"
+VALUE_CHARS = 240   # characters of one value shown in a counterexample
+LINE_CHARS = 400    # characters of one line of a diagnosis
 
 
-CLASS_CHARS = 300   # characters of a blanked failure text kept in a signature
-CLASS_PREFIX = 300  # characters of it compared ("the same assertion")
-
-
-@functools.lru_cache(maxsize=65536)
-def failure_text(output):
-    """What a signature keeps of a failed test: the first paragraph of the grader's output for
-    it (the whole failure reason: the assertion's message, expected and actual values), every
-    number blanked to '#' (values differ from run to run of a wrong program, the assertion
-    does not), whitespace collapsed, at most CLASS_CHARS characters."""
-    first = (output or "").split("\n\n", 1)[0]
-    return " ".join(_NUMBER.sub("#", first).split())[:CLASS_CHARS]
-
-
-def assertion_class(text):
-    """The class compared between a submission's failure and a signature's."""
-    return failure_text(text or "")[:CLASS_PREFIX]
-
-
-def signatures_path(repo, lab):
+def catalogue_path(repo, lab):
     return os.path.join(repo, "tests", "mutants", lab, "signatures.json")
 
 
-def load_signatures(repo, lab):
-    """The lab's stored signatures (the parsed JSON), or None when there are none or the file
-    cannot be read (then no hints: a missing catalogue must never break grading)."""
+def load_catalogue(repo, lab):
+    """The lab's catalogue (the parsed JSON), or None when there is none or it cannot be read (no
+    diagnosis then: a missing catalogue never breaks grading)."""
     try:
-        with open(signatures_path(repo, lab), encoding="utf-8") as f:
+        with open(catalogue_path(repo, lab), encoding="utf-8") as f:
             data = json.load(f)
     except (OSError, ValueError):
         return None
-    if not isinstance(data, dict) or data.get("version") != SIGNATURES_VERSION \
-            or not isinstance(data.get("mutants"), dict):
+    if not isinstance(data, dict) or data.get("version") != CATALOGUE_VERSION \
+            or not isinstance(data.get("mutants"), dict) or not isinstance(data.get("probes"), list):
         return None
     return data
 
 
-def _failed_map(failed):
-    if isinstance(failed, dict):
-        return {str(k): assertion_class(str(v)) for k, v in failed.items()}
-    return {str(k): None for k in failed}
+# ------------------------------------------------------- failed tests' texts
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+FAILURE_CHARS = 300  # characters of a blanked failure text kept in the catalogue
 
 
-def _weights(signatures, tests):
-    """Each test's weight: 1, or with RARITY_WEIGHTS, log(1 + M / (1 + m_t)) for a test that m_t
-    of the M known mistakes fail (a test that most mistakes fail tells little apart)."""
-    if not RARITY_WEIGHTS:
-        return {t: 1.0 for t in tests}
-    muts = [m for m in (signatures or {}).get("mutants", {}).values() if isinstance(m, dict)]
-    count = {t: 0 for t in tests}
-    for m in muts:
-        for t in m.get("failed") or {}:
-            if t in count:
-                count[t] += 1
-    return {t: math.log(1 + len(muts) / (1 + count[t])) for t in tests}
+def failure_text(output):
+    """What the catalogue keeps of a failed test (tools/mutants compares it between runs): the
+    first paragraph of the grader's output for it, every number blanked to '#', whitespace
+    collapsed, at most FAILURE_CHARS characters."""
+    first = (output or "").split("\n\n", 1)[0]
+    return " ".join(_NUMBER.sub("#", first).split())[:FAILURE_CHARS]
 
 
-def scores(failed, all_tests, signatures, exclude=()):
-    """[(score, mutant name, hint)] for every known mistake, best first.
-    `exclude`: mutant names to leave out (leave-one-out)."""
-    tests = set(all_tests)
-    F = {t: c for t, c in _failed_map(failed).items() if t in tests}
+# ------------------------------------------------------------------ records
+
+def parse_lines(text, limit=4096):
+    """Probe records from a probe binary's standard output (bad lines skipped)."""
     out = []
-    mutants = (signatures or {}).get("mutants", {})
-    w = _weights(signatures, tests)
-    for name in sorted(mutants):
-        m = mutants[name]
-        if name in exclude or not isinstance(m, dict):
+    for line in (text or "").splitlines()[:limit]:
+        line = line.strip()
+        if not line.startswith("{"):
             continue
-        S = {t: assertion_class(c) for t, c in (m.get("failed") or {}).items() if t in tests}
-        if not S or not F:
+        try:
+            rec = json.loads(line)
+        except ValueError:
             continue
-        union = sum(w[t] for t in set(F) | set(S))
-        names = sum(w[t] for t in set(F) & set(S)) / union
-        same = sum(w[t] for t in set(F) & set(S) if F[t] is not None and F[t] == S[t])
-        pairs = same / union  # the same over (test, failure text) pairs
-        score = (1 - ASSERTION_WEIGHT) * names + ASSERTION_WEIGHT * pairs
-        out.append((score, name, str(m.get("hint", "")).strip()))
-    out.sort(key=lambda r: (-r[0], r[1]))
+        if isinstance(rec, dict) and isinstance(rec.get("probe"), str):
+            out.append(rec)
     return out
 
 
-def matches(failed, all_tests, signatures, exclude=()):
-    """The known mistakes whose hints would be shown: [(score, name, hint)]."""
-    F = set(_failed_map(failed)) & set(all_tests)
-    if not F or F >= set(all_tests):
-        return []
-    ranked = [r for r in scores(failed, all_tests, signatures, exclude) if r[0] >= CLOSE and r[2]]
-    if not ranked:
-        return []
-    best = ranked[0][0]
-    chosen, texts = [], set()
-    for r in ranked:
-        if r[0] < best - TIE or len(texts) >= MAX_HINTS:
-            break
-        if r[2] not in texts:
-            texts.add(r[2])
-            chosen.append(r)
-    return chosen
+def _num(v):
+    if isinstance(v, bool):
+        return float(v)
+    if isinstance(v, (int, float)):
+        return float(v)
+    if v == "nan":
+        return math.nan
+    if v == "inf":
+        return math.inf
+    if v == "-inf":
+        return -math.inf
+    return math.nan
 
 
-def hints_for(lab, failed, all_tests, signatures):
-    """Zero to MAX_HINTS sentences for the student; never certain, never solution code.
-    `signatures`: load_signatures(repo, lab) (None: no hints)."""
-    if not signatures or signatures.get("lab", lab) != lab:
-        return []
-    chosen = matches(failed, all_tests, signatures)
-    if not chosen:
-        return []
-    if len(chosen) == 1:
-        return [f"These failures match a known mistake: {chosen[0][2]}"]
-    return ["These failures match known mistakes; check each of:"] + \
-        [f"- {r[2]}" for r in chosen]
+def values(rec):
+    """{output name: (rows, cols, [floats])} of a record ("out"), {} for an error."""
+    out = {}
+    outs = (rec or {}).get("out") if isinstance(rec, dict) else None
+    for o in outs if isinstance(outs, list) else []:
+        try:
+            rows, cols = int(o["shape"][0]), int(o["shape"][1])
+            vs = [_num(v) for v in o["v"]]
+        except (KeyError, TypeError, ValueError, IndexError):
+            continue
+        if rows >= 0 and cols >= 0 and rows * cols == len(vs):
+            out[str(o["name"])] = (rows, cols, vs)
+    return out
 
 
-def hints_for_results(repo, lab, results):
-    """The grader's one call: `results` is [(test name, passed?, output)] of one graded lab
-    (its output: the failure text; the first paragraph is enough). Returns hints_for's lines,
-    [] when the lab has no stored signatures."""
-    failed = {name: output for name, passed, output in results if not passed}
-    return hints_for(lab, failed, [r[0] for r in results], load_signatures(repo, lab))
+def inputs(rec):
+    out = []
+    for o in (rec or {}).get("in") or []:
+        try:
+            out.append((str(o["name"]), int(o["shape"][0]), int(o["shape"][1]),
+                        [_num(v) for v in o["v"]], bool(o.get("integer"))))
+        except (KeyError, TypeError, ValueError, IndexError):
+            continue
+    return out
+
+
+def compact(rec):
+    """What the catalogue keeps of a record: the outputs (numbers rounded to 12 significant
+    digits: the same on any machine that computes them to 1e-12) or the error."""
+    if rec is None:
+        return {"error": "no output (the probe did not run)"}
+    if rec.get("error"):
+        return {"error": str(rec["error"])[:300]}
+    out = {}
+    for name, (rows, cols, vs) in values(rec).items():
+        out[name] = [rows, cols, [_round(v) for v in vs]]
+    return {"out": out}
+
+
+def _round(v):
+    if math.isnan(v):
+        return "nan"
+    if math.isinf(v):
+        return "inf" if v > 0 else "-inf"
+    r = float(f"{v:.12g}")
+    return int(r) if r == int(r) and abs(r) < 1e15 else r
+
+
+def expand(c):
+    """A compact record back as {name: (rows, cols, [floats])}, or None for an error."""
+    if not isinstance(c, dict) or "out" not in c:
+        return None
+    got = c.get("out")
+    if not isinstance(got, dict):
+        return None
+    out = {}
+    for name, v in got.items():
+        try:
+            rows, cols, vs = int(v[0]), int(v[1]), [_num(x) for x in v[2]]
+        except (TypeError, ValueError, IndexError, KeyError):
+            continue
+        if rows >= 0 and cols >= 0 and rows * cols == len(vs):
+            out[str(name)] = (rows, cols, vs)
+    return out
+
+
+def error_of(c):
+    return str(c.get("error") or "") if isinstance(c, dict) else "no output"
+
+
+# -------------------------------------------------------------- comparison
+
+def _close(a, b, rel, ab):
+    if math.isnan(a) or math.isnan(b):
+        return math.isnan(a) and math.isnan(b)
+    if math.isinf(a) or math.isinf(b):
+        return a == b
+    return abs(a - b) <= ab + rel * max(abs(a), abs(b))
+
+
+def _scale(vals):
+    s = 1.0
+    for _, _, vs in vals.values():
+        for v in vs:
+            if math.isfinite(v):
+                s = max(s, abs(v))
+    return s
+
+
+def tolerance(probe):
+    """(relative, absolute) tolerance of a probe: its own, the absolute part scaled by the largest
+    expected output (so that a probe of large numbers is not held to 1e-9)."""
+    try:
+        rel, ab = float(probe["tol"][0]), float(probe["tol"][1])
+    except (KeyError, TypeError, ValueError, IndexError):
+        rel, ab = 1e-7, 1e-9
+    exp = expand(probe.get("expected")) or {}
+    return rel, ab * _scale(exp)
+
+
+def same(a, b, tol):
+    """Whether two compact records agree: the same error-ness, the same outputs within tol."""
+    ea, eb = expand(a), expand(b)
+    if ea is None or eb is None:
+        return ea is None and eb is None
+    if set(ea) != set(eb):
+        return False
+    rel, ab = tol
+    for name, (r, c, va) in ea.items():
+        rb, cb, vb = eb[name]
+        if (r, c) != (rb, cb) or len(va) != len(vb):
+            return False
+        if not all(_close(x, y, rel, ab) for x, y in zip(va, vb)):
+            return False
+    return True
+
+
+def units(probe, got):
+    """{unit: class} for one probe: a unit is (probe, output, column) for an output whose
+    columns are told apart (out_each: particles, bodies), else (probe, output, 0); the class is
+    "ok", "error" (an exception where the solution returned, or the reverse), "shape", "nan"
+    (not finite), "none" (what the skeleton gives: nothing was done) or "wrong"."""
+    pid = probe["probe"]
+    exp, skel, g = expand(probe.get("expected")), expand(probe.get("skeleton")), expand(got)
+    if exp is None or g is None:
+        if exp is not None:  # an error where the solution returns: every output is wrong
+            flags = {str(o.get("name")): o for o in (probe.get("out") or []) if isinstance(o, dict)}
+            return {(pid, str(flags.get(n, {}).get("group") or n), 0): "error" for n in exp} \
+                or {(pid, "*", 0): "error"}
+        return {(pid, "*", 0): "ok" if g is None else "error"}
+    rel, ab = tolerance(probe)
+    out = {}
+    flags = {str(o.get("name")): o for o in (probe.get("out") or []) if isinstance(o, dict)}
+    each = {n for n, o in flags.items() if o.get("each")}
+    group = {n: str(o["group"]) for n, o in flags.items() if o.get("group")}
+    asis = {}  # unit: every output of it is the skeleton's (a group is "none" only then)
+    for name, (rows, cols, ev) in exp.items():
+        unit = group.get(name, name)
+        if name not in g or g[name][:2] != (rows, cols) or len(g[name][2]) != len(ev):
+            out[(pid, unit, 0)] = "shape"
+            asis[(pid, unit, 0)] = False
+            continue
+        gv = g[name][2]
+        sv = skel[name][2] if skel and name in skel and skel[name][:2] == (rows, cols) else None
+        per = name in each and cols > 1
+        for c in range(cols if per else 1):
+            idx = range(c * rows, (c + 1) * rows) if per else range(len(ev))
+            same_as_skel = sv is not None and all(_close(gv[i], sv[i], rel, ab) for i in idx)
+            if all(_close(gv[i], ev[i], rel, ab) for i in idx):
+                k = "ok"
+            elif any(not math.isfinite(gv[i]) for i in idx):
+                k = "nan"
+            elif same_as_skel:
+                k = "none"
+            else:
+                k = "wrong"
+            key = (pid, unit, c)
+            asis[key] = asis.get(key, True) and same_as_skel
+            prev = out.get(key, "ok")
+            if prev == "ok" or (prev == "none" and k != "ok"):
+                out[key] = k
+    for key, k in out.items():  # a group goes wrong as "nothing done" only if all of it is
+        if k == "none" and not asis.get(key, False):
+            out[key] = "wrong"
+    return out
+
+
+# -------------------------------------------------------------- the catalogue
+
+def task_probes(cat, task):
+    return [p for p in cat.get("probes", []) if isinstance(p, dict) and p.get("task") == task
+            and isinstance(p.get("probe"), str)]
+
+
+def task_mutants(cat, task, exclude=()):
+    return {n: m for n, m in sorted(cat.get("mutants", {}).items())
+            if isinstance(m, dict) and m.get("task") == task and n not in exclude}
+
+
+def part_key(name, m):
+    """A part of the computation: the file a mistake is in and its '# kind:'."""
+    return (name.split(".")[0], str(m.get("kind") or ""))
+
+
+REACH_LEVEL = "unit"   # what a part's mistakes must explain: every wrong particle, body, output
+CORE_LEVEL = "output"  # what a submission must share with every mistake of the part: outputs
+NEAR = 0.8  # another part that explains this share of the wrong units makes the naming unsure
+
+
+CLASSES = True  # a part explains a wrong output only if one of its mistakes gets it wrong alike:
+# "nothing done" (the skeleton's value, a test never reached) apart from a wrong value
+_KIND = {"none": "none", "nan": "wrong", "error": "wrong", "shape": "wrong", "wrong": "wrong"}
+
+
+def bad_units(probes, outputs, classes=False):
+    """The units (of the probes that tell parts apart: not the simple ones) that are not ok;
+    with classes, as (unit, how it is wrong): nothing done (the skeleton's value), NaN or an
+    error, another size, a wrong value."""
+    bad = set()
+    for p in probes:
+        if p.get("simple"):
+            continue
+        for u, k in units(p, outputs.get(p["probe"])).items():
+            if k != "ok":
+                bad.add((u, _KIND.get(k, "wrong")) if classes else u)
+    return bad
+
+
+def _at(units_, level):
+    """Units seen at one level: the probe alone, the probe and output, or the whole unit."""
+    if level == "probe":
+        return {u[:1] for u in units_}
+    if level == "output":
+        return {u[:2] for u in units_}
+    return set(units_)
+
+
+def part_of(cat, task, outputs, exclude=()):
+    """The part of the computation the wrong probes point at, or None.
+
+    B is what goes wrong for the submission, for each part k (the catalogued mistakes of one
+    file and '# kind:', those in `exclude` left out) reach_k is what any of its mistakes gets
+    wrong, core_k the outputs every one of them gets wrong. k fits when B is within reach_k,
+    unit by unit and alike (each output of each probe, or its particles apart: some mistake of
+    k gets it wrong the same way, "nothing done" or a wrong value) and B's outputs include
+    core_k (what every mistake of k gives away shows). The one part that fits is named, unless
+    another part explains NEAR of B as well; a submission whose wrong outputs could come from
+    two parts, or from none, gets no part named (its counterexample still says what is wrong).
+    The probes written as details (P.simple) are left out. The levels and NEAR were chosen on
+    the catalogue itself (docs/grading.md, "leave-one-out"), so its figures are somewhat
+    optimistic."""
+    probes = task_probes(cat, task)
+    B = bad_units(probes, outputs, classes=True)
+    if not B:
+        return None
+    parts = {}
+    for name, m in task_mutants(cat, task, exclude).items():
+        if not m.get("kind"):
+            continue
+        bad = bad_units(probes, m.get("probes") or {}, classes=True)
+        if bad:
+            parts.setdefault(part_key(name, m), []).append(bad)
+
+    def reach_of(b):  # (unit seen at REACH_LEVEL[, how it is wrong])
+        return {(_at({u}, REACH_LEVEL).pop(), k) if CLASSES else _at({u}, REACH_LEVEL).pop()
+                for u, k in b}
+
+    def core_of(b):
+        return _at({u for u, _ in b}, CORE_LEVEL)
+    Br, Bc = reach_of(B), core_of(B)
+    fits, near = [], []
+    for key, sets in sorted(parts.items()):
+        reach = set.union(*(reach_of(b) for b in sets))
+        core = set.intersection(*(core_of(b) for b in sets))
+        if not core <= Bc:
+            continue
+        if Br <= reach:
+            fits.append(key)
+        elif len(Br & reach) >= NEAR * len(Br):
+            near.append(key)
+    return fits[0] if len(fits) == 1 and not near else None
+
+
+def exact_mistakes(cat, task, outputs, exclude=()):
+    """The catalogued mistakes whose outputs equal the submission's on every probe of the task
+    (mistakes that give the solution's outputs on every probe are never named)."""
+    probes = task_probes(cat, task)
+    if not probes:
+        return []
+    found = []
+    for name, m in task_mutants(cat, task, exclude).items():
+        mo = m.get("probes") or {}
+        if all(same(outputs.get(p["probe"]), mo.get(p["probe"]), tolerance(p)) for p in probes) \
+                and not all(same(p.get("expected"), mo.get(p["probe"]), tolerance(p))
+                            for p in probes):
+            found.append(name)
+    return found
+
+
+# ----------------------------------------------------------------- diagnosis
+
+class Diagnosis:
+    """What is said about one task. status: passed, not started, mistake, part, counterexample,
+    tests (a failing test the probes do not reproduce), no probes."""
+
+    def __init__(self, task, title=""):
+        self.task, self.title = task, title
+        self.status = "passed"
+        self.mistakes = []        # hints of the catalogued mistake(s) matched exactly
+        self.mistake_names = []   # their names (for tools/mutants)
+        self.part = None          # (file, kind) pointed at
+        self.counterexample = []  # lines
+        self.right, self.wrong = [], []  # titles of the probes that agree / differ
+        self.failed, self.total = 0, 0   # tests of the task
+        self.notes = []           # lines about other tasks this one builds on
+        self.test_message = ""    # the first failed test's own message (status "tests")
+        self.handout = ""         # the task's handout section (handouts/<lab>.md#<task>)
+
+    def headline(self):
+        head = f"{self.task}{' ' + self.title if self.title else ''}"
+        if self.status == "not started":
+            return f"{head}: not started (its functions still do what the skeleton does)"
+        tests = f"{self.failed} of {self.total} tests failed" if self.total else "tests failed"
+        return f"{head}: {tests}"
+
+    def lines(self):
+        if self.status == "passed":
+            return []
+        out = [self.headline()]
+        if self.status == "not started":
+            return out
+        out += ["  " + n for n in self.notes]
+        if self.mistakes:
+            if len(self.mistakes) == 1:
+                out.append("  Known mistake: " + self.mistakes[0])
+            else:
+                out.append("  Known mistake, one of:")
+                out += ["  - " + h for h in self.mistakes]
+        elif self.part:
+            fname, kind = self.part
+            out.append(f"  The wrong probes point at the {kind} in {fname}.cpp "
+                       f"({self.handout or 'handout §' + self.task}); it is none of the known "
+                       "mistakes exactly.")
+        out += ["  " + l for l in self.counterexample]
+        if self.right and self.wrong:
+            out.append("  Right on: " + "; ".join(self.right[:MAX_LIST]) +
+                       (" ..." if len(self.right) > MAX_LIST else ""))
+            out.append("  Wrong on: " + "; ".join(self.wrong[:MAX_LIST]) +
+                       (" ..." if len(self.wrong) > MAX_LIST else ""))
+        if self.status == "tests":
+            out.append("  Every probe agrees with the solution; the first failed test says:")
+            out += ["    " + l for l in self.test_message.splitlines()[:8]]
+        if self.status == "no probes":
+            out.append("  (the probes could not run: out of time, or no catalogue); the first "
+                       "failed test says:")
+            out += ["    " + l for l in self.test_message.splitlines()[:8]]
+        return [l[:LINE_CHARS] for l in out]
+
+
+def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
+    """The diagnosis of one task.
+
+    cat      the lab's catalogue (load_catalogue)
+    outputs  {probe id: record} of the submission's probes of this task (records as the probe
+             binary printed them, or compact ones); None when the probes could not run
+    tests    [(test name, passed?, output)] of this task's tests
+    pristine True when the task's files are the skeleton's, byte for byte (not started, without
+             running anything)
+    exclude  catalogued mistakes to leave out (leave-one-out)"""
+    d = Diagnosis(task, title)
+    d.handout = str(((cat or {}).get("tasks") or {}).get(task, {}).get("handout") or "")
+    d.total = len(tests)
+    d.failed = sum(1 for t in tests if not t[1])
+    if tests and not d.failed:
+        return d
+    probes = task_probes(cat, task) if cat else []
+    if pristine:
+        d.status = "not started"
+        return d
+    first = next((t for t in tests if not t[1]), None)
+    if first:
+        d.test_message = f"{first[0]}:\n" + (first[2] or "").split("\n\n")[0]
+    if not probes or outputs is None:
+        d.status = "no probes"
+        return d
+    got = {p["probe"]: compact_any(outputs.get(p["probe"])) for p in probes}
+    if all(same(got[p["probe"]], p.get("skeleton"), tolerance(p)) for p in probes) and \
+            not all(same(p.get("expected"), p.get("skeleton"), tolerance(p)) for p in probes):
+        d.status = "not started"
+        return d
+    wrong = [p for p in probes if not same(got[p["probe"]], p.get("expected"), tolerance(p))]
+    d.right = [p.get("title", p["probe"]) for p in probes if p not in wrong]
+    d.wrong = [p.get("title", p["probe"]) for p in wrong]
+    if not wrong:
+        d.status = "tests"
+        return d
+    d.status = "counterexample"
+    names = exact_mistakes(cat, task, got, exclude)
+    muts = cat.get("mutants", {})
+    kinds = {part_key(n, muts[n]) for n in names}
+    if names and len(kinds) == 1:
+        d.status = "mistake"
+        d.mistake_names = names
+        for n in names:
+            h = str(muts[n].get("hint") or "").strip()
+            if h and h not in d.mistakes:
+                d.mistakes.append(h)
+    else:
+        d.part = part_of(cat, task, got, exclude)
+        if d.part:
+            d.status = "part"
+    d.counterexample = counterexample(wrong[0], got[wrong[0]["probe"]])
+    return d
+
+
+def compact_any(rec):
+    """A record from a probe binary, or one already compact, as a compact record."""
+    if isinstance(rec, dict) and ("in" in rec or "probe" in rec):
+        return compact(rec)
+    if isinstance(rec, dict) and ("out" in rec or "error" in rec):
+        return rec
+    return compact(None)
+
+
+# ------------------------------------------------------------ counterexample
+
+def fmt_number(v, integer=False):
+    if math.isnan(v):
+        return "NaN"
+    if math.isinf(v):
+        return "inf" if v > 0 else "-inf"
+    if integer or (v == int(v) and abs(v) < 1e12):
+        return str(int(v))
+    return f"{v:.6g}"
+
+
+def fmt_value(rows, cols, vs, integer=False):
+    f = [fmt_number(v, integer) for v in vs]
+    if rows == 1 and cols == 1 and f:
+        text = f[0]
+    elif cols == 1 and rows in (2, 3, 4):
+        text = "(" + ", ".join(f) + ")"
+    elif cols == 1:
+        text = "[" + ", ".join(f) + "]"
+    elif rows in (2, 3) and cols != rows:  # columns are points: particles, bodies
+        text = "[" + ", ".join("(" + ", ".join(f[c * rows:(c + 1) * rows]) + ")"
+                               for c in range(cols)) + "]"
+    else:  # a matrix: by rows
+        text = "[" + "; ".join(", ".join(f[c * rows + r] for c in range(cols))
+                               for r in range(rows)) + "]"
+    if rows * cols == 0:
+        text = f"(empty, {rows} x {cols})"
+    return text if len(text) <= VALUE_CHARS else text[:VALUE_CHARS] + " ..."
+
+
+def counterexample(probe, got):
+    """Lines: the probe's call, expected, got, and what differs."""
+    lines = [f"Counterexample ({probe['probe']}: {probe.get('title', '')}):"]
+    ins = probe.get("in") or []
+    args = []
+    for name, rows, cols, vs, integer in inputs({"in": ins}):
+        args.append(f"{name} = {fmt_value(rows, cols, vs, integer)}")
+    call = probe.get("call") or "called with"
+    lines.append(f"  {call}({', '.join(args)})" if probe.get("call") else
+                 "  inputs: " + ", ".join(args))
+    for n in probe.get("notes") or []:
+        lines.append(f"  where {n}")
+    exp, g = expand(probe.get("expected")), expand(got)
+    if g is None:
+        err = error_of(got)
+        if exp is None:
+            lines.append(f"  expected an error, got: {err}")
+        else:
+            lines.append("  expected " + "; ".join(f"{n} = {fmt_value(*v)}" for n, v in exp.items()))
+            lines.append(f"  got      an error: {err}")
+        return lines
+    if exp is None:
+        lines.append(f"  expected an error ({error_of(probe.get('expected'))}), got values")
+        return lines
+    rel, ab = tolerance(probe)
+    base = {name: (rows, cols, vs) for name, rows, cols, vs, _ in inputs({"in": ins})}
+    for name, (rows, cols, ev) in exp.items():
+        gv = g.get(name)
+        if gv is not None and gv[:2] == (rows, cols) and \
+                all(_close(a, b, rel, ab) for a, b in zip(gv[2], ev)):
+            continue
+        lines.append(f"  expected {name} = {fmt_value(rows, cols, ev)}")
+        if gv is None:
+            lines.append(f"  got      no {name}")
+            continue
+        lines.append(f"  got      {name} = {fmt_value(*gv)}")
+        try:
+            why = explain(name, (rows, cols, ev), gv, base.get(name), rel, ab)
+        except (ValueError, ArithmeticError, IndexError):
+            why = ""
+        if why:
+            lines.append(f"  {name}: {why}")
+    return lines
+
+
+def _ratio(dg, de, rel, ab):
+    """c with dg = c de for every entry, or None."""
+    c = None
+    for a, b in zip(dg, de):
+        if not (math.isfinite(a) and math.isfinite(b)):
+            return None
+        if abs(b) <= ab:
+            if abs(a) > ab:
+                return None
+            continue
+        r = a / b
+        if c is None:
+            c = r
+        elif not _close(r, c, 1e-6, 1e-12):
+            return None
+    return c
+
+
+def _pretty(c):
+    if not math.isfinite(c):
+        return str(c)
+    for den in (1, 2, 3, 4):
+        if abs(c * den - round(c * den)) < 1e-9 and round(c * den) != 0:
+            n = int(round(c * den))
+            return str(n) if den == 1 else f"{n}/{den}"
+    return f"{c:.4g}"
+
+
+def explain(name, expected, got, before, rel, ab):
+    """What differs between expected and got, in words ("" when nothing simple is seen)."""
+    rows, cols, ev = expected
+    gr, gc, gv = got
+    if (gr, gc) != (rows, cols):
+        return f"the size is {gr} x {gc}, expected {rows} x {cols}"
+    if any(not math.isfinite(v) for v in gv) and all(math.isfinite(v) for v in ev):
+        return "not a number (NaN or inf) where the expected value is finite: a division by zero?"
+    bv = before[2] if before and before[:2] == (rows, cols) else None
+    if bv is not None and any(abs(v) > ab for v in bv):
+        if all(_close(a, b, rel, ab) for a, b in zip(gv, bv)):
+            return f"unchanged: nothing was added to what {name} held before the call"
+        contrib = [e - b for e, b in zip(ev, bv)]
+        if all(_close(a, b, rel, ab) for a, b in zip(gv, contrib)):
+            return (f"what {name} held before the call is lost: add to {name}, do not "
+                    "overwrite it")
+        de, dg = contrib, [g - b for g, b in zip(gv, bv)]
+        its = "its change"
+    else:
+        de, dg, its = ev, gv, ""
+    if all(abs(v) <= ab for v in dg) and any(abs(v) > ab for v in de):
+        return "zero (nothing computed?)" if not its else "unchanged: nothing was done to it"
+    c = _ratio(dg, de, rel, ab)
+    if c is not None and not _close(c, 1.0, 1e-6, 0):
+        if _close(c, -1.0, 1e-6, 0):
+            return f"the sign of {its} is flipped" if its else "the sign is flipped"
+        return (f"{its} is" if its else "it is") + f" off by a constant factor {_pretty(c)}"
+    if rows in (2, 3) and cols >= 1:
+        comps = "xyz"[:rows]
+        per = [all(_close(gv[c * rows + r], ev[c * rows + r], rel, ab) for c in range(cols))
+               for r in range(rows)]
+        if rows == 2 and not any(per) and all(
+                _close(dg[c * 2], de[c * 2 + 1], rel, ab) and _close(dg[c * 2 + 1], de[c * 2], rel, ab)
+                for c in range(cols)):
+            return f"the x and y components{' of ' + its if its else ''} are swapped"
+        if any(per) and not all(per):
+            bad = [comps[r] for r in range(rows) if not per[r]]
+            return f"only the {' and '.join(bad)} component{'s' if len(bad) > 1 else ''} differ" + \
+                ("" if len(bad) > 1 else "s")
+        if cols > 1:
+            okc = [all(_close(gv[c * rows + r], ev[c * rows + r], rel, ab) for r in range(rows))
+                   for c in range(cols)]
+            if any(okc) and not all(okc):
+                badc = [c for c in range(cols) if not okc[c]]
+                nothing = [c for c in badc if all(abs(dg[c * rows + r]) <= ab for r in range(rows))]
+                which = ", ".join(str(c) for c in badc)
+                s = "s" if len(badc) > 1 else ""
+                item = "particle" if rows == 2 else "column"
+                if nothing == badc:
+                    return (f"{item}{s} {which} (of 0..{cols - 1}) get{'' if s else 's'} nothing; "
+                            "the others are right")
+                return f"only {item}{s} {which} (of 0..{cols - 1}) differ{'' if s else 's'}"
+    return ""
+
+
+# ---------------------------------------------------------------- one lab
+
+def task_tests(cat, task, results):
+    """[(name, passed, output)] of one task's tests, from the tests' names ("F3 attractor: ...")."""
+    return [r for r in results if re.match(rf"^{re.escape(task)}\b", r[0])]
+
+
+def task_title(cat, task):
+    t = (cat or {}).get("tasks", {}).get(task) or {}
+    return str(t.get("title") or "")

@@ -89,6 +89,9 @@ class Grader:
         if build_root is None:
             self._tmp = tempfile.mkdtemp(prefix="wb-grade-")
             build_root = self._tmp
+        self.temporary = self._tmp is not None
+        self.reuse_results = False  # results.py's cache: set by the command line (cli.py)
+        self.seed_chosen = False  # reuse_results: the seed was asked for, it keys a report too
         self.root = os.path.abspath(build_root)
         self.src = os.path.join(self.root, "src")
         self.build = os.path.join(self.root, "build")
@@ -124,6 +127,7 @@ class Grader:
         # tools/mutants only (our own mutants, trusted code): also configure <lab>-tests-direct,
         # the tests linked straight with the lab. Grading never builds or runs it.
         self.direct_tests = False
+        self.diagnosis = True  # run the probes of failing tasks (tools/mutants turns it off)
 
     def _secret(self):
         """The key that signs the cached test list (readable by the grader only)."""
@@ -182,6 +186,10 @@ class Grader:
                 os.rmdir(dirpath)
 
     def configure(self, labs):
+        # Every known lab, whichever are graded: the configuration stays the same from one
+        # grade to the next (a lab graded alone does not make cmake run again), and only the
+        # targets asked for are built.
+        labs = known_labs(self.repo)
         # catch_discover_tests runs each test binary after linking it, through
         # the target's "emulator" if one is set: /bin/true keeps student code
         # from running (and hanging, or crashing the build) outside the
@@ -201,7 +209,7 @@ class Grader:
             except (OSError, ValueError):
                 pass
         gen = ["-G", "Ninja"] if fresh and shutil.which("ninja") else []
-        self.say(f"grade: configuring the scratch build for {', '.join(labs)}")
+        self.say("grade: configuring the scratch build")
         rc, out = run_capped(["cmake", "-S", self.src, "-B", self.build] + gen + args,
                              common.BUILD_TIMEOUT, 64 * 1024, keep_tail=True)
         if rc != 0:
@@ -209,11 +217,44 @@ class Grader:
         with open(stamp, "w", encoding="utf-8") as f:
             json.dump(args, f)
 
+    def decide_prebuilt(self, pristine):
+        """Which labs' test and probe binaries come from prebuilt/grader/ (see above)."""
+        self._prebuilt = {}
+        path = os.path.join(self.repo, PREBUILT_GRADER, "manifest.json")
+        if not os.path.isfile(path):
+            return
+        why = ""
+        try:
+            with open(path, encoding="utf-8") as f:
+                manifest = json.load(f)
+            with open(os.path.join(self.build, "wb-toolchain.txt"), encoding="utf-8") as f:
+                key = f.read().strip()
+            if manifest.get("toolchain") != key:
+                why = "another toolchain"
+            elif manifest.get("inputs") != prebuilt_inputs(pristine):
+                why = "the tests or the grader's files changed since the pack was made"
+            else:
+                for lab, names in (manifest.get("labs") or {}).items():
+                    paths = {n: os.path.join(self.repo, PREBUILT_GRADER, n) for n in names}
+                    if all(os.path.isfile(p) for p in paths.values()):
+                        self._prebuilt[lab] = paths
+        except (OSError, ValueError, AttributeError, TypeError) as e:
+            why = f"its manifest cannot be read ({e})"
+        if why and not getattr(self, "_said_prebuilt", False):
+            self._said_prebuilt = True
+            self.say(f"grade: the pack's prebuilt tests are not used ({why}): building them")
+
     def binary(self, lab):
         return os.path.join(self.build, "bin", f"{lab}-tests")
 
     def worker(self, lab):
         return os.path.join(self.build, "bin", f"{lab}-worker")
+
+    def probes(self, lab):
+        """The lab's pristine probe binary (stubs, like the tests), or None when it has none."""
+        if not os.path.isdir(os.path.join(self.repo, "tests", lab, "probes")):
+            return None
+        return os.path.join(self.build, "bin", f"{lab}-probes")
 
     def build_timeout(self):
         """--build-timeout, or less when the submission's budget ends sooner (only while
@@ -222,16 +263,20 @@ class Grader:
             return common.BUILD_TIMEOUT
         return max(1.0, min(common.BUILD_TIMEOUT, self._deadline - time.monotonic()))
 
-    def build_lab(self, lab):
-        """Builds <lab>-tests; returns (ok, trimmed output)."""
-        for old in (self.binary(lab), self.worker(lab)):
+    def build_lab(self, lab, pristine=False):
+        """Builds <lab>-tests, its worker and its probes; returns (ok, trimmed output)."""
+        for old in (self.binary(lab), self.worker(lab), self.probes(lab)):
+            if old is None:
+                continue
             try:
                 os.remove(old)  # never run a binary left by an earlier build
             except FileNotFoundError:
                 pass
         t0 = time.monotonic()
-        cmd = [shutil.which("cmake") or "cmake", "--build", self.build, "--target", f"{lab}-tests",
-               f"{lab}-worker", "-j",
+        prebuilt = getattr(self, "_prebuilt", {}).get(lab, {})
+        targets = [f"{lab}-tests", f"{lab}-worker"] + ([f"{lab}-probes"] if self.probes(lab) else [])
+        targets = [t for t in targets if t not in prebuilt]
+        cmd = [shutil.which("cmake") or "cmake", "--build", self.build, "--target", *targets, "-j",
                str(self.jobs)]
         as_user = "user" in self.sandbox.layers and _world_traversable(self.build)
         self.build_isolation = (
@@ -263,7 +308,14 @@ class Grader:
                 out += f"\nthe build was killed ({signal_name(status[1])}): a limit reached?"
             if status[0] == "error":
                 raise Defect(f"the sandbox could not start the build: {status[1]}")
-        self.say(f"grade: built {lab}-tests in {time.monotonic() - t0:.1f} s")
+        for name, src in prebuilt.items():  # the pack's pristine binaries, as if built here
+            dst = os.path.join(self.build, "bin", name)
+            shutil.copyfile(src, dst + ".tmp")
+            os.chmod(dst + ".tmp", 0o755)
+            os.replace(dst + ".tmp", dst)
+        self.say(f"grade: built the tests of {lab} (once per build folder) in "
+                 f"{time.monotonic() - t0:.1f} s" if pristine else
+                 f"grade: built {lab} with the submitted files in {time.monotonic() - t0:.1f} s")
         out = out.replace(self.src + "/", "").replace(self.build + "/", "")
         if rc is None:
             out += (f"\nthe build took longer than {common.BUILD_TIMEOUT:g} s (or the submission's "
@@ -312,7 +364,7 @@ class Grader:
         The cache is trusted only if it is signed with this build folder's key
         AND passes the same checks as a fresh list (names, one points tag per
         test, points summing to 100); otherwise it is rebuilt."""
-        key = digest(pristine)
+        key = prebuilt_inputs(pristine)  # not the student files: the tests never hold them
         path = os.path.join(self.root, "tests.json")
         cache = {}
         try:
@@ -340,8 +392,9 @@ class Grader:
         if missing:
             self.sync(pristine)
             self.configure(labs)
+            self.decide_prebuilt(pristine)
             for lab in missing:
-                ok, out = self.build_lab(lab)
+                ok, out = self.build_lab(lab, pristine=True)
                 if not ok:
                     raise Defect(f"the pristine skeleton of lab {lab} does not build:\n{out}")
                 cache[lab] = [t.__dict__ for t in self.list_tests(lab)]
@@ -424,23 +477,108 @@ class Grader:
     def grade(self, overlays, labs, refused=None):
         """overlays: {lab: {student file name: bytes}} (missing names keep the
         skeleton); refused: {lab: reason} of labs refused before screening (a
-        file that is not a regular file). Returns {lab: LabReport}."""
+        file that is not a regular file). Returns {lab: LabReport}.
+
+        With reuse_results (the checkout's own build folder, cli.py), a lab graded before with
+        exactly the same inputs (its files, the pristine tree, the grader, the catalogue, the
+        limits and the sandbox) gets its last report back, nothing built or run: the report
+        is kept signed in the build folder, and only when every test ended by itself (not a
+        time limit, which the machine's load can decide)."""
         self.started, self._deadline = time.monotonic(), None
         pristine = pristine_files(self.repo)
         pristine.update(worker_files(self.repo, known_labs(self.repo)))
+        keys = {lab: self._report_key(lab, overlays.get(lab, {}), (refused or {}).get(lab, ""),
+                                      pristine) for lab in labs}
+        cached = self._cached_reports(keys) if self.reuse_results else {}
+        todo = [lab for lab in labs if lab not in cached]
+        keep = [lab for lab, rep in cached.items() if not rep.refused]
+        fresh = self._grade(overlays, todo, refused, pristine, keep) if todo else {}
+        if self.reuse_results and fresh:
+            self._save_reports({lab: (keys[lab], rep) for lab, rep in fresh.items()})
+        if cached:
+            seeds = sorted({f"{v:#x}" for v in self._reused_seeds.values() if isinstance(v, int)})
+            self.say(f"grade: {', '.join(cached)}: unchanged since the last grade (its results "
+                     "are reused" + (f", held-out inputs from seed {', '.join(seeds)}" if seeds
+                                     else "") + ")")
+        return {lab: cached[lab] if lab in cached else fresh[lab] for lab in labs}
+
+    # -- the results of an unchanged lab (reuse_results)
+
+    def _report_key(self, lab, overlay, refused, pristine):
+        h = hashlib.sha256()
+        parts = [CACHE_VERSION, grader_digest(), prebuilt_inputs(pristine), lab, refused, self.timeout,
+                 self.lab_budget, self.submission_budget, self.screen, self.diagnosis,
+                 sorted(self.sandbox.layers), sorted(self.sandbox.missing),
+                 self.seed if self.seed_chosen else "any seed"]
+        h.update(json.dumps(parts, default=str).encode())
+        for name in sorted(overlay):
+            h.update(name.encode() + b"\0" + hashlib.sha256(overlay[name]).digest())
+        for rel in (os.path.join("tools", "wbgrade_hints.py"),
+                    os.path.join("tests", "mutants", lab, "signatures.json")):
+            try:
+                with open(os.path.join(self.repo, rel), "rb") as f:
+                    h.update(rel.encode() + b"\0" + f.read())
+            except OSError:
+                h.update(rel.encode() + b"\0-")
+        return h.hexdigest()
+
+    def _reports_path(self):
+        return os.path.join(self.root, "reports.json")
+
+    def _load_reports(self):
+        try:
+            fd = os.open(self._reports_path(), os.O_RDONLY | os.O_NOFOLLOW)
+            with os.fdopen(fd, encoding="utf-8") as f:
+                data = json.load(f)
+            body = json.dumps(data["labs"], sort_keys=True)
+            if hmac.compare_digest(str(data.get("mac")), self._mac(body)):
+                return data["labs"]
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            pass
+        return {}
+
+    def _cached_reports(self, keys):
+        stored, out = self._load_reports(), {}
+        self._reused_seeds = {}
+        for lab, key in keys.items():
+            entry = stored.get(lab)
+            if isinstance(entry, dict) and entry.get("key") == key:
+                try:
+                    out[lab] = report_from_json(entry["report"])
+                    self._reused_seeds[lab] = entry.get("seed")
+                except (KeyError, TypeError, ValueError, AttributeError):
+                    pass
+        return out
+
+    def _save_reports(self, graded):
+        stored = self._load_reports()
+        for lab, (key, rep) in graded.items():
+            if all(not r.reason.startswith(UNSETTLED) for r in rep.results):
+                stored[lab] = {"key": key, "report": report_to_json(rep), "seed": self.seed}
+            else:
+                stored.pop(lab, None)
+        body = json.dumps(stored, sort_keys=True)
+        write_atomic(self._reports_path(), json.dumps({"labs": stored, "mac": self._mac(body)}))
+
+    def _grade(self, overlays, labs, refused, pristine, keep=()):
         lists = self.test_lists(labs, pristine)
         # The budget counts this submission's own work: not the one-time build of the test
         # list from the pristine project (setup.sh does it on Gradescope).
         self.started = time.monotonic()
         self._deadline = self.started + self.submission_budget
         if self.screen:
-            self._load_screened(grader_digest() + digest(pristine))
+            self._load_screened(grader_digest() + prebuilt_inputs(pristine))
         files = dict(pristine)
         refusals = dict(refused or {})
         # The screening preprocesses each file with the build's own command: configure first.
         # The submitted files are written now (nothing is built before they are screened; a
         # refused lab gets its skeletons back below), so that an unchanged file keeps its
         # time stamp and is not recompiled.
+        staged = dict(files)
+        for lab in keep:  # labs whose last results are reused: their files stay as they were
+            for name, data in overlays.get(lab, {}).items():
+                if name in set(student_files(self.repo, lab)):
+                    files[os.path.join("labs", lab, name)] = data
         staged = dict(files)
         for lab in labs:
             if lab not in refusals:
@@ -470,6 +608,7 @@ class Grader:
                 files[os.path.join("labs", lab, name)] = data
         self.sync(files)
         self.configure(labs)
+        self.decide_prebuilt(pristine)
         reports = {}
         for lab in labs:
             if refusals[lab]:
@@ -489,6 +628,14 @@ class Grader:
                     shutil.copyfile(built, tmp)
                     os.chmod(tmp, 0o755)
                     os.replace(tmp, table[lab])
+        probers = {}
+        for lab in runnable:
+            built = self.probes(lab)
+            if built and os.path.isfile(built):
+                probers[lab] = os.path.join(self.run_dir, os.path.basename(built))
+                shutil.copyfile(built, probers[lab] + ".tmp")
+                os.chmod(probers[lab] + ".tmp", 0o755)
+                os.replace(probers[lab] + ".tmp", probers[lab])
         stamps = {lab: (file_stamp(path), file_stamp(workers[lab])) for lab, path in runnable.items()}
         t0 = time.monotonic()
         # Time budgets (docs/grading.md): each lab's tests together, and the whole submission.
@@ -523,7 +670,8 @@ class Grader:
                 kill_all()
                 raise
         if jobs:
-            self.say(f"grade: ran {len(jobs)} test processes in {time.monotonic() - t0:.1f} s")
+            self.say(f"grade: ran {len(jobs)} tests in {time.monotonic() - t0:.1f} s")
+        self.diagnose(reports, labs, futures, lists, overlays, probers, workers, submission_end)
         for lab in labs:
             rep = reports[lab]
             if rep.gradable and (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
@@ -542,6 +690,39 @@ class Grader:
             if rep.gradable:
                 heldout.gate(rep.results)  # public points need the task's held-out check
         return reports
+
+    def diagnose(self, reports, labs, futures, lists, overlays, probers, workers, end):
+        """Each gradable lab's diagnosis of its failing tasks (diagnose.py), in rep.diagnosis:
+        the probes run after every test, inside the submission's budget; a diagnosis that
+        fails or runs out of time never changes a score."""
+        if not self.diagnosis:
+            return
+        for lab in labs:
+            rep = reports[lab]
+            if not rep.gradable or lab not in probers:
+                continue
+            results = []
+            for t in lists[lab]:
+                r = futures[(lab, t.name)].result()
+                results.append((t.name, r.status == "passed", r.output or r.reason))
+            try:
+                rep.diagnosis = _diagnose_one(self, lab, results, overlays.get(lab, {}),
+                                              probers[lab], workers[lab], end)
+            except Exception as e:  # never a score's business
+                self.say(f"grade: {lab}: no diagnosis ({type(e).__name__}: {e})")
+
+
+def _diagnose_one(grader, lab, results, overlay, prober, worker, end):
+    from .diagnose import LAB_BUDGET, PROBES_TIMEOUT, diagnose_lab, run_probes
+    end = min(end, time.monotonic() + LAB_BUDGET)  # the submission's budget, and the lab's
+
+    def run(ids):
+        left = end - time.monotonic()
+        if left <= 1:
+            return None  # the budget is used up: this task gets no probe output
+        return run_probes(grader.sandbox, prober, worker, ids, grader.cwd,
+                          min(left, PROBES_TIMEOUT))
+    return diagnose_lab(grader.repo, lab, results, overlay, run, grader.say)
 
 
 def time_left(lab_budget, used, submission_budget, submission_end, now):
@@ -580,6 +761,56 @@ def file_stamp(path):
     return (st.st_ino, st.st_size, st.st_mtime_ns, h)
 
 
+
+
+# ------------------------------------------------------------ prebuilt parts
+# The student pack ships the pristine test and probe binaries of each lab, compiled when the
+# pack was made (tools/pack, prebuilt/grader/): they hold no student code (the stubs call the
+# worker), so a student's first grade compiles only the worker and the student's files. They
+# are used only when the toolchain (the scratch build's wb-toolchain.txt) and every pristine
+# file they are made of are the same as when they were compiled; otherwise they are built
+# from source, as in an instructor's checkout (which has no prebuilt/).
+PREBUILT_GRADER = os.path.join("prebuilt", "grader")
+
+
+def prebuilt_inputs(pristine):
+    """The digest of the pristine files the test and probe binaries are made of: all but the
+    student files (labs/<lab>/*.cpp) and the scenes. It also keys what a grade remembers (the
+    test list, the screened files, a lab's last report): in a student's checkout labs/ holds
+    the student's work, which none of these depend on (a lab's report depends on its own
+    submitted files, hashed apart)."""
+    return digest({rel: data for rel, data in pristine.items()
+                   if not (rel.startswith("labs" + os.sep) and rel.endswith(".cpp"))
+                   and not rel.startswith("scenes" + os.sep)})
+
+
+# The reasons of tests that did not end by themselves: a report holding one is not reused.
+UNSETTLED = ("timed out", "stopped after", "not run:", "the lab's code crashed")
+
+
+def report_to_json(rep):
+    diag = {}
+    for task, d in (rep.diagnosis or {}).items():
+        diag[task] = dict(vars(d))
+    return {"lab": rep.lab, "notes": list(rep.notes), "compile_error": rep.compile_error,
+            "refused": rep.refused, "diagnosis": diag,
+            "results": [{"test": vars(r.test), "score": r.score, "status": r.status,
+                         "reason": r.reason, "output": r.output} for r in rep.results]}
+
+
+def report_from_json(data):
+    from .diagnose import wh
+    rep = LabReport(data["lab"], [], list(data["notes"]), data["compile_error"], data["refused"])
+    for r in data["results"]:
+        rep.results.append(TestResult(TestCase(**r["test"]), int(r["score"]), r["status"],
+                                      r["reason"], r["output"]))
+    for task, fields in data["diagnosis"].items():
+        d = wh.Diagnosis(task)
+        d.__dict__.update(fields)
+        if isinstance(d.part, list):
+            d.part = tuple(d.part)
+        rep.diagnosis[task] = d
+    return rep
 
 
 def grader_digest():

@@ -56,7 +56,11 @@ def parse_args(argv):
                         f"(default {common.SUBMISSION_BUDGET}); tests not started by then score 0")
     p.add_argument("--build-dir", metavar="DIR", default=os.environ.get("WB_GRADE_BUILD_DIR") or None,
                    help="keep the scratch copy and build here to reuse across runs (default: "
-                        "$WB_GRADE_BUILD_DIR if set, else a temporary folder)")
+                        "$WB_GRADE_BUILD_DIR if set, else build/grade in this checkout, which also "
+                        "remembers the last results: a lab whose files did not change is not "
+                        "built or run again)")
+    p.add_argument("--fresh", action="store_true",
+                   help="a temporary scratch build, deleted at the end (no reuse of any kind)")
     p.add_argument("--require-score", type=int, metavar="N",
                    help="exit 1 unless every graded lab scores exactly N")
     p.add_argument("--jobs", type=int, default=2, metavar="J",
@@ -100,18 +104,26 @@ def main(argv):
             heldout.seed_from_key(args.seed_key, overlays) if args.seed_key else
             heldout.random_seed())
     log(f"grade: held-out inputs from seed {seed:#x} (--seed {seed:#x} replays them)")
-    grader = Grader(repo, args.build_dir, args.jobs, args.timeout, screen=not args.no_screen,
+    build_dir, own = args.build_dir, False
+    if build_dir is None and not args.fresh:
+        build_dir, own = default_build_dir(repo), True
+    grader = Grader(repo, build_dir, args.jobs, args.timeout, screen=not args.no_screen,
                     lab_budget=args.lab_budget, submission_budget=args.budget, seed=seed)
+    grader.reuse_results = own  # the student's loop: an unchanged lab is not graded again
+    # A seed asked for (--seed, --seed-key) is part of what a reused report must have been
+    # graded with; a random one is not (any seed will do for files graded before).
+    grader.seed_chosen = args.seed is not None or bool(args.seed_key)
     try:
-        layers = layers_text(grader)
-        log("grade: " + layers.replace("\n", "\ngrade: "))
         reports = grader.grade(overlays, labs, {l: r for l, r in refused.items() if r})
     finally:
         grader.close()
     print_table(reports, notes)
-    layers = layers_text(grader)  # now with how the build ran
-    print("\n" + layers)
+    layers = layers_text(grader)  # how the tests and the build ran: for TAs (grade-log.txt, -v)
+    where = ta_log(grader, layers, args.verbose)
+    if not grader.screen:
+        print("\nscreening: OFF (--no-screen: for testing the sandbox only)")
     if args.verbose:
+        print("\n" + layers + (f"\n(also in {where})" if where else ""))
         for rep in reports.values():
             for r in rep.results:
                 if r.status == "failed" and rep.gradable:
@@ -127,6 +139,25 @@ def main(argv):
             log(f"grade: --require-score {args.require_score}: {', '.join(wrong)}")
             return 1
     return 0
+
+
+def default_build_dir(repo):
+    """The checkout's own scratch build (build/grade): kept from one grade to the next, so that
+    a re-grade compiles only what changed."""
+    return os.path.join(repo, "build", "grade")
+
+
+def ta_log(grader, layers, verbose):
+    """Writes what the grader's defences were (for TAs: a student never needs it) beside the
+    scratch build, when that build is kept; returns the file's path or ""."""
+    if grader.temporary:
+        return ""
+    path = os.path.join(grader.root, "grade-log.txt")
+    try:
+        write_atomic(path, layers + "\n")
+    except OSError:
+        return ""
+    return path
 
 
 def run(argv=None):

@@ -3,31 +3,40 @@
 Trust: formats what the verdict decided; every text from a test is capped and escaped."""
 import json
 import os
+import re
 import sys
 import tempfile
 
 from .common import RESULTS_CAP, printable
 
-# The hint hook: hints_for(lab, [(test name, passed?, output)]) -> [str] (tools/grader/hints.py,
-# the mutant catalogue's failure signatures) adds its lines under a lab's rows in the table and
-# to the output of each failed test in results.json. None: no hints.
-try:
-    from .hints import hints_for as HINTS_FOR
-except ImportError:
-    HINTS_FOR = None
+DIAGNOSIS_LINES = 40  # lines of one task's diagnosis kept
+DIAGNOSIS_CHARS = 400  # characters of one line kept (wbgrade_hints.LINE_CHARS, capped here too)
 
 
-def lab_hints(lab, rep):
-    """The hint lines for one lab's failures (never more than 5, each one line, printable)."""
-    failed = [r.test.name for r in rep.results if r.status != "passed"]
-    if HINTS_FOR is None or not failed or not rep.gradable:
-        return []
+def task_lines(d):
+    """One task's diagnosis (a wbgrade_hints.Diagnosis) as printable lines."""
     try:
-        hints = HINTS_FOR(lab, [(r.test.name, r.status == "passed", r.output or r.reason)
-                                for r in rep.results]) or []
-    except Exception as e:  # a broken hint never changes a score
-        return [f"(no hints: the hint module failed: {type(e).__name__})"]
-    return [printable(" ".join(str(h).split()), keep_newlines=False)[:300] for h in hints[:5]]
+        lines = d.lines()
+    except Exception as e:  # a broken diagnosis never changes a score
+        return [f"{getattr(d, 'task', '?')}: (no diagnosis: {type(e).__name__})"]
+    return [printable(str(l), keep_newlines=False)[:DIAGNOSIS_CHARS]
+            for l in list(lines)[:DIAGNOSIS_LINES]]
+
+
+def lab_diagnosis(lab, rep):
+    """The lines under a lab: each failing task's diagnosis, the tasks not started on one line."""
+    if not rep.gradable or not rep.diagnosis:
+        return []
+    out, idle = [], []
+    for task, d in rep.diagnosis.items():
+        if getattr(d, "status", "") == "not started":
+            idle.append(f"{task}{' ' + d.title if d.title else ''}")
+        elif getattr(d, "status", "") != "passed":
+            out += task_lines(d)
+    if idle:
+        out.append("not started (still the skeleton): " + ", ".join(idle))
+    return out
+
 
 # ---------------------------------------------------------------- reporting
 
@@ -64,8 +73,11 @@ def print_table(reports, notes, out=sys.stdout):
               file=out)
     print(file=out)
     for lab, rep in reports.items():
-        for h in lab_hints(lab, rep):
-            print(f"{lab}: hint: {h}", file=out)
+        lines = lab_diagnosis(lab, rep)
+        if lines:
+            print(f"{lab}: what your functions do on the probes (fixed example inputs; no points):",
+                  file=out)
+            print("\n".join("  " + l for l in lines) + "\n", file=out)
     for lab, rep in reports.items():
         extra = (" (refused: every test scores 0)" if rep.refused else
                  " (does not compile: every test scores 0)" if rep.compile_error else "")
@@ -89,10 +101,13 @@ def summary(reports, notes, layers=""):
         if rep.refused:
             lines.append("  refused: " + printable(rep.refused).replace("\n", "\n    "))
         lines += [f"  note: {printable(n, keep_newlines=False)}" for n in notes.get(lab, [])]
-    lines.append("Each test ran in its own process with a time limit; open a failed test "
-                 "below for what was expected and what came out.")
-    if layers:
-        lines.append(layers)
+        for task, d in (rep.diagnosis or {}).items() if rep.gradable else ():
+            try:
+                lines.append("  " + printable(d.headline(), keep_newlines=False))
+            except Exception:
+                pass
+    lines.append("Open a failed test below for what was expected and what came out, and what "
+                 "the task's functions do on the probes (fixed example inputs).")
     return "\n".join(lines)
 
 
@@ -101,11 +116,14 @@ def results_json(reports, notes, layers="", layer_data=None):
     test's output is already capped; if they still add up to more, each is cut further)."""
     tests = []
     for lab, rep in reports.items():
-        hints = "".join(f"\nhint: {h}" for h in lab_hints(lab, rep))
+        diag = {task: "\n".join(task_lines(d)) for task, d in (rep.diagnosis or {}).items()} \
+            if rep.gradable else {}
         for r in rep.results:
             out = r.output if r.status == "failed" else (r.output or "passed")
-            if hints and r.status == "failed":
-                out = out.rstrip() + "\n" + hints
+            task = re.match(r"^([A-Z]+\d+)\b", r.test.name)
+            extra = diag.get(task.group(1) if task else "", "")
+            if extra and r.status == "failed":
+                out = out.rstrip() + "\n\nDiagnosis of the task:\n" + extra
             tests.append({"name": f"{r.test.lab}: {r.test.name}", "score": r.score,
                           "max_score": r.test.points, "status": r.status, "output": out,
                           "visibility": "visible"})

@@ -5,8 +5,8 @@ The zip holds setup.sh and run_autograder at its root, and the pristine
 project the grader needs: CMakeLists.txt, CMakePresets.json, cmake/,
 framework/, labs/ (whole: a lab may link another lab's skeleton), scenes/,
 tests/common/ and tests/<LAB>/ (the grader grades the labs whose tests it
-has), tools/grade and tools/grader/, the hint matcher tools/wbgrade_hints.py with the
-lab's tests/mutants/<LAB>/signatures.json, tools/setup and the sandbox launcher's source. Never
+has: its probes too), tools/grade and tools/grader/, the diagnosis tools/wbgrade_hints.py with
+the lab's catalogue tests/mutants/<LAB>/signatures.json, tools/setup and the sandbox launcher's source. Never
 solutions/, tests/mutants/, other labs' tests or a build folder. Files are
 the checkout's tracked files (git ls-files) as they are in the work tree.
 """
@@ -45,7 +45,7 @@ def labs_with_tests(root):
 
 
 def wanted(rel, lab):
-    # The lab's tests, and its mistakes' failure signatures (the grader's hints), never the mutants
+    # The lab's tests and probes, and its catalogue (the diagnosis' numbers), never the mutants
     # nor the tools' own unit tests (tools/grader/tests/).
     if rel.startswith("tools/") and "/tests/" in rel:
         return False

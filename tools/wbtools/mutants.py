@@ -59,6 +59,7 @@ def load_grade():
 grade = load_grade()
 sys.path.insert(0, TOOLS)
 import wbgrade_hints as hints  # noqa: E402
+from wbtools import diagnosis as diag  # noqa: E402
 from wbtools import margins  # noqa: E402
 
 
@@ -92,10 +93,11 @@ DIRECT_TIMEOUT = 20.0  # s, one test case run directly (the slowest solution tes
 UNSURE = (b"<Exception", b"<FatalErrorCondition", b"<StdOut", b"<StdErr", b"<Warning")
 
 
-def direct_build(grader, lab, files):
+def direct_build(grader, lab, files, probes=None):
     """Builds <lab>-tests-direct with `files` in place of the lab's student files. Returns
     (binary, [TestCase]), or None when the grader itself must judge them (the build failed:
-    the grader reports the compile error in its own words)."""
+    the grader reports the compile error in its own words). With `probes` (a dict), the
+    lab's probes are built in the same build and their records put there (diagnosis.py)."""
     from grader.project import pristine_files
     from grader.worker import worker_files
     pristine = pristine_files(grader.repo)
@@ -111,12 +113,21 @@ def direct_build(grader, lab, files):
     if os.path.exists(binary):
         os.remove(binary)
     t0 = time.monotonic()
-    proc = subprocess.run(["cmake", "--build", grader.build, "--target", f"{lab}-tests-direct",
+    with_probes = probes is not None and diag.has_probes(grader.repo, lab)
+    probes_binary = os.path.join(grader.build, "bin", f"{lab}-probes-direct")
+    if with_probes and os.path.exists(probes_binary):
+        os.remove(probes_binary)  # never run the probes of another variant
+    targets = [f"{lab}-tests-direct"] + ([f"{lab}-probes-direct"] if with_probes else [])
+    proc = subprocess.run(["cmake", "--build", grader.build, "--target", *targets,
                            "-j", str(grader.jobs)], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, timeout=600)
     if proc.returncode != 0 or not os.path.isfile(binary):
         return None
     grade.log(f"mutants: {lab}: built {lab}-tests-direct in {time.monotonic() - t0:.1f} s")
+    if with_probes:  # built with the tests: only run them (diagnosis.record)
+        recs, _ = diag.record(grader, lab, files, built=True)
+        if recs is not None:
+            probes.update(recs)
     return binary, tests
 
 
@@ -391,6 +402,7 @@ class Row:
         self.how = ""  # "direct" or "grader ..." (see direct_build, direct_run)
         self.margin = None  # a caught mutant's widest miss over its tolerance (margins.py)
         self.heldout = None  # --heldout-seeds: see measure_heldout
+        self.probes = None  # {probe id: record}: the diagnosis probes' outputs (diagnosis.py)
 
 
 def read(path):
@@ -506,27 +518,22 @@ def print_rows(rows, verbose):
                 print("    " + d.replace("\n", "\n    "))
 
 
-def signature_doc(lab, tests, rows):
-    """The signatures file of one lab: generated, compared as a whole."""
-    muts = {}
+def signature_doc(repo, lab, tests, rows, solution, skeleton, digest):
+    """The catalogue of one lab (tools/wbtools/diagnosis.py): generated, compared as a whole."""
+    muts = []
     for r in rows:
         if r.expected == "100" or r.signature is None:
             continue
         name = r.variant[:-len(".patch")] if r.variant.endswith(".patch") else r.variant
-        muts[name] = {"task": header_value(r.comments, "task"),
-                      "kind": header_value(r.comments, "kind"),
-                      "hint": header_value(r.comments, "hint"),
-                      "failed": dict(sorted(r.signature.items()))}
-    return {"version": hints.SIGNATURES_VERSION, "lab": lab,
-            "generated_by": "tools/mutants --signatures: do not edit by hand",
-            "tests": tests, "mutants": muts}
+        muts.append((name, r.comments, r.signature, r.probes))
+    return diag.catalogue(repo, lab, tests, solution, skeleton, muts, digest)
 
 
 def write_json_atomic(path, data):
     tmp = path + f".tmp-{os.getpid()}"
     try:
         with open(tmp, "w", encoding="utf-8") as f:
-            f.write(json.dumps(data, indent=1, ensure_ascii=False, sort_keys=False) + "\n")
+            f.write(diag.dumps(data))
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
@@ -535,7 +542,7 @@ def write_json_atomic(path, data):
 
 def check_signatures(repo, lab, doc, write):
     """None when the stored signatures equal `doc` (or were just written), else why not."""
-    path = hints.signatures_path(repo, lab)
+    path = hints.catalogue_path(repo, lab)
     if write:
         write_json_atomic(path, doc)
         return None
@@ -555,6 +562,11 @@ def check_signatures(repo, lab, doc, write):
     why += [f"{m}: new" for m in sorted(set(dm) - set(sm))][:3]
     why += [f"{m}: removed" for m in sorted(set(sm) - set(dm))][:3]
     why += [f"{m}: changed" for m in sorted(set(dm) & set(sm)) if dm[m] != sm[m]][:5]
+    if isinstance(stored, dict):
+        for key, what in (("probes", "the probes or the solution's or skeleton's outputs on them"),
+                          ("tasks", "the tasks")):
+            if stored.get(key) != doc.get(key):
+                why.append(f"{what} changed")
     return "; ".join(why) or "the file differs from what this run measured"
 
 
@@ -562,7 +574,7 @@ def refresh_hints(repo, labs):
     """--refresh-hints: the headers' hint, kind and task into the stored signatures."""
     bad = 0
     for lab in labs:
-        data = hints.load_signatures(repo, lab)
+        data = hints.load_catalogue(repo, lab)
         if data is None:
             print(f"{lab}: no signatures to refresh (tools/mutants --signatures --lab {lab})")
             bad += 1
@@ -580,90 +592,13 @@ def refresh_hints(repo, labs):
                 bad += 1
             else:
                 m = data["mutants"][key]
-                new = {"task": header_value(comments, "task"), "kind": header_value(comments, "kind"),
+                new = {"kind": header_value(comments, "kind"),
                        "hint": header_value(comments, "hint")}
                 n += any(m.get(k) != v for k, v in new.items())
                 m.update(new)
-        write_json_atomic(hints.signatures_path(repo, lab), data)
+        write_json_atomic(hints.catalogue_path(repo, lab), data)
         print(f"{lab}: {n} mutant(s) refreshed")
     return 1 if bad else 0
-
-
-# ------------------------------------------------------------- leave-one-out
-
-def leave_one_out(data):
-    """Per mutant of one lab's signatures: (name, unique?, outcome, named mutants), where
-    outcome is "right" (a mistake of the same task and kind is named), "wrong" (only others
-    are named), "silent" (nothing named) or "no kind" (the mutant has no '# kind:')."""
-    muts = data.get("mutants", {})
-    tests = data.get("tests", [])
-    out = []
-    for name in sorted(muts):
-        m = muts[name]
-        sig = m.get("failed", {})
-        twins = [o for o in muts if o != name and muts[o].get("failed") == sig]
-        if not m.get("kind"):
-            out.append((name, not twins, "no kind", []))
-            continue
-        chosen = hints.matches(sig, tests, data, exclude={name})
-        same = [c for c in chosen if muts[c[1]].get("kind") == m["kind"]
-                and c[1].split(".")[0] == name.split(".")[0]]
-        outcome = "silent" if not chosen else "right" if same else "wrong"
-        out.append((name, not twins, outcome, [c[1] for c in chosen]))
-    return out
-
-
-def loo_report(repo, labs, markdown, verbose):
-    rows = []
-    for lab in labs:
-        data = hints.load_signatures(repo, lab)
-        if data is None:
-            print(f"{lab}: no signatures (tools/mutants --signatures --lab {lab})")
-            continue
-        res = leave_one_out(data)
-        own = sum(1 for n in data["mutants"]
-                  if any(c[1] == n for c in hints.matches(data["mutants"][n]["failed"],
-                                                          data["tests"], data)))
-        uniq = [r for r in res if r[1] and r[2] != "no kind"]
-        shared = [r for r in res if not r[1] and r[2] != "no kind"]
-        nokind = [r for r in res if r[2] == "no kind"]
-
-        def share(rs, what):
-            return (sum(1 for r in rs if r[2] == what), len(rs))
-        rows.append((lab, len(res), own, share(uniq, "right"), share(uniq, "wrong"),
-                     share(uniq, "silent"), share(shared, "right"), share(shared, "wrong"),
-                     len(nokind)))
-        if verbose:
-            for name, u, outcome, named in res:
-                print(f"  {lab}  {name:<40} {'unique' if u else 'shared':<6}  {outcome:<7}  "
-                      f"{', '.join(named)}")
-
-    def pct(a):
-        return f"{a[0]}/{a[1]} ({100 * a[0] / a[1]:.0f}%)" if a[1] else "0/0"
-    head = ["lab", "mutants", "own hint when graded", "unique: right", "unique: wrong",
-            "unique: silent", "shared: right", "shared: wrong", "no kind"]
-    tot = [sum(r[1] for r in rows), sum(r[2] for r in rows)] + \
-        [(sum(r[k][0] for r in rows), sum(r[k][1] for r in rows)) for k in range(3, 8)] + \
-        [sum(r[8] for r in rows)]
-    lines = [[r[0], str(r[1]), f"{r[2]}/{r[1]}"] + [pct(r[k]) for k in range(3, 8)] + [str(r[8])]
-             for r in rows]
-    lines.append(["all", str(tot[0]), f"{tot[1]}/{tot[0]}"] + [pct(a) for a in tot[2:7]]
-                 + [str(tot[7])])
-    if markdown:
-        print("| " + " | ".join(head) + " |")
-        print("|" + "---|" * len(head))
-        for l in lines:
-            print("| " + " | ".join(l) + " |")
-    else:
-        w = [max(len(h), *(len(l[k]) for l in lines)) for k, h in enumerate(head)]
-        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
-        for l in lines:
-            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
-    print(f"\nrule: tools/wbgrade_hints.py (CLOSE = {hints.CLOSE}, TIE = {hints.TIE}, "
-          f"MAX_HINTS = {hints.MAX_HINTS}, ASSERTION_WEIGHT = {hints.ASSERTION_WEIGHT}, "
-          f"RARITY_WEIGHTS = {hints.RARITY_WEIGHTS}, "
-          f"CLASS_PREFIX = {hints.CLASS_PREFIX})")
-    return 0
 
 
 def lab_groups(repo, labs, n):
@@ -681,9 +616,9 @@ def lab_groups(repo, labs, n):
 
 
 def run_lab(repo, grader, lab, args, stop):
-    """Grades every variant of one lab; returns its rows (the signatures row last, once
-    every variant was graded)."""
-    rows, all_tests = [], None
+    """Grades every variant of one lab and runs the diagnosis probes on it; returns its rows
+    (the catalogue's row last, once every variant was graded)."""
+    rows, all_tests, solution = [], None, None
     for name, expected, files, comments in variants(repo, lab):
         if stop.is_set():
             return rows
@@ -699,8 +634,9 @@ def run_lab(repo, grader, lab, args, stop):
                 row.got, row.verdict, row.ok = "-", "measured", row.heldout is not None
                 continue
             graded = again = None
+            recorded = {}
             if not args.through_grader:
-                built = direct_build(grader, lab, files)
+                built = direct_build(grader, lab, files, recorded)
                 graded = direct_run(grader, lab, *built) if built else None
                 row.how = "direct" if graded else "grader (the direct run was not plain)"
                 failed = [t for t in built[1] if t.name in
@@ -736,20 +672,51 @@ def run_lab(repo, grader, lab, args, stop):
                 if failed:
                     row.ok, row.verdict = False, f"LOST POINTS on held-out seeds from {first:#x}"
                     row.details += [f"failed: {t}: {why}" for t, why in failed.items()]
+            if args.heldout_seeds:
+                pass  # the measurement: no probes
+            elif recorded:  # recorded with the direct tests
+                row.probes = recorded
+            elif not graded[0]:  # it compiles: what its probes give
+                row.probes, why = diag.record(grader, lab, files)
+                if why:
+                    row.ok, row.verdict = False, "PROBES: " + why.splitlines()[0]
+                    row.details.append(why)
+            if name == "solution":
+                solution = row.probes
+            elif expected == "100" and row.ok and solution and row.probes is not None:
+                bad = diag.disagreements(solution, row.probes)
+                if bad:  # a correct variant the probes tell from the solution
+                    row.ok = False
+                    row.verdict = "PROBE DISAGREES: " + ", ".join(bad[:3]) + \
+                        " (too tight a tolerance, or a probe of unspecified behaviour)"
         if not row.ok and not args.keep_going:
             stop.set()
             return rows
-    if all_tests is None or args.heldout_seeds:
+    if all_tests is None or args.heldout_seeds or solution is None:
         return rows
-    # Every variant of the lab was graded: its signatures are known.
+    # Every variant of the lab was graded: its catalogue is known. The skeleton's probe
+    # outputs are measured again only when what they depend on changed (or --signatures).
+    digest = diag.probe_inputs_digest(repo, lab)
+    stored = hints.load_catalogue(repo, lab)
+    if not args.signatures and stored and stored.get("skeleton_inputs") == digest:
+        skeleton = {p["probe"]: p.get("skeleton") for p in stored.get("probes", [])}
+    else:
+        skel_files = {n: read(os.path.join(repo, "labs", lab, n))
+                      for n in grade.student_files(repo, lab)}
+        skeleton, why = diag.record(grader, lab, skel_files)
+        skeleton = skeleton or {}
     row = Row(lab, "signatures.json", "current")
     row.got = str(sum(1 for r in rows if r.signature is not None))
-    doc = signature_doc(lab, all_tests, rows)
+    doc = signature_doc(repo, lab, all_tests, rows, solution, skeleton, digest)
     why = check_signatures(repo, lab, doc, args.signatures)
     for r in rows:  # what the grader would tell a student with this code
-        if r.signature:
-            r.details += ["grader's hint: " + h for h in
-                          hints.hints_for(lab, r.signature, all_tests, doc) or ["(none)"]]
+        key = r.variant[:-len(".patch")]
+        if r.signature is not None and key in doc["mutants"]:
+            m = doc["mutants"][key]
+            d = hints.diagnose(doc, m["task"], m.get("probes") or {},
+                               [(t, False, x) for t, x in r.signature.items()],
+                               hints.task_title(doc, m["task"]))
+            r.details += ["diagnosis: " + l for l in d.lines()]
     row.ok = why is None
     row.verdict = ("written" if args.signatures else "current") if row.ok else \
         f"STALE: {why}: run tools/mutants --signatures --lab {lab} and commit it"
@@ -757,6 +724,33 @@ def run_lab(repo, grader, lab, args, stop):
     if not row.ok and not args.keep_going:
         stop.set()
     return rows
+
+
+def mid_lab(repo, labs, args):
+    """--mid-lab: diagnosis.mid_lab_check of every lab with a catalogue, in one scratch build."""
+    tmp = None
+    root = args.build_dir
+    if root is None:
+        tmp = root = tempfile.mkdtemp(prefix="wb-mutants-")
+    grader = grade.Grader(repo, os.path.join(root, "0"), args.jobs, args.timeout, seed=args.seed)
+    problems = []
+    try:
+        for lab in labs:
+            cat = hints.load_catalogue(repo, lab)
+            if cat is None:
+                problems.append(f"{lab}: no catalogue (tools/mutants --signatures --lab {lab})")
+                continue
+            files = {v[0][:-len(".patch")]: v[2] for v in variants(repo, lab)
+                     if v[0].endswith(".patch") and not isinstance(v[2], str)}
+            problems += diag.mid_lab_check(repo, grader, lab, cat, files, grade.log)
+    finally:
+        grader.close()
+        if tmp:
+            shutil.rmtree(tmp, ignore_errors=True)
+    for p in problems:
+        print(p)
+    print(f"mutants: mid-lab: {len(problems)} problem(s) in {', '.join(labs)}")
+    return 1 if problems else 0
 
 
 def both_paths(row, graded, grader, lab, files):
@@ -816,8 +810,22 @@ def main(argv):
                         "signatures from the patches' headers (after editing a '# hint:'); the "
                         "measured failures are kept")
     p.add_argument("--leave-one-out", action="store_true",
-                   help="no build: from the stored signatures, how often the hint names a mistake "
-                        "of the right kind when a mutant's own signature is left out")
+                   help="no build: from the stored catalogue, how often the diagnosis names the "
+                        "right part of the computation when a mutant is left out of it")
+    p.add_argument("--min-right", type=float, metavar="PCT",
+                   help="with --leave-one-out: exit 1 unless the part is right for at least PCT %% "
+                        "of the mutants that have a peer of their part")
+    p.add_argument("--max-wrong", type=float, metavar="PCT",
+                   help="with --leave-one-out: exit 1 unless the part is wrong for at most PCT %% "
+                        "of them")
+    p.add_argument("--max-wrong-alone", type=int, metavar="N",
+                   help="with --leave-one-out: exit 1 if more than N mutants alone in their part "
+                        "get another part named")
+    p.add_argument("--mid-lab", action="store_true",
+                   help="grade, through the grader, two submissions per lab with every other task "
+                        "at its skeleton and one catalogued mistake in each of the others: each "
+                        "task's diagnosis must be the whole-lab one, each skeleton task 'not "
+                        "started' (builds; exit 1 otherwise)")
     p.add_argument("--markdown", action="store_true", help="with --leave-one-out: a Markdown table")
     p.add_argument("--seed", default="1", metavar="N",
                    help="the held-out inputs' seed of every grading (default 1: the stored "
@@ -845,7 +853,10 @@ def main(argv):
             raise grade.BadInput(f"--lab {lab}: unknown lab (known: {', '.join(known)})")
     labs = args.lab or [l for l in known if os.path.isdir(os.path.join(repo, "tests", "mutants", l))]
     if args.leave_one_out:
-        return loo_report(repo, labs, args.markdown, args.verbose)
+        return diag.loo_table(repo, labs, args.markdown, args.verbose, args.min_right,
+                              args.max_wrong, args.max_wrong_alone)
+    if args.mid_lab:
+        return mid_lab(repo, labs, args)
     if args.refresh_hints:
         return refresh_hints(repo, labs)
     if args.signatures:
@@ -868,6 +879,7 @@ def main(argv):
         grader = grade.Grader(repo, os.path.join(root, str(k)), args.jobs, args.timeout,
                               seed=args.seed)
         grader.direct_tests = True
+        grader.diagnosis = False  # the catalogue is measured directly (diagnosis.record)
         try:
             for lab in group:
                 if stop.is_set():

@@ -337,6 +337,60 @@ def build_prebuilt(stage, tmp):
           f"{time.monotonic() - t0:.1f} s", flush=True)
 
 
+GRADER_PREBUILT = r"""
+import json, os, shutil, subprocess, sys
+stage, build = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.join(stage, "tools"))
+from grader.build import Grader, PREBUILT_GRADER, prebuilt_inputs
+from grader.project import known_labs, pristine_files
+from grader.worker import worker_files
+labs = known_labs(stage)
+pristine = pristine_files(stage)
+pristine.update(worker_files(stage, labs))
+g = Grader(stage, build)
+try:
+    g.test_lists(labs, pristine)
+    out = os.path.join(stage, PREBUILT_GRADER)
+    os.makedirs(out)
+    names = {}
+    for lab in labs:
+        names[lab] = []
+        for path in (g.binary(lab), g.probes(lab)):
+            if path and os.path.isfile(path):
+                name = os.path.basename(path)
+                shutil.copyfile(path, os.path.join(out, name))
+                subprocess.run(["strip", "--strip-unneeded", os.path.join(out, name)], check=True)
+                os.chmod(os.path.join(out, name), 0o755)
+                names[lab].append(name)
+    with open(os.path.join(g.build, "wb-toolchain.txt"), encoding="utf-8") as f:
+        key = f.read().strip()
+    with open(os.path.join(out, "manifest.json"), "w", encoding="utf-8") as f:
+        json.dump({"written_by": "tools/pack: the pristine test and probe binaries of each lab "
+                   "(tools/grader/build.py uses them only for this toolchain and these files)",
+                   "toolchain": key, "inputs": prebuilt_inputs(pristine), "labs": names},
+                  f, indent=1, sort_keys=True)
+        f.write("\n")
+finally:
+    g.close()
+"""
+
+
+def build_prebuilt_grader(stage, tmp):
+    """Compiles the staged pack's pristine test and probe binaries of every lab with the
+    grader's own machinery (the stubs of the worker linked in: no student code), into
+    stage/prebuilt/grader/ with a manifest: a student's first `tools/grade` then compiles only
+    the worker and the student's files (tools/grader/build.py, "prebuilt parts")."""
+    t0 = time.monotonic()
+    p = subprocess.run([sys.executable, "-c", GRADER_PREBUILT, stage,
+                        os.path.join(tmp, "grader-prebuilt")], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, env=dict(os.environ, PYTHONDONTWRITEBYTECODE="1"))
+    if p.returncode != 0:
+        tail = p.stdout.decode("utf-8", "replace").strip().splitlines()[-20:]
+        raise PackError("the prebuilt grader binaries do not build:\n" + "\n".join(tail))
+    print(f"tools/pack: compiled the grader's prebuilt tests and probes in "
+          f"{time.monotonic() - t0:.1f} s", flush=True)
+
+
 def check_compiles(build, path):
     """PackError unless `path` (a replacement of a compiled-only file) compiles with the command
     the prebuilt build compiled the real file with: a build that cannot use prebuilt/
@@ -819,6 +873,7 @@ def main():
         if args.no_build and args.each_lab:  # before the prebuilt parts' minute of compiling
             check_repo_build(repo_build, order)
         build_prebuilt(stage, tmp)
+        build_prebuilt_grader(stage, tmp)
         if args.lab_commands:
             write_lab_commands(os.path.abspath(args.lab_commands), labs_deps, order)
         if args.draft:

@@ -1,7 +1,7 @@
 """results.json and the table (tools/grader/results.py): the score Gradescope shows is the sum
-the verdict decided, every text is capped and printable, and the hint hook can add words but
-never change points. Guards against a results.json that is too big for Gradescope, a hint
-that breaks grading, and a score that disagrees with the tests listed."""
+the verdict decided, every text is capped and printable, and a task's diagnosis can add words
+but never change points. Guards against a results.json that is too big for Gradescope, a
+diagnosis that floods it, and a score that disagrees with the tests listed."""
 import io
 import json
 
@@ -20,19 +20,7 @@ def lab(passed=(0, 1), output="expected 1 got 2"):
     return {"euler": LabReport("euler", res)}
 
 
-@pytest.fixture
-def hints(monkeypatch):
-    """Replaces the hint hook; returns the list of calls it received."""
-    calls = []
-
-    def fake(lab_name, rows):
-        calls.append((lab_name, rows))
-        return ["the forces are evaluated after the move"]
-    monkeypatch.setattr(results, "HINTS_FOR", fake)
-    return calls
-
-
-def test_score_is_the_sum_of_the_tests_points(hints):
+def test_score_is_the_sum_of_the_tests_points():
     """Defect: the top-level score disagrees with the tests (Gradescope shows the top one)."""
     data = results.results_json(lab(), {})
     assert data["score"] == 50 == sum(t["score"] for t in data["tests"])
@@ -40,46 +28,24 @@ def test_score_is_the_sum_of_the_tests_points(hints):
     assert data["tests"][0]["name"] == "euler: E1 test 0"
 
 
-def test_hints_go_under_failed_tests_only(hints):
-    """Defect: a hint attached to a passing test (a student reads a mistake they did not make)
-    or the hook called with something else than the verdict's results."""
-    data = results.results_json(lab(), {})
-    out = [t["output"] for t in data["tests"]]
-    assert "hint: the forces" not in out[0] and "hint: the forces" in out[2]
-    assert hints[0][0] == "euler" and [r[1] for r in hints[0][1]] == [True, True, False, False]
+def test_diagnosis_lines_are_few_short_and_printable():
+    """Defect: a diagnosis floods the feedback or draws fake lines with control characters
+    (its lines quote values that came back from student code). Where it goes and what a
+    broken one does: test_diagnosis.py."""
+    class Loud:
+        task, title, status = "E1", "", "counterexample"
 
-
-def test_a_broken_hint_hook_changes_no_score(monkeypatch):
-    """Defect: an exception in the hint module stops the grading or changes points."""
-    def broken(*_):
-        raise KeyError("boom")
-    monkeypatch.setattr(results, "HINTS_FOR", broken)
-    data = results.results_json(lab(), {})
-    assert data["score"] == 50
-    assert "(no hints: the hint module failed: KeyError)" in data["tests"][2]["output"]
-
-
-def test_no_hint_when_nothing_failed_or_the_lab_did_not_compile(hints):
-    """Defect: hints for a lab that did not compile (every test failed: no pattern) or one
-    that passed everything."""
-    assert results.lab_hints("euler", lab(passed=(0, 1, 2, 3))["euler"]) == []
-    rep = lab(passed=())["euler"]
-    rep.compile_error = "error: expected ';'"
-    assert results.lab_hints("euler", rep) == [] and hints == []
-
-
-def test_hint_lines_are_few_short_and_printable(monkeypatch):
-    """Defect: the hook floods the feedback or draws fake lines with control characters."""
-    monkeypatch.setattr(results, "HINTS_FOR", lambda *_: ["a\x1b[31m\nb" + "x" * 1000] * 9)
-    lines = results.lab_hints("euler", lab()["euler"])
-    assert len(lines) == 5 and all(len(h) <= 300 and "\x1b" not in h and "\n" not in h
-                                   for h in lines)
+        def lines(self):
+            return ["a\x1b[31m\nb" + "x" * 1000] * 90
+    lines = results.task_lines(Loud())
+    assert len(lines) == results.DIAGNOSIS_LINES
+    assert all(len(h) <= results.DIAGNOSIS_CHARS and "\x1b" not in h and "\n" not in h
+               for h in lines)
 
 
 def test_results_json_is_capped(monkeypatch):
     """Defect: a results.json larger than RESULTS_CAP (Gradescope rejects it, the student gets
     an autograder failure instead of a score)."""
-    monkeypatch.setattr(results, "HINTS_FOR", None)
     monkeypatch.setattr(results, "RESULTS_CAP", 40_000)
     data = results.results_json(lab(passed=(), output="y" * 30_000), {})
     assert len(json.dumps(data, indent=2).encode()) <= 40_000
@@ -87,7 +53,7 @@ def test_results_json_is_capped(monkeypatch):
     assert data["score"] == 0
 
 
-def test_table_names_refusals_and_compile_errors(hints):
+def test_table_names_refusals_and_compile_errors():
     """Defect: a refused or uncompiled lab shown with a bare 0 (the student does not learn
     why)."""
     reps = lab(passed=())

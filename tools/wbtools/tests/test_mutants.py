@@ -3,6 +3,8 @@ judges the graded run, and compares the failure signatures with the stored ones.
 against a patch applied somewhere else than it says (then the mutant is not the mistake its
 hint names), a malformed patch read as a smaller one, and a stored signature that keeps
 what changes from run to run."""
+import os
+
 import pytest
 
 from wbtools import mutants
@@ -79,7 +81,10 @@ def test_a_signature_keeps_only_what_is_stable_across_runs():
         rows.append(row)
     assert rows[0].verdict.startswith("caught") and rows[0].signature == rows[1].signature
     assert rows[0].signature == {"E1 one step": "expected # got #"}
-    docs = [mutants.signature_doc("euler", ["E1 one step", "E1 other"], [r]) for r in rows]
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))))
+    docs = [mutants.signature_doc(repo, "euler", ["E1 one step", "E1 other"], [r], {}, {}, "d")
+            for r in rows]
     assert docs[0] == docs[1]
 
 
@@ -102,7 +107,7 @@ def test_caught_by_the_wrong_tests_is_reported():
 
 def test_check_signatures_names_what_changed(tmp_path, monkeypatch):
     """Defect: a stale signatures file reported without saying which mutant changed."""
-    monkeypatch.setattr(mutants.hints, "signatures_path",
+    monkeypatch.setattr(mutants.hints, "catalogue_path",
                         lambda repo, lab: str(tmp_path / "signatures.json"))
     doc = {"version": 1, "lab": "euler", "tests": ["t"],
            "mutants": {"a": {"failed": {"t": "x"}}, "b": {"failed": {"t": "y"}}}}

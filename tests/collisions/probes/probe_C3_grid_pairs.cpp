@@ -1,0 +1,61 @@
+// Diagnosis probes of C3 (tests/common/wb_probe.h): the pairs found, sorted (i < j, ascending):
+// neighbours across a cell's side and across its corner, discs that just touch, one large disc
+// among small ones, a list that comes in holding old pairs.
+#include <algorithm>
+
+#include "grid_pairs.h"
+#include "wb_probe.h"
+
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_C3_grid_pairs {
+
+using wbprobe::cols;
+using wbprobe::vec;
+
+namespace {
+void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& radius,
+         std::vector<std::pair<int, int>> pairs) {
+  P.call("grid_pairs");
+  P.in("x", x), P.in("radius", radius);
+  if (!pairs.empty()) P.in("pairs", pairs);
+  grid_pairs(x, radius, pairs);
+  for (auto& p : pairs)
+    if (p.first > p.second) std::swap(p.first, p.second);
+  std::sort(pairs.begin(), pairs.end());
+  P.out("pairs", pairs);
+}
+}  // namespace
+
+WB_PROBE("C3", "two", "two overlapping discs of radius 0.5") {
+  P.simple();
+  run(P, cols({{0, 0}, {0.8, 0}}), vec({0.5, 0.5}), {});
+}
+// Pairs in neighbouring cells, along the sides and across the corners (both diagonals).
+WB_PROBE("C3", "cluster",
+         "nine discs of radius 0.3 on a 0.55 lattice: every neighbour, diagonals included") {
+  wb::Mat2X x(2, 9);
+  for (int i = 0; i < 9; ++i) x.col(i) = wb::Vec2(0.55 * (i % 3), 0.55 * (i / 3));
+  run(P, x, wb::VecX::Constant(9, 0.3), {});
+}
+WB_PROBE("C3", "diagonal",
+         "discs overlapping across both diagonals of a 2 x 2 block, far apart otherwise") {
+  run(P, cols({{0, 0}, {0.7, 0.7}, {2.6, 0.1}, {1.9, 0.8}, {5, 5}}),
+      vec({0.5, 0.5, 0.5, 0.5, 0.5}), {});
+}
+// Touching exactly (|dx| = r_i + r_j) counts.
+WB_PROBE("C3", "touching", "discs of radius 0.25 exactly 0.5 apart along x and along y") {
+  run(P, cols({{0, 0}, {0.5, 0}, {0, 0.5}, {3, 3}}), vec({0.25, 0.25, 0.25, 0.25}), {});
+}
+// One large disc among small ones.
+WB_PROBE("C3", "large", "one disc of radius 1.5 among discs of radius 0.1") {
+  run(P, cols({{0, 0}, {1.45, 0.3}, {-1.2, 0.7}, {0.3, -1.5}, {3.5, 0}, {3.6, 0.1}}),
+      vec({1.5, 0.1, 0.1, 0.1, 0.1, 0.1}), {});
+}
+// A list that holds old pairs.
+WB_PROBE("C3", "stale",
+         "two overlapping discs, the list coming in with old pairs (0, 5) and (2, 3)") {
+  run(P, cols({{0, 0}, {0.8, 0}, {3, 3}}), vec({0.5, 0.5, 0.5}), {{0, 5}, {2, 3}});
+}
+
+}  // namespace probe_C3_grid_pairs

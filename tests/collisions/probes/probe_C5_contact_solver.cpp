@@ -1,0 +1,96 @@
+// Diagnosis probes of C5 (tests/common/wb_probe.h): prepare_contact (a pair and a plane, above
+// and below the threshold), warm_start_contact, and one solve_contact from a closing contact,
+// from stored totals that must be partly taken back, and with friction on stored totals.
+#include "contact_solver.h"
+#include "wb_probe.h"
+
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_C5_contact_solver {
+
+using wbprobe::cols;
+using wbprobe::vec;
+
+namespace {
+using wb::Vec2;
+void contact_in(wbprobe::Probe& P, const Contact& c) {
+  P.in("c.a", c.a), P.in("c.b", c.b), P.in("c.n", c.n), P.in("c.mu", c.mu), P.in("c.Pn", c.Pn);
+  P.in("c.Pt", c.Pt), P.in("c.mass_n", c.mass_n), P.in("c.bias", c.bias);
+}
+void contact_out(wbprobe::Probe& P, const Contact& c) {
+  P.out("c.Pn", c.Pn), P.out("c.Pt", c.Pt), P.out("c.mass_n", c.mass_n), P.out("c.bias", c.bias);
+}
+Contact contact(int a, int b, Vec2 n, double mu, double Pn, double Pt, double mass_n,
+                double bias) {
+  Contact c;
+  c.a = a, c.b = b, c.n = n, c.mu = mu, c.Pn = Pn, c.Pt = Pt, c.mass_n = mass_n, c.bias = bias;
+  return c;
+}
+void prepare(wbprobe::Probe& P, const wb::VecX& w, const wb::Mat2X& v, double e, double threshold,
+             Contact c) {
+  P.call("prepare_contact");
+  P.in("w", w), P.in("v", v), P.in("e", e), P.in("threshold", threshold), contact_in(P, c);
+  prepare_contact(w, v, e, threshold, c);
+  contact_out(P, c);
+}
+void warm(wbprobe::Probe& P, const wb::VecX& w, const Contact& c, wb::Mat2X v) {
+  P.call("warm_start_contact");
+  P.in("w", w), contact_in(P, c), P.in("v", v);
+  warm_start_contact(w, c, v);
+  P.out("v", v);
+}
+void solve(wbprobe::Probe& P, const wb::VecX& w, Contact c, wb::Mat2X v) {
+  P.call("solve_contact");
+  P.in("w", w), contact_in(P, c), P.in("v", v);
+  const double dPn = solve_contact(w, c, v);
+  P.group("everything");  // one part's mistakes change some, another's others
+  P.out("returned", dPn), contact_out(P, c), P.out("v", v);
+  P.group("");
+}
+const Vec2 kN(0.6, 0.8);
+const wb::VecX kW = vec({2.0 / 3, 2.0});  // masses 1.5 and 0.5
+// Particle 0 above particle 1 along kN, closing at 1.5 m/s, sliding along perp(kN).
+const wb::Mat2X kV = cols({{-0.9, -1.2}, {0.3, 0.4}});
+}  // namespace
+
+WB_PROBE("C5", "prepare-floor",
+         "prepare_contact: a particle of mass 1 hitting a floor at 2 m/s, e = 0.5") {
+  P.simple();
+  prepare(P, vec({1}), cols({{0, -2}}), 0.5, 0.1, contact(0, -1, Vec2(0, 1), 0, 0, 0, 0, 0));
+}
+// The effective mass and the restitution target.
+WB_PROBE(
+    "C5", "prepare-pair",
+    "prepare_contact: a pair of masses 1.5 and 0.5 closing at 1.5 m/s, e = 0.6, threshold 1") {
+  prepare(P, kW, kV, 0.6, 1.0, contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0));
+}
+WB_PROBE("C5", "prepare-plane",
+         "prepare_contact: particle 1 (mass 0.5) on a plane, closing at 1.5 m/s, e = 0.6") {
+  prepare(P, kW, cols({{0, 0}, {-0.9, -1.2}}), 0.6, 1.0, contact(1, -1, kN, 0.4, 0.7, 0.1, 0, 0));
+}
+WB_PROBE("C5", "prepare-slow",
+         "prepare_contact: the pair closing at 1.5 m/s, below the threshold 2: no bounce") {
+  prepare(P, kW, kV, 0.6, 2.0, contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0));
+}
+// Warm starting: the stored totals applied again.
+WB_PROBE("C5", "warm-start",
+         "warm_start_contact: the pair with stored totals Pn = 0.7, Pt = 0.1") {
+  warm(P, kW, contact(0, 1, kN, 0.4, 0.7, 0.1, 0.375, 0.9), kV);
+}
+// One iteration from a closing contact with nothing stored.
+WB_PROBE("C5", "solve-closing",
+         "solve_contact: the pair closing at 1.5 m/s, nothing stored, mu = 0.4") {
+  solve(P, kW, contact(0, 1, kN, 0.4, 0, 0, 0.375, 0.9), kV);
+}
+// Stored totals larger than needed: the total is partly taken back, and stays >= 0.
+WB_PROBE("C5", "solve-take-back",
+         "solve_contact: the pair separating at 0.5 m/s with Pn = 0.3 stored") {
+  solve(P, kW, contact(0, 1, kN, 0, 0.3, 0, 0.375, 0), cols({{0.2, 0.2}, {-0.1, -0.2}}));
+}
+// Friction on stored totals: the bound is mu times the total, on the total.
+WB_PROBE("C5", "solve-friction",
+         "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = 0.15 stored, mu = 0.4") {
+  solve(P, kW, contact(0, 1, kN, 0.4, 0.5, 0.15, 0.375, 0), cols({{2.0, -1.2}, {0.3, 0.4}}));
+}
+
+}  // namespace probe_C5_contact_solver

@@ -1,0 +1,131 @@
+// Probes of one integrator step (tests/common/wb_probe.h), for the labs whose tasks are step
+// functions (euler, midpoint): the step is taken once from a given state with accelerations
+// written here, and the probe records the new state, how many times the forces were evaluated
+// and at which states (the first four evaluations), so that a wrong evaluation point shows
+// apart from a wrong update.
+#pragma once
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "wb/dynamics.h"
+#include "wb_probe.h"
+
+namespace wbprobe {
+
+using Accel = std::function<void(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a)>;
+
+// A step of `name` (the step function `fn`) of size h from (x, v) under a(x, v) = `accel`,
+// described in words by `words`. The scratch holds NaN on entry (its contents are undefined).
+// What a step probe records: the new state, the evaluations, or both.
+enum Record { kState = 1, kEvaluations = 2, kBoth = 3 };
+
+inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& words,
+                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h, Record what = kBoth) {
+  std::vector<wb::Mat2X> seen_x, seen_v;
+  wb::LambdaDynamics dyn([&](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
+    seen_x.push_back(xx), seen_v.push_back(vv);
+    accel(xx, vv, a);
+  });
+  wb::Scratch s;
+  s.resize(x.cols());
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  for (wb::Mat2X* m : {&s.a0, &s.a1, &s.a2, &s.a3, &s.x1, &s.v1, &s.xs, &s.vs})
+    m->setConstant(nan);
+  P.call(name);
+  P.note("dyn: a(x, v) = " + words);
+  P.in("h", h), P.in("x", x), P.in("v", v);
+  fn(dyn, h, x, v, s);
+  if (what & kState) P.out("x", x), P.out("v", v);
+  if (!(what & kEvaluations)) return;
+  // The evaluations in one output: one column each (the first four), the state it was asked
+  // at, particle after particle: (x_0, v_0, x_1, v_1, ...).
+  const Eigen::Index n = x.cols(), k = std::min<Eigen::Index>(4, Eigen::Index(seen_x.size()));
+  Eigen::MatrixXd at(4 * n, k);
+  for (Eigen::Index e = 0; e < k; ++e) {
+    const wb::Mat2X& sx = seen_x[std::size_t(e)];
+    const wb::Mat2X& sv = seen_v[std::size_t(e)];
+    if (sx.cols() != n || sv.cols() != n) {
+      at.resize(4 * n, 0);  // an evaluation of another size: shown as none
+      break;
+    }
+    for (Eigen::Index i = 0; i < n; ++i) at.col(e).segment<4>(4 * i) << sx.col(i), sv.col(i);
+  }
+  P.out("force evaluations: (x_i, v_i) of each", at);
+}
+
+// Accelerations used by the step probes: none; constant per particle; a spring to the origin
+// (depends on x only); a drag (depends on v only); all of them.
+inline Accel no_force() {
+  return [](const wb::Mat2X& x, const wb::Mat2X&, wb::Mat2X& a) { a.setZero(2, x.cols()); };
+}
+inline Accel constant(const wb::Mat2X& g) {
+  return [g](const wb::Mat2X& x, const wb::Mat2X&, wb::Mat2X& a) {
+    a = g.leftCols(std::min(g.cols(), x.cols()));
+  };
+}
+inline Accel spring(double w2) {
+  return [w2](const wb::Mat2X& x, const wb::Mat2X&, wb::Mat2X& a) { a = -w2 * x; };
+}
+inline Accel drag(double c) {
+  return [c](const wb::Mat2X&, const wb::Mat2X& v, wb::Mat2X& a) { a = -c * v; };
+}
+inline Accel mixed(double w2, double c, const wb::Vec2& g) {
+  return [w2, c, g](const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a) {
+    a = -w2 * x - c * v;
+    a.colwise() += g;
+  };
+}
+
+// The step probes of one integrator task, the same for every step function: the simple cases
+// first (one particle, no force; one particle falling from rest: the new state and the
+// evaluations), then the new state under one state dependence at a time and under all, then
+// the evaluations alone (where an update goes wrong apart from where the forces are asked).
+#define WB_STEP_PROBES(task, fn, name)                                                           \
+  WB_PROBE(task, "free", "one particle, no force: h = 0.1") {                                    \
+    P.simple();                                                                                  \
+    wbprobe::step(P, &fn, name, "0", wbprobe::no_force(), wbprobe::cols({{1, 2}}),               \
+                  wbprobe::cols({{3, -1}}), 0.1);                                                \
+  }                                                                                              \
+  WB_PROBE(task, "falling", "one particle falling from rest, a = (0, -10), h = 0.1") {           \
+    P.simple();                                                                                  \
+    wbprobe::step(P, &fn, name, "(0, -10)", wbprobe::constant(wbprobe::cols({{0, -10}})),        \
+                  wbprobe::cols({{1, 2}}), wbprobe::cols({{0, 0}}), 0.1);                        \
+  }                                                                                              \
+  WB_PROBE(task, "drift", "three particles moving with no force, h = 0.25") {                    \
+    wbprobe::step(P, &fn, name, "0", wbprobe::no_force(),                                        \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
+  }                                                                                              \
+  WB_PROBE(task, "kick", "three particles at rest under constant forces, h = 0.25") {            \
+    const wb::Mat2X g = wbprobe::cols({{0, -10}, {2, 1}, {-3, 0.5}});                            \
+    wbprobe::step(P, &fn, name, "a constant per particle: (0, -10), (2, 1), (-3, 0.5)",          \
+                  wbprobe::constant(g), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),             \
+                  wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}), 0.25, wbprobe::kState);               \
+  }                                                                                              \
+  WB_PROBE(task, "spring",                                                                       \
+           "three moving particles on springs to the origin, a = -4 x, h = 0.25") {              \
+    wbprobe::step(P, &fn, name, "-4 x", wbprobe::spring(4),                                      \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
+  }                                                                                              \
+  WB_PROBE(task, "drag", "three moving particles under a drag, a = -3 v, h = 0.25") {            \
+    wbprobe::step(P, &fn, name, "-3 v", wbprobe::drag(3),                                        \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
+  }                                                                                              \
+  WB_PROBE(task, "general", "three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") {     \
+    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
+  }                                                                                              \
+  WB_PROBE(task, "evaluations",                                                                  \
+           "where the forces are evaluated: three moving particles, a = -4 x - 3 v + (0, -10), " \
+           "h = 0.25") {                                                                         \
+    wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
+                  wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25,                        \
+                  wbprobe::kEvaluations);                                                        \
+  }
+}  // namespace wbprobe

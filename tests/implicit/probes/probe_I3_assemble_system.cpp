@@ -1,0 +1,84 @@
+// Diagnosis probes of I3 (tests/common/wb_probe.h): A and b of small networks, linearised at a
+// Newton iterate (x_l = x0 + h v_l: the K term of b vanishes) and at the start, with drag, a
+// pinned particle, a compressed spring with and without the clamp.
+#include "assemble_system.h"
+#include "implicit_probes.h"
+
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_I3_assemble_system {
+
+namespace {
+using improbe::Mat2X;
+using improbe::spring;
+using improbe::Vec2;
+
+void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+         const Mat2X& xl, const Mat2X& vl, const Mat2X& f_ext, double h, bool definite) {
+  P.call("assemble_system");
+  improbe::network_in(P, net);
+  P.in("x0", x0), P.in("v0", v0), P.in("xl", xl), P.in("vl", vl), P.in("f_ext", f_ext);
+  P.in("h", h), P.in("definite", definite);
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+  assemble_system(net, x0, v0, xl, vl, f_ext, h, definite, A, b);
+  P.out("A", A), P.out("b", b);
+}
+
+// Two free particles on a spring, stretched, drag 0.5.
+SpringNetwork pair(double rest) {
+  SpringNetwork net;
+  net.m = Eigen::Vector2d(1.5, 0.5);
+  net.drag = 0.5;
+  net.springs = {spring(0, 1, 20, rest, 0.3)};
+  return net;
+}
+const Mat2X kX = wbprobe::cols({{0, 0}, {3, 4}});
+const Mat2X kV = wbprobe::cols({{0.5, -1}, {-0.5, 0.25}});
+}  // namespace
+
+WB_PROBE("I3", "one-anchored",
+         "one particle of mass 1 on a spring to an anchor, at rest, h = 0.1") {
+  P.simple();
+  SpringNetwork net;
+  net.m = Eigen::VectorXd::Constant(1, 1.0);
+  net.springs = {spring(0, -1, 10, 0.5, 0, Vec2(0, 0))};
+  const Mat2X x = wbprobe::cols({{1, 0}}), v = wbprobe::cols({{0, 0}});
+  run(P, net, x, v, x, v, wbprobe::cols({{0, 0}}), 0.1, true);
+}
+// The matrix and b at a Newton iterate (x_l = x0 + h v_l).
+WB_PROBE("I3", "iterate",
+         "two free particles on a stretched spring, drag 0.5, at a Newton iterate") {
+  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
+  run(P, pair(2), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, -1.5}, {0.5, 0}}), 0.1, true);
+}
+// The K term of b: linearised away from the iterate.
+WB_PROBE("I3", "start", "the same pair linearised at the start (x_l = x0, v_l = v0)") {
+  run(P, pair(2), kX, kV, kX, kV, wbprobe::cols({{0, -1.5}, {0.5, 0}}), 0.1, true);
+}
+// A compressed spring: the clamp (definite) matters.
+WB_PROBE("I3", "compressed-exact",
+         "the pair compressed to half its rest length, definite = false") {
+  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
+  run(P, pair(10), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, 0}, {0, 0}}), 0.1, false);
+}
+WB_PROBE("I3", "compressed-clamped",
+         "the pair compressed to half its rest length, definite = true") {
+  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
+  run(P, pair(10), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, 0}, {0, 0}}), 0.1, true);
+}
+// A pinned particle between two free ones.
+WB_PROBE("I3", "pinned",
+         "three particles in a chain, the middle one pinned, at a Newton iterate") {
+  SpringNetwork net;
+  net.m = Eigen::Vector3d(1.5, 2, 0.5);
+  net.drag = 0.5;
+  net.pinned = {0, 1, 0};
+  net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
+  const Mat2X x = wbprobe::cols({{0, 0}, {3, 4}, {4, 2}});
+  const Mat2X v = wbprobe::cols({{0.5, -1}, {0, 0}, {-0.5, 0.25}});
+  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {0, 0}, {-0.75, 0.5}});
+  run(P, net, x, v, x + 0.1 * vl, vl, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1, true);
+}
+
+}  // namespace probe_I3_assemble_system

@@ -1,0 +1,154 @@
+// Diagnosis probes of I4 (tests/common/wb_probe.h): a linear spring (one solve is exact), a
+// nonlinear network (several Newton iterations), the single solve of Baraff and Witkin, a
+// capped iteration, the three terms of the scale one at a time, a pinned particle, a solve that
+// fails. The new state and each field of the report are recorded apart.
+#include "implicit_probes.h"
+
+// The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
+// namespace of its own.
+namespace probe_I4_backward_euler {
+
+namespace {
+using improbe::Mat2X;
+using improbe::spring;
+using improbe::Vec2;
+
+NewtonOptions options() {
+  NewtonOptions o;
+  o.tol = 1e-9, o.max_iterations = 20;
+  return o;
+}
+
+void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double h,
+         const NewtonOptions& o, Mat2X x, Mat2X v, bool residual, bool together = false) {
+  P.call("backward_euler_step");
+  improbe::network_in(P, net);
+  P.in("f_ext", f_ext), P.in("h", h);
+  P.in("opt.one_iteration", o.one_iteration), P.in("opt.max_iterations", o.max_iterations);
+  P.in("opt.tol", o.tol), P.in("opt.definite", o.definite);
+  P.in("x", x), P.in("v", v);
+  P.tol(1e-6, 1e-8);  // Newton stops within tol = 1e-9 of the scale: alternatives differ there
+  const NewtonReport r = backward_euler_step(net, f_ext, h, o, x, v);
+  if (together) P.group("everything");  // one part's mistakes change some, another's others
+  P.out("x", x), P.out("v", v);
+  improbe::report_out(P, r, residual);
+  P.group("");
+}
+}  // namespace
+
+// A linear spring: the first solve is exact, so only the updates around Newton's iteration show.
+WB_PROBE("I4", "linear",
+         "one particle on a zero-rest-length spring to the origin, moving, h = 0.1") {
+  SpringNetwork net;
+  net.m = Eigen::VectorXd::Constant(1, 2.0);
+  net.springs = {spring(0, -1, 50, 0)};
+  run(P, net, Mat2X::Zero(2, 1), 0.1, options(), wbprobe::cols({{1, 0.5}}),
+      wbprobe::cols({{0.3, -0.8}}), false);
+}
+// Newton's iteration on a nonlinear network.
+WB_PROBE("I4", "network", "a small nonlinear network with drag and gravity, h = 0.05") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.05, options(), x,
+      v, false);
+}
+// The single solve.
+WB_PROBE("I4", "one-iteration", "the same network, one_iteration (Baraff and Witkin)") {
+  P.simple();
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  NewtonOptions o = options();
+  o.one_iteration = true;
+  run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.05, o, x, v, true);
+}
+// A capped iteration: the residual left after two solves.
+WB_PROBE("I4", "capped", "the same network, at most 2 solves") {
+  P.simple();
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  NewtonOptions o = options();
+  o.max_iterations = 2;
+  run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.05, o, x, v, true);
+}
+// Newton's iteration, in one output: the same network capped at 2 solves, then with
+// one_iteration.
+WB_PROBE(
+    "I4", "iteration",
+    "the network capped at 2 solves, then with one_iteration: states and reports in one output") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  const Mat2X g = wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}});
+  NewtonOptions capped = options(), one = options();
+  capped.max_iterations = 2, one.one_iteration = true;
+  P.call("backward_euler_step");
+  improbe::network_in(P, net);
+  P.in("f_ext", g), P.in("h", 0.05), P.in("x", x), P.in("v", v);
+  P.tol(1e-6, 1e-8);
+  Mat2X x1 = x, v1 = v, x2 = x, v2 = v;
+  const NewtonReport r1 = backward_euler_step(net, g, 0.05, capped, x1, v1);
+  const NewtonReport r2 = backward_euler_step(net, g, 0.05, one, x2, v2);
+  P.group("everything");
+  P.out("capped: x", x1), P.out("capped: v", v1);
+  P.out("capped: report (iterations, converged, solver_failed, scale, residual)",
+        improbe::report(r1, true));
+  P.out("one_iteration: x", x2), P.out("one_iteration: v", v2);
+  P.out("one_iteration: report (iterations, converged, solver_failed, scale, residual)",
+        improbe::report(r2, true));
+}
+// The scale, one term at a time.
+WB_PROBE("I4", "gliding",
+         "two particles gliding with their spring at rest length, no force: scale |M v|") {
+  P.simple();
+  SpringNetwork net;
+  net.m = Eigen::Vector2d(1.5, 0.5);
+  net.springs = {spring(0, 1, 20, 5)};
+  run(P, net, Mat2X::Zero(2, 2), 0.1, options(), wbprobe::cols({{0, 0}, {3, 4}}),
+      wbprobe::cols({{0.5, -1}, {0.5, -1}}), false);
+}
+WB_PROBE("I4", "released",
+         "two particles released from rest on a stretched spring: scale |b_0|") {
+  P.simple();
+  SpringNetwork net;
+  net.m = Eigen::Vector2d(1.5, 0.5);
+  net.springs = {spring(0, 1, 20, 2)};
+  run(P, net, Mat2X::Zero(2, 2), 0.1, options(), wbprobe::cols({{0, 0}, {3, 4}}),
+      Mat2X::Zero(2, 2), false);
+}
+WB_PROBE("I4", "hanging", "a particle at rest in equilibrium under gravity: scale h |f_ext|") {
+  P.simple();
+  SpringNetwork net;
+  net.m = Eigen::VectorXd::Constant(1, 2.0);
+  net.springs = {spring(0, -1, 49, 0, 0, Vec2(0, 1))};
+  run(P, net, wbprobe::cols({{0, -19.6}}), 0.1, options(), wbprobe::cols({{0, 0.6}}),
+      Mat2X::Zero(2, 1), false);
+}
+// A pinned particle that arrives moving.
+WB_PROBE("I4", "pinned", "a chain of three, the middle one pinned and arriving with a velocity") {
+  SpringNetwork net;
+  net.m = Eigen::Vector3d(1.5, 2, 0.5);
+  net.drag = 0.5;
+  net.pinned = {0, 1, 0};
+  net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
+  run(P, net, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1, options(),
+      wbprobe::cols({{0, 0}, {3, 4}, {4, 2}}),
+      wbprobe::cols({{0.5, -1}, {0.3, 0.2}, {-0.5, 0.25}}), false);
+}
+// A failed solve: with the exact block (definite = false) of a spring compressed to half its
+// rest length across x, and m = h^2 k, A has an exact zero pivot.
+WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, never NaN") {
+  SpringNetwork net;
+  net.m = Eigen::Vector3d(1.0, 2.0, 1.5);
+  net.pinned = {0, 1, 0};
+  net.springs = {spring(0, -1, 1.0, 2.0, 0.0, Vec2(0, 0)), spring(2, 1, 3.0, 1.0)};
+  NewtonOptions o = options();
+  o.definite = false;
+  run(P, net, wbprobe::cols({{0, 0}, {0, 0}, {0, -1}}), 1.0, o,
+      wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}),
+      wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}), true, true);
+}
+
+}  // namespace probe_I4_backward_euler

@@ -1,0 +1,246 @@
+"""The diagnosis of a failing task (tools/wbgrade_hints.py, run by tools/grader/diagnose.py):
+what the probes' outputs say against the catalogue. Guards against a named mistake or part
+that is not the student's, a task that says nothing, a task disturbed by another, and a
+diagnosis that breaks grading (hostile values, a broken catalogue)."""
+import json
+import math
+
+import pytest
+
+import wbgrade_hints as wh
+from grader import build, common, results
+from grader.common import LabReport
+
+
+def rec(**outs):
+    """A compact record: name -> list of floats (a column vector)."""
+    return {"out": {n: [len(v), 1, list(v)] for n, v in outs.items()}}
+
+
+def probe(pid, expected, skeleton, title="", simple=False, inputs=()):
+    task = pid.split("/")[0]
+    p = {"probe": pid, "task": task, "title": title or pid, "tol": [1e-7, 1e-9],
+         "expected": expected, "skeleton": skeleton, "call": "f",
+         "in": [{"name": n, "shape": [len(v), 1], "v": list(v)} for n, v in inputs]}
+    if simple:
+        p["simple"] = True
+    return p
+
+
+ZERO = rec(f=[0, 0])
+# Task T: a simple probe, then one probe per part (a: the "spring", b: the "damper").
+CAT = {
+    "version": wh.CATALOGUE_VERSION, "lab": "lab", "tests": ["T one", "T two", "U one"],
+    "tasks": {"T": {"title": "spring", "files": ["s.cpp"], "uses": []},
+              "U": {"title": "other", "files": ["u.cpp"], "uses": []}},
+    "probes": [probe("T/simple", rec(f=[1, 2]), ZERO, simple=True, inputs=[("x", [1, 0])]),
+               probe("T/a", rec(f=[3, 4]), ZERO), probe("T/b", rec(f=[5, 6]), ZERO),
+               probe("U/u", rec(f=[7, 8]), ZERO)],
+    "mutants": {
+        "s.sign": {"task": "T", "kind": "spring term", "hint": "the sign of the spring",
+                   "probes": {"T/simple": rec(f=[-1, -2]), "T/a": rec(f=[-3, -4]), "T/b": rec(f=[5, 6])}},
+        "s.half": {"task": "T", "kind": "spring term", "hint": "half the spring",
+                   "probes": {"T/simple": rec(f=[0.5, 1]), "T/a": rec(f=[1.5, 2]), "T/b": rec(f=[5, 6])}},
+        "s.damp": {"task": "T", "kind": "damper term", "hint": "the damper",
+                   "probes": {"T/simple": rec(f=[1, 2]), "T/a": rec(f=[3, 4]), "T/b": rec(f=[0, 6])}},
+    }}
+TESTS_T = [("T one", False, "expected 1 got 2"), ("T two", True, "")]
+
+
+def test_a_task_whose_tests_pass_says_nothing():
+    """Defect: a passing task gets a diagnosis (a student reads about a mistake they did not make)."""
+    d = wh.diagnose(CAT, "T", {}, [("T one", True, ""), ("T two", True, "")])
+    assert d.status == "passed" and d.lines() == []
+
+
+def test_the_skeleton_is_not_started_in_one_line():
+    """Defect: a task still at its skeleton gets a counterexample, or disturbs the others."""
+    outs = {"T/simple": ZERO, "T/a": ZERO, "T/b": ZERO}
+    d = wh.diagnose(CAT, "T", outs, TESTS_T, "spring")
+    assert d.status == "not started" and len(d.lines()) == 1
+    assert wh.diagnose(CAT, "T", None, TESTS_T, pristine=True).status == "not started"
+
+
+def test_an_exact_match_names_the_known_mistake():
+    """Defect: outputs equal to a catalogued mistake's on every probe do not name it."""
+    d = wh.diagnose(CAT, "T", CAT["mutants"]["s.sign"]["probes"], TESTS_T)
+    assert d.status == "mistake" and d.mistakes == ["the sign of the spring"]
+    assert any("Known mistake: the sign of the spring" in l for l in d.lines())
+
+
+def test_a_new_mistake_of_one_part_names_the_part_not_a_mistake():
+    """Defect: a mistake nobody catalogued is either silent or named as a catalogued one."""
+    outs = {"T/simple": rec(f=[2, 4]), "T/a": rec(f=[6, 8]), "T/b": rec(f=[5, 6])}  # twice
+    d = wh.diagnose(CAT, "T", outs, TESTS_T)
+    assert d.status == "part" and d.part == ("s", "spring term") and not d.mistakes
+    assert any("spring term in s.cpp" in l for l in d.lines())
+
+
+def test_no_part_is_named_when_two_parts_could_explain_it():
+    """Defect: a part named from outputs that both parts' mistakes get wrong."""
+    outs = {"T/simple": rec(f=[2, 4]), "T/a": rec(f=[6, 8]), "T/b": rec(f=[9, 9])}
+    d = wh.diagnose(CAT, "T", outs, TESTS_T)
+    assert d.status == "counterexample" and d.part is None
+    assert d.counterexample and "Counterexample" in d.counterexample[0]
+
+
+def test_the_counterexample_is_the_first_wrong_probe_with_expected_and_got():
+    """Defect: a failing task without a concrete input, expected and got."""
+    outs = {"T/simple": rec(f=[-1, -2]), "T/a": rec(f=[3, 4]), "T/b": rec(f=[5, 6])}
+    d = wh.diagnose(CAT, "T", outs, TESTS_T)
+    text = "\n".join(d.lines())
+    assert "f(x = (1, 0))" in text and "expected f = (1, 2)" in text and "got      f = (-1, -2)" in text
+    assert "f: the sign is flipped" in text
+
+
+@pytest.mark.parametrize("got, words", [
+    ([2, 4], "constant factor 2"), ([1, 5], "only the y component"), ([2, 1], "swapped"),
+    ([math.nan, 2], "NaN"), ([0, 0], "zero")])
+def test_what_differs_is_said(got, words):
+    """Defect: a counterexample that leaves the student to spot the pattern."""
+    lines = wh.counterexample(CAT["probes"][0], rec(f=got))
+    assert any(words in l for l in lines), lines
+
+
+def test_accumulating_outputs_say_what_was_lost_or_not_added():
+    """Defect: an overwritten f or a function that adds nothing reads as a wrong formula."""
+    p = probe("T/x", rec(f=[4, 6]), rec(f=[1, 2]), inputs=[("f", [1, 2])])
+    assert any("lost" in l for l in wh.counterexample(p, rec(f=[3, 4])))
+    assert any("nothing was added" in l for l in wh.counterexample(p, rec(f=[1, 2])))
+
+
+def test_a_task_ignores_every_other_tasks_outputs():
+    """Defect: a task's diagnosis changes with another task's state (mid-lab differs from
+    whole-lab)."""
+    outs = {"T/simple": rec(f=[2, 4]), "T/a": rec(f=[6, 8]), "T/b": rec(f=[5, 6])}
+    alone = wh.diagnose(CAT, "T", outs, TESTS_T).lines()
+    outs_with_u = dict(outs, **{"U/u": rec(f=[99, 99])})
+    assert wh.diagnose(CAT, "T", outs_with_u, TESTS_T).lines() == alone
+
+
+def test_when_every_probe_agrees_the_failed_test_speaks():
+    """Defect: a failing task that the probes do not reach is left silent."""
+    outs = {"T/simple": rec(f=[1, 2]), "T/a": rec(f=[3, 4]), "T/b": rec(f=[5, 6])}
+    d = wh.diagnose(CAT, "T", outs, TESTS_T)
+    assert d.status == "tests" and "expected 1 got 2" in "\n".join(d.lines())
+
+
+@pytest.mark.parametrize("hostile", [
+    {"error": "x" * 100000}, {"out": {"f": ["a", None, "zz"]}}, {"out": {"f": [2, 1, [1e308, -1e308]]}},
+    {"out": "nothing"}, None, {"out": {"f": [1000000, 1, [1, 2]]}}])
+def test_hostile_outputs_are_read_as_data(hostile):
+    """Defect: a value from the worker (any shape, NaN, huge) crashes the diagnosis."""
+    outs = {"T/simple": hostile, "T/a": hostile, "T/b": hostile}
+    lines = wh.diagnose(CAT, "T", outs, TESTS_T).lines()
+    assert lines and all(len(l) <= wh.LINE_CHARS for l in lines)
+
+
+def test_malformed_probe_lines_are_dropped():
+    """Defect: a probe process's output that is not JSON breaks grading."""
+    text = '{"probe": "T/a", "out": []}\nnot json\n{"probe": 3}\n["x"]\n'
+    assert [r["probe"] for r in wh.parse_lines(text)] == ["T/a"]
+
+
+def test_a_bad_catalogue_means_no_diagnosis_never_an_error(tmp_path):
+    """Defect: a missing, corrupt or old catalogue breaks grading."""
+    (tmp_path / "tests" / "mutants" / "lab").mkdir(parents=True)
+    path = tmp_path / "tests" / "mutants" / "lab" / "signatures.json"
+    assert wh.load_catalogue(str(tmp_path), "lab") is None
+    path.write_text("{not json")
+    assert wh.load_catalogue(str(tmp_path), "lab") is None
+    path.write_text(json.dumps({"version": 1, "mutants": {}}))
+    assert wh.load_catalogue(str(tmp_path), "lab") is None
+    d = wh.diagnose(None, "T", {}, TESTS_T)
+    assert d.status == "no probes" and d.lines()
+
+
+# ----------------------------------------------------------------- results
+
+CASES = [common.TestCase("lab", f"F1 test {k}", 25, ["[F1]", "[25pts]"]) for k in range(4)]
+
+
+def report(diagnosis):
+    res = [common.TestResult(t, 25 if k < 2 else 0, "passed" if k < 2 else "failed",
+                             "" if k < 2 else "expected 1 got 2", "" if k < 2 else "expected 1 got 2")
+           for k, t in enumerate(CASES)]
+    return {"lab": LabReport("lab", res, diagnosis=diagnosis)}
+
+
+def test_the_diagnosis_goes_under_failed_tests_only():
+    """Defect: a diagnosis attached to a passing test, or changing the score."""
+    d = wh.diagnose(CAT, "T", CAT["mutants"]["s.sign"]["probes"], TESTS_T)
+    data = results.results_json(report({"F1": d}), {})
+    out = [t["output"] for t in data["tests"]]
+    assert "Known mistake" not in out[0] and "Known mistake" in out[2]
+    assert data["score"] == 50 and "T: 1 of 2 tests failed" in data["output"]
+
+
+def test_a_broken_diagnosis_changes_no_score():
+    """Defect: an exception in a diagnosis stops the grading or changes points."""
+    class Broken:
+        task, title, status = "T", "", "counterexample"
+
+        def lines(self):
+            raise KeyError("boom")
+
+        def headline(self):
+            raise KeyError("boom")
+    data = results.results_json(report({"F1": Broken()}), {})
+    assert data["score"] == 50 and "(no diagnosis: KeyError)" in data["tests"][2]["output"]
+
+
+def test_the_grader_internals_stay_out_of_what_students_see():
+    """Defect: sandbox, seccomp or 'NOT as another user' lines in the student-visible output."""
+    data = results.results_json(report({}), {}, "sandbox of each test process: seccomp ...",
+                                {"sandbox": ["seccomp"]})
+    assert "seccomp" not in data["output"] and data["extra_data"]["defences"]["sandbox"]
+
+
+def test_a_reused_report_reads_as_the_graded_one():
+    """Defect: results reused for an unchanged lab differ from the ones graded (a cached
+    diagnosis that loses its part, a score that changes)."""
+    d = wh.diagnose(CAT, "T", {"T/simple": rec(f=[2, 4]), "T/a": rec(f=[6, 8]),
+                               "T/b": rec(f=[5, 6])}, TESTS_T)
+    rep = report({"T": d})["lab"]
+    back = build.report_from_json(json.loads(json.dumps(build.report_to_json(rep))))
+    assert back.score == rep.score and back.diagnosis["T"].lines() == d.lines()
+    assert back.results[2].output == rep.results[2].output
+
+
+def test_not_started_is_the_skeletons_bytes_not_the_checkouts():
+    """Defect: in a student's checkout labs/ holds the student's work, so a task compared with
+    labs/ reads "not started" while it is wrong."""
+    import hashlib
+    from grader.diagnose import pristine_tasks
+    skel = b"void f() {}\n"
+    tasks = {"T": {"files": ["s.cpp"], "skeleton_sha256": {"s.cpp": hashlib.sha256(skel).hexdigest()}},
+             "U": {"files": ["u.cpp"]}}
+    assert pristine_tasks({"s.cpp": skel}, tasks) == {"T"}
+    assert pristine_tasks({}, tasks) == {"T"}  # not submitted: the skeleton
+    assert pristine_tasks({"s.cpp": b"void f() { g(); }\n"}, tasks) == set()
+
+
+def test_prebuilt_binaries_only_for_their_toolchain_and_files(tmp_path):
+    """Defect: the pack's prebuilt test binaries used after the tests, the grader's C++ or the
+    compiler changed (a test list or a wire format that is not this checkout's)."""
+    from grader.build import Grader, prebuilt_inputs
+    repo, build = tmp_path / "repo", tmp_path / "b"
+    (repo / "prebuilt" / "grader").mkdir(parents=True)
+    (repo / "prebuilt" / "grader" / "lab-tests").write_bytes(b"x")
+    pristine = {"tests/lab/t.cpp": b"a", "labs/lab/s.cpp": b"student"}
+    manifest = {"toolchain": "gcc 12", "inputs": prebuilt_inputs(pristine),
+                "labs": {"lab": ["lab-tests"]}}
+    (repo / "prebuilt" / "grader" / "manifest.json").write_text(json.dumps(manifest))
+    g = Grader.__new__(Grader)
+    g.repo, g.build, g.verbose = str(repo), str(build), False
+    build.mkdir()
+    (build / "wb-toolchain.txt").write_text("gcc 12\n")
+    g.decide_prebuilt(pristine)
+    assert list(g._prebuilt) == ["lab"]
+    g.decide_prebuilt(dict(pristine, **{"labs/lab/s.cpp": b"edited"}))  # student files: no matter
+    assert list(g._prebuilt) == ["lab"]
+    g.decide_prebuilt(dict(pristine, **{"tests/lab/t.cpp": b"b"}))
+    assert g._prebuilt == {}
+    (build / "wb-toolchain.txt").write_text("clang 16\n")
+    g.decide_prebuilt(pristine)
+    assert g._prebuilt == {}
