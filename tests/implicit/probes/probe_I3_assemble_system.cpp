@@ -19,10 +19,11 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& x0, const Mat
   improbe::network_in(P, net);
   P.in("x0", x0), P.in("v0", v0), P.in("xl", xl), P.in("vl", vl), P.in("f_ext", f_ext);
   P.in("h", h), P.in("definite", definite);
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b;
-  assemble_system(net, x0, v0, xl, vl, f_ext, h, definite, A, b);
-  P.out("A", A), P.out("b", b);
+  SparseSystem sys;
+  assemble_system(net, x0, v0, xl, vl, f_ext, h, definite, sys);
+  // A's stored upper triangle, mirrored: the symmetric matrix it stands for.
+  const Eigen::SparseMatrix<double> A = sys.A.selfadjointView<Eigen::Upper>();
+  P.out("A", A), P.out("b", sys.b);
 }
 
 // Two free particles on a spring, stretched, drag 0.5.

@@ -27,8 +27,9 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
   P.in("opt.one_iteration", o.one_iteration), P.in("opt.max_iterations", o.max_iterations);
   P.in("opt.tol", o.tol), P.in("opt.definite", o.definite);
   P.in("x", x), P.in("v", v);
-  P.tol(1e-6, 1e-8);  // Newton stops within tol = 1e-9 of the scale: alternatives differ there
-  const NewtonReport r = backward_euler_step(net, f_ext, h, o, x, v);
+  P.tol(1e-6, 1e-8);    // Newton stops within tol = 1e-9 of the scale: alternatives differ there
+  NewtonWorkspace ws1;  // empty: a run's first step
+  const NewtonReport r = backward_euler_step(net, f_ext, h, o, x, v, ws1);
   if (together) P.group("everything");  // one part's mistakes change some, another's others
   P.out("x", x), P.out("v", v);
   improbe::report_out(P, r, residual);
@@ -89,8 +90,10 @@ WB_PROBE(
   P.in("f_ext", g), P.in("h", 0.05), P.in("x", x), P.in("v", v);
   P.tol(1e-6, 1e-8);
   Mat2X x1 = x, v1 = v, x2 = x, v2 = v;
-  const NewtonReport r1 = backward_euler_step(net, g, 0.05, capped, x1, v1);
-  const NewtonReport r2 = backward_euler_step(net, g, 0.05, one, x2, v2);
+  NewtonWorkspace ws2;  // empty: a run's first step
+  const NewtonReport r1 = backward_euler_step(net, g, 0.05, capped, x1, v1, ws2);
+  NewtonWorkspace ws3;  // empty: a run's first step
+  const NewtonReport r2 = backward_euler_step(net, g, 0.05, one, x2, v2, ws3);
   P.group("everything");
   P.out("capped: x", x1), P.out("capped: v", v1);
   P.out("capped: report (iterations, converged, solver_failed, scale, residual)",

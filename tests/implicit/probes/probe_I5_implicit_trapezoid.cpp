@@ -20,7 +20,8 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
   o.tol = 1e-9;
   P.in("f_ext", f_ext), P.in("h", h), P.in("x", x), P.in("v", v);
   P.tol(1e-6, 1e-8);
-  const NewtonReport r = implicit_trapezoid_step(net, f_ext, h, o, x, v);
+  NewtonWorkspace ws1;  // empty: a run's first step
+  const NewtonReport r = implicit_trapezoid_step(net, f_ext, h, o, x, v, ws1);
   P.group("everything");  // one part's mistakes change some, another's others
   P.out("x", x), P.out("v", v);
   improbe::report_out(P, r, false);
@@ -79,8 +80,10 @@ WB_PROBE("I5", "explicit-half",
   P.in("f_ext", f1), P.in("x", x1), P.in("v", v1);
   improbe::network_in(P, chain);
   P.in("f_ext", f2), P.in("x", x2), P.in("v", v2), P.in("h", 0.1);
-  const NewtonReport r1 = implicit_trapezoid_step(free, f1, 0.1, o, x1, v1);
-  const NewtonReport r2 = implicit_trapezoid_step(chain, f2, 0.1, o, x2, v2);
+  NewtonWorkspace ws2;  // empty: a run's first step
+  const NewtonReport r1 = implicit_trapezoid_step(free, f1, 0.1, o, x1, v1, ws2);
+  NewtonWorkspace ws3;  // empty: a run's first step
+  const NewtonReport r2 = implicit_trapezoid_step(chain, f2, 0.1, o, x2, v2, ws3);
   P.group("everything");
   P.out("free: x", x1), P.out("free: v", v1);
   P.out("free: report (iterations, converged, solver_failed, scale)", improbe::report(r1, false));
