@@ -398,13 +398,14 @@ TEST_CASE(
                          << threshold << ", totals Pn = " << c.Pn << ", Pt = " << c.Pt);
       // prepare_contact
       const double un0 = rel(v0).dot(n), mass_n = 1 / (wa + wb);
-      const double bias = -un0 > threshold ? -e * un0 : 0.0;
+      const double bias = un0 > 0 ? -un0 : (-un0 > threshold ? -e * un0 : 0.0);
       Contact got = c;
       prepare_contact(w, v0, e, threshold, got);
       wbtest::require_near(got.mass_n, mass_n, 1e-12 * mass_n,
                            "mass_n = 1 / (w_a + w_b), w_b = 0 for a plane");
       wbtest::require_near(got.bias, bias, 1e-12 * (1 + std::abs(bias)),
-                           "bias = -e un when -un > threshold, else 0");
+                           "bias = -un when separating (un > 0), -e un when -un > threshold, "
+                           "else 0");
       wbtest::require_near(got.Pn, c.Pn, 0.0, "prepare keeps Pn");
       wbtest::require_near(got.Pt, c.Pt, 0.0, "prepare keeps Pt");
       // warm_start_contact

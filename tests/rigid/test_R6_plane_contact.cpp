@@ -483,7 +483,7 @@ void prepare(const Body& b, const Vec3& n, double e, double threshold, Ref& c) {
   c.K = contact_K(b, c.r);
   c.mass_n = 1 / n.dot(c.K * n);
   const double un = (b.v + b.omega.cross(c.r)).dot(n);
-  c.bias = -un > threshold ? -e * un : 0.0;
+  c.bias = un > 0 ? -un : (-un > threshold ? -e * un : 0.0);  // leaving: aim at -un
 }
 double solve(Body& b, Ref& c, const Vec3& n, double mu) {
   const double un = (b.v + b.omega.cross(c.r)).dot(n);
@@ -552,7 +552,8 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
                                 "prepare: K = E/m - [r]x I^-1 [r]x");
         wbtest::require_near(c.mass_n, ref.mass_n, 0.0, "prepare: mass_n = 1 / (n^T K n)", 1e-12);
         wbtest::require_near(c.bias, ref.bias, 1e-12,
-                             "prepare: bias = -e u.n above the threshold, else 0", 1e-12);
+                             "prepare: bias = -u.n leaving, -e u.n above the threshold, else 0",
+                             1e-12);
         warm_start_contact(b, c, n);
         heldout_R6::apply(e_b, ref.r, ref.Pn * n + ref.Pt);
         rigidtest::require_body(b, e_b, 1e-12, "warm start: J = Pn n + Pt applied at p");
