@@ -13,7 +13,7 @@ bool solve(NewtonWorkspace& ws, const NewtonOptions& opt, double scale,
   const Eigen::SparseMatrix<double>& A = ws.sys.A;
   const Eigen::VectorXd& b = ws.sys.b;
   if (opt.solver == NewtonOptions::kCG) {
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper> cg;  // the stored triangle
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper> cg;  // A: upper
     const double bn = b.norm();
     if (bn > 0) cg.setTolerance(opt.cg_tol * scale / bn);
     cg.compute(A);

@@ -210,8 +210,7 @@ TEST_CASE("F9 curl noise: the nearest edge counts and not the nearest centre",
   }
 }
 
-TEST_CASE("F9 curl noise: the central differences use the step h",
-          "[forces][F9][1pts]") {
+TEST_CASE("F9 curl noise: the central differences use the step h", "[forces][F9][1pts]") {
   // psi = y^3 - 2 x^3: the central difference with step h is exact up to h^2,
   //   (psi(y + h) - psi(y - h)) / (2h) = 3 y^2 + h^2,  along x: -6 x^2 - 2 h^2,
   // so u = (3 y^2 + h^2, 6 x^2 + 2 h^2) with the field's own h. All values below are

@@ -490,8 +490,7 @@ TEST_CASE("I4 backward Euler: a failed solve is reported and never returned as N
   REQUIRE(rt.iterations == 0);
   REQUIRE(std::isnan(rt.residual));
   wbtest::require_near(vt, v1, 0.0, "v after a non-finite first solve: y = v", 0.0);
-  wbtest::require_near(xt, Mat2X(x1 + v1), 0.0, "x after a non-finite first solve: x + h v",
-                       0.0);
+  wbtest::require_near(xt, Mat2X(x1 + v1), 0.0, "x after a non-finite first solve: x + h v", 0.0);
 }
 
 TEST_CASE("I4 backward Euler: one workspace carries a run step for step as an empty one would",

@@ -39,7 +39,8 @@ void put(Out& o, const PointFunction& f) {
     put(o, std::int32_t(-1));
     return;
   }
-  if (s.points.size() >= std::size_t(INT32_MAX)) throw std::runtime_error("too many functions sent");
+  if (s.points.size() >= std::size_t(INT32_MAX))
+    throw std::runtime_error("too many functions sent");
   put(o, std::int32_t(s.points.size()));
   s.points.push_back(f);
 }
