@@ -117,9 +117,8 @@ void call(int which) {
       net.m = m;
       net.springs.push_back(NetworkSpring{0, 1, wb::Vec2::Zero(), 10.0, 0.5, 0.1});
       net.pinned = {0, 1, 0, 0};
-      Eigen::SparseMatrix<double> A;
-      Eigen::VectorXd b;
-      assemble_system(net, x, v, x, v, f, 0.01, true, A, b);
+      SparseSystem sys;
+      assemble_system(net, x, v, x, v, f, 0.01, true, sys);
       break;
     }
     case 6: {
@@ -127,7 +126,8 @@ void call(int which) {
       net.m = m;
       net.springs.push_back(NetworkSpring{0, -1, wb::Vec2(1, 1), 10.0, 0.5, 0.1});
       NewtonOptions o;
-      const NewtonReport r = backward_euler_step(net, f, 0.01, o, x, v);
+      NewtonWorkspace ws;
+      const NewtonReport r = backward_euler_step(net, f, 0.01, o, x, v, ws);
       (void)r;
       break;
     }

@@ -196,8 +196,10 @@ class Run:
         """Returns (score or None, reasons, problems)."""
         self.submission(case)
         build = os.path.join(self.ag, "grade-build")
+        # What the grader itself rewrites on every grading (grade-log.txt: its TA log of the
+        # defences, tools/grader/cli.py ta_log) is not the submission's doing.
         keep = {"build", os.path.join("src", "labs"), "screened.json", ".lock", "cwd", "run",
-                "view", "wb-hostile-view.txt"}
+                "view", "wb-hostile-view.txt", "grade-log.txt"}
         probe = os.path.join(self.ag, "grade-build", "wb-hostile-view.txt")
         if case.get("plant_view_probe"):  # world-readable, beside the build: the worker's view
             with open(probe, "w") as f:       # must not hold it

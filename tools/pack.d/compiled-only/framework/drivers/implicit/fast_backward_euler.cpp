@@ -21,15 +21,16 @@ struct FastBackwardEuler::Impl {
       "the provided fast path ships compiled (prebuilt/) and this build cannot use it: "
       "your backward_euler_step (I4) takes its steps";
   long factorisations = 0;
+  NewtonWorkspace ws;  // one per network, kept between steps (backward_euler.h)
 };
 
 FastBackwardEuler::FastBackwardEuler(const SpringNetwork& net, const FastSolverOptions&)
-    : impl_(std::make_unique<Impl>(Impl{net})) {}
+    : impl_(new Impl{net}) {}  // (Impl holds a workspace, which does not copy)
 FastBackwardEuler::~FastBackwardEuler() = default;
 
 NewtonReport FastBackwardEuler::step(const Mat2X& f_ext, double h, const NewtonOptions& opt,
                                      Mat2X& x, Mat2X& v) {
-  const NewtonReport r = backward_euler_step(impl_->net, f_ext, h, opt, x, v);
+  const NewtonReport r = backward_euler_step(impl_->net, f_ext, h, opt, x, v, impl_->ws);
   impl_->factorisations += r.iterations;
   return r;
 }
