@@ -78,9 +78,11 @@ WB_PROBE("C1", "deep", "the centre 0.35 below a floor (radius 0.1), approaching"
   run(P, Vec2(0, 0), Vec2(0, 1), 0.1, 2, 0.6, 0.1, Vec2(0.5, -0.35), Vec2(0.5, -2));
 }
 // Resting: the approach is slower than rest_speed, the sliding is not.
-// A resting contact alone (an impulse that only stops the approach, e or not).
+// A resting contact alone (an impulse that only stops the approach, e or not); a detail of the
+// resting part, whose probe is "rest" below (every case of it, the threshold included).
 WB_PROBE("C1", "resting",
          "sinking into a floor, approaching at 0.05 m/s (rest_speed 0.1), sliding at 2 m/s") {
+  P.simple();
   run(P, Vec2(0, 0), Vec2(0, 1), 0.25, 2, 0.6, 0.1, Vec2(0.5, 0.2), Vec2(2, -0.05));
 }
 // The approach at exactly rest_speed bounces.

@@ -38,9 +38,15 @@ WB_PROBE("C3", "cluster",
   for (int i = 0; i < 9; ++i) x.col(i) = wb::Vec2(0.55 * (i % 3), 0.55 * (i / 3));
   run(P, x, wb::VecX::Constant(9, 0.3), {});
 }
+// Four discs around the point (1, 1), one in each of the unit cells that meet there (cells as
+// wide as the largest diameter, counted from the smallest coordinates or from the origin: the
+// disc at the origin makes both the same), so close that any grid with cells at least as wide
+// as a diameter finds them in neighbouring cells: only a missing neighbour (across a side, or
+// either diagonal) loses a pair here.
 WB_PROBE("C3", "diagonal",
-         "discs overlapping across both diagonals of a 2 x 2 block, far apart otherwise") {
-  run(P, cols({{0, 0}, {0.7, 0.7}, {2.6, 0.1}, {1.9, 0.8}, {5, 5}}),
+         "discs of radius 0.5 at (0.9, 0.9), (1.1, 0.9), (0.9, 1.1), (1.1, 1.1) and the origin: "
+         "pairs across both diagonals of a corner") {
+  run(P, cols({{0, 0}, {0.9, 0.9}, {1.1, 0.9}, {0.9, 1.1}, {1.1, 1.1}}),
       vec({0.5, 0.5, 0.5, 0.5, 0.5}), {});
 }
 // Touching exactly (|dx| = r_i + r_j) counts.

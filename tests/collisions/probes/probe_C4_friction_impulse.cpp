@@ -38,6 +38,13 @@ WB_PROBE("C4", "edge", "mass 2 sliding at 0.5 m/s on a floor, mu jn = 1 exactly:
   P.simple();
   run(P, Vec2(0, 1), 2, 0.5, 2, Vec2(0.5, 0.25));
 }
+// No sliding and no normal impulse: the cone is a point (m |v_t| = mu jn = 0), still static.
+WB_PROBE("C4", "no-slide-no-push",
+         "moving only along a floor's normal with jn = 0 (m |v_t| = mu jn = 0): nothing "
+         "changes") {
+  P.simple();
+  run(P, Vec2(0, 1), 0, 0.5, 2, Vec2(0, -0.3));
+}
 // The cone, in one output: inside it, outside it, on its edge (each column: the impulse and v).
 WB_PROBE("C4", "cone",
          "three contacts on a tilted plane: m |v_t| inside, outside and on the edge of the cone "

@@ -1,6 +1,7 @@
 // Diagnosis probes of C5 (tests/common/wb_probe.h): prepare_contact (a pair and a plane, above
 // and below the threshold), warm_start_contact, and one solve_contact from a closing contact,
-// from stored totals that must be partly taken back, and with friction on stored totals.
+// from stored totals that must be partly taken back, with friction on stored totals at its
+// bound and within it.
 #include "contact_solver.h"
 #include "wb_probe.h"
 
@@ -70,7 +71,33 @@ WB_PROBE("C5", "prepare-plane",
 }
 WB_PROBE("C5", "prepare-slow",
          "prepare_contact: the pair closing at 1.5 m/s, below the threshold 2: no bounce") {
+  P.simple();
   prepare(P, kW, kV, 0.6, 2.0, contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0));
+}
+WB_PROBE("C5", "prepare-leaving",
+         "prepare_contact: the pair separating at 0.5 m/s, threshold 1: no push back") {
+  P.simple();
+  prepare(P, kW, cols({{0.3, 0.4}, {0, 0}}), 0.6, 1.0, contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0));
+}
+// The restitution target, its three cases in one output: closing faster than the threshold (a
+// bounce), slower (resting), separating. A mistake in which case applies shows here and in no
+// effective mass.
+WB_PROBE("C5", "prepare-targets",
+         "prepare_contact: the pair closing at 1.5 m/s, closing at 0.5 m/s, separating at 0.5 m/s; "
+         "e = 0.6, threshold 1") {
+  P.call("prepare_contact (3 times)");
+  const double un[3] = {-1.5, -0.5, 0.5};
+  Eigen::Vector3d bias = Eigen::Vector3d::Zero();
+  wb::Mat2X v = kV;
+  for (int i = 0; i < 3; ++i) {
+    v.col(0) = un[i] * kN, v.col(1).setZero();
+    if (i == 0) P.in("w", kW), P.in("e", 0.6), P.in("threshold", 1.0);
+    P.in(i == 0 ? "v (1st call)" : i == 1 ? "v (2nd call)" : "v (3rd call)", v);
+    Contact c = contact(0, 1, kN, 0.4, 0.7, 0.1, 0, 0);
+    prepare_contact(kW, v, 0.6, 1.0, c);
+    bias(i) = c.bias;
+  }
+  P.out("c.bias (each call)", bias);
 }
 // Warm starting: the stored totals applied again.
 WB_PROBE("C5", "warm-start",
@@ -87,10 +114,17 @@ WB_PROBE("C5", "solve-take-back",
          "solve_contact: the pair separating at 0.5 m/s with Pn = 0.3 stored") {
   solve(P, kW, contact(0, 1, kN, 0, 0.3, 0, 0.375, 0), cols({{0.2, 0.2}, {-0.1, -0.2}}));
 }
-// Friction on stored totals: the bound is mu times the total, on the total.
+// Friction on stored totals: the bound is mu times the total, on the total; the sliding along
+// +perp(n), so that the friction total is negative.
 WB_PROBE("C5", "solve-friction",
-         "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = 0.15 stored, mu = 0.4") {
-  solve(P, kW, contact(0, 1, kN, 0.4, 0.5, 0.15, 0.375, 0), cols({{2.0, -1.2}, {0.3, 0.4}}));
+         "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = -0.15 stored, mu = 0.4") {
+  solve(P, kW, contact(0, 1, kN, 0.4, 0.5, -0.15, 0.375, 0), cols({{-1.7, 1.6}, {0.3, 0.4}}));
+}
+// Sliding slowly: the friction stops the sliding within its bound (its effective mass shows).
+WB_PROBE("C5", "solve-sticking",
+         "solve_contact: the pair closing at 1 m/s and sliding at 0.2 m/s, Pn = 1 stored, "
+         "mu = 1") {
+  solve(P, kW, contact(0, 1, kN, 1.0, 1.0, 0, 0.375, 0), cols({{-0.44, -0.92}, {0, 0}}));
 }
 
 }  // namespace probe_C5_contact_solver
