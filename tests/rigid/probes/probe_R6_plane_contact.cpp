@@ -1,7 +1,7 @@
 // Diagnosis probes of R6 (tests/common/wb_probe.h): prepare_contact of a corner of a turned,
-// spinning body (above and below the threshold), warm_start_contact, one solve_contact from a
-// closing contact, from stored totals to take back, with friction on stored totals, and
-// solve_plane_contacts.
+// spinning body (above and below the threshold, leaving), warm_start_contact, one
+// solve_contact from a closing contact, from stored totals to take back, with friction at its
+// bound and within it, and solve_plane_contacts with stored totals and from nothing.
 #include <vector>
 
 #include "plane_contact.h"
@@ -86,7 +86,36 @@ WB_PROBE("R6", "prepare",
 }
 WB_PROBE("R6", "prepare-slow",
          "prepare_contact: the same body, threshold 5 (above its approach speed): no bounce") {
+  P.simple();
   prepare(P, falling(), 0.6, 5.0, corner(0.7, Vec3(0.1, 0, -0.05)));
+}
+WB_PROBE("R6", "prepare-leaving",
+         "prepare_contact: the same body leaving the floor at 0.5 m/s, not spinning, threshold 1") {
+  P.simple();
+  rigid::Body b = falling();
+  b.v = Vec3(0.8, 0.5, 0.3), b.omega.setZero();
+  prepare(P, b, 0.6, 1.0, corner(0.7, Vec3(0.1, 0, -0.05)));
+}
+// The restitution target, its three cases in one output: approaching faster than the threshold
+// (a bounce), slower (resting), leaving. A mistake in which case applies shows here and in no
+// effective mass.
+WB_PROBE("R6", "prepare-targets",
+         "prepare_contact: the body not spinning, its point approaching at 2 m/s, at 0.5 m/s, "
+         "leaving at 0.5 m/s; e = 0.6, threshold 1") {
+  rigid::Body b = falling();
+  b.omega.setZero();
+  P.call("prepare_contact (3 times)"), rbprobe::body_in(P, b), P.in("n", kN), P.in("e", 0.6);
+  P.in("threshold", 1.0);
+  const Vec3 vy(-2.0, -0.5, 0.5);
+  P.in("b.v.y (each call)", vy);
+  Vec3 bias = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) {
+    b.v.y() = vy(i);
+    Contact c = corner(0.7, Vec3(0.1, 0, -0.05));
+    prepare_contact(b, kN, 0.6, 1.0, c);
+    bias(i) = c.bias;
+  }
+  P.out("c.bias (each call)", bias);
 }
 // Warm starting.
 WB_PROBE("R6", "warm-start", "warm_start_contact: stored totals Pn = 0.7, Pt = (0.1, 0, -0.05)") {
@@ -98,9 +127,10 @@ WB_PROBE("R6", "warm-start", "warm_start_contact: stored totals Pn = 0.7, Pt = (
   rbprobe::body_out(P, b);
 }
 // One iteration.
-WB_PROBE("R6", "solve-closing", "solve_contact: closing, nothing stored, mu = 0.5") {
+// mu = 0.1: the friction reaches its bound (any impulse along the sliding gives the same).
+WB_PROBE("R6", "solve-closing", "solve_contact: closing, nothing stored, mu = 0.1") {
   const rigid::Body b = falling();
-  solve(P, b, prepared(b, 1.2, corner(0, Vec3::Zero())), 0.5);
+  solve(P, b, prepared(b, 1.2, corner(0, Vec3::Zero())), 0.1);
 }
 WB_PROBE("R6", "solve-take-back",
          "solve_contact: separating slowly with Pn = 0.5 stored: partly taken back") {
@@ -108,11 +138,28 @@ WB_PROBE("R6", "solve-take-back",
   b.v = Vec3(0, 0.2, 0), b.omega.setZero();
   solve(P, b, prepared(b, 0, corner(0.5, Vec3::Zero())), 0);
 }
+// The point right below the centre: the normal impulse does not change the sliding, the
+// friction impulse not the normal velocity; the order of the two steps shows only through the
+// bound. Sliding fast along x with friction stored against it: the friction ends on its bound
+// mu Pn (the new total), whatever impulse along the sliding took it there.
 WB_PROBE("R6", "solve-friction",
-         "solve_contact: sliding fast with Pn = 0.5 and Pt = (0.1, 0, -0.05) stored, mu = 0.4") {
+         "solve_contact: the point right below the centre sliding at 3 m/s along x, approaching "
+         "at 0.1 m/s, Pn = 0.5 and Pt = (-0.1, 0, 0) stored, mu = 0.2") {
   rigid::Body b = falling();
-  b.v = Vec3(3.0, -0.1, 1.0);
-  solve(P, b, prepared(b, 0, corner(0.5, Vec3(0.1, 0, -0.05))), 0.4);
+  b.v = Vec3(3.0, -0.1, 0.0), b.omega.setZero();
+  Contact c = corner(0.5, Vec3(-0.1, 0, 0));
+  c.p = Vec3(b.x.x(), 0, b.x.z());
+  solve(P, b, prepared(b, 0, c), 0.2);
+}
+// The same point sliding slowly: the friction stops the sliding within its bound.
+WB_PROBE("R6", "solve-sticking",
+         "solve_contact: the point right below the centre sliding slowly (0.2, 0, 0.1) m/s, "
+         "approaching at 0.5 m/s, Pn = 1 stored, mu = 0.8") {
+  rigid::Body b = falling();
+  b.v = Vec3(0.2, -0.5, 0.1), b.omega.setZero();
+  Contact c = corner(1.0, Vec3::Zero());
+  c.p = Vec3(b.x.x(), 0, b.x.z());
+  solve(P, b, prepared(b, 0, c), 0.8);
 }
 // The whole solver on two corners.
 WB_PROBE("R6", "solve-plane",
@@ -128,6 +175,21 @@ WB_PROBE("R6", "solve-plane",
       P.in("contacts[1].Pt", cs[1].Pt);
   const double total = solve_plane_contacts(b, cs, kN, 0.6, 1.0, 0.5, 8);
   P.out("returned", total), rbprobe::body_out(P, b);
+  if (cs.size() == 2) P.out("contacts[0].Pn", cs[0].Pn), P.out("contacts[1].Pn", cs[1].Pn);
+}
+// Nothing stored and one pass: the warm start does nothing here, every pass counts.
+WB_PROBE("R6", "solve-plane-once",
+         "solve_plane_contacts: two corners, nothing stored, e = 0.6, mu = 0.5, 1 iteration") {
+  rigid::Body b = falling();
+  std::vector<Contact> cs = {corner(0, Vec3::Zero()), corner(0, Vec3::Zero())};
+  cs[1].p = Vec3(0.9, 0, -0.6);
+  P.call("solve_plane_contacts"), rbprobe::body_in(P, b), P.in("n", kN), P.in("e", 0.6);
+  P.in("threshold", 1.0), P.in("mu", 0.5), P.in("iterations", 1);
+  P.in("contacts[0].p", cs[0].p), P.in("contacts[1].p", cs[1].p);
+  const double total = solve_plane_contacts(b, cs, kN, 0.6, 1.0, 0.5, 1);
+  P.group("everything");  // what one pass gives, in turn: one contact's Pn may stay 0
+  P.out("returned", total), P.out("b.x", b.x), P.out("b.v", b.v), P.out("b.q", b.q);
+  P.out("b.omega", b.omega), P.out("b.f", b.f), P.out("b.tau", b.tau);
   if (cs.size() == 2) P.out("contacts[0].Pn", cs[0].Pn), P.out("contacts[1].Pn", cs[1].Pn);
 }
 
