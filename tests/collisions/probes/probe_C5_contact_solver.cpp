@@ -120,10 +120,12 @@ WB_PROBE("C5", "solve-friction",
          "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = -0.15 stored, mu = 0.4") {
   solve(P, kW, contact(0, 1, kN, 0.4, 0.5, -0.15, 0.375, 0), cols({{-1.7, 1.6}, {0.3, 0.4}}));
 }
-// Sliding slowly: the friction stops the sliding within its bound (its effective mass shows).
+// Sliding slowly: the friction stops the sliding within its bound. A detail: a wrong mass
+// along the sliding and a bound applied when it should not be both show here alone.
 WB_PROBE("C5", "solve-sticking",
          "solve_contact: the pair closing at 1 m/s and sliding at 0.2 m/s, Pn = 1 stored, "
          "mu = 1") {
+  P.simple();
   solve(P, kW, contact(0, 1, kN, 1.0, 1.0, 0, 0.375, 0), cols({{-0.44, -0.92}, {0, 0}}));
 }
 
