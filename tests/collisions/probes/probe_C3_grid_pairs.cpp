@@ -1,6 +1,7 @@
 // Diagnosis probes of C3 (tests/common/wb_probe.h): the pairs found, sorted (i < j, ascending):
-// neighbours across a cell's side and across its corner, discs that just touch, one large disc
-// among small ones, a list that comes in holding old pairs.
+// a pair across a cell narrower than a diameter, neighbours across a cell's side and across its
+// corner, discs that just touch, one large disc among small ones, a list that comes in holding
+// old pairs.
 #include <algorithm>
 
 #include "grid_pairs.h"
@@ -30,6 +31,16 @@ void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& radius,
 WB_PROBE("C3", "two", "two overlapping discs of radius 0.5") {
   P.simple();
   run(P, cols({{0, 0}, {0.8, 0}}), vec({0.5, 0.5}), {});
+}
+// A pair 0.95 apart along x, overlapping (radius 0.5): in neighbouring cells of any grid whose
+// cells are at least a diameter wide, two cells apart in one whose cells are narrower (the
+// radius, 1.5 radii), whether the cells are counted from the smallest coordinates (the discs at
+// the origin and above it) or from the origin.
+WB_PROBE("C3", "straddle",
+         "discs of radius 0.5 at the origin, (0.6, 0), (1.55, 0) and (0, 1.5): two of them 0.95 "
+         "apart, across a cell narrower than a diameter") {
+  P.simple();
+  run(P, cols({{0, 0}, {0.6, 0}, {1.55, 0}, {0, 1.5}}), vec({0.5, 0.5, 0.5, 0.5}), {});
 }
 // Pairs in neighbouring cells, along the sides and across the corners (both diagonals).
 WB_PROBE("C3", "cluster",
