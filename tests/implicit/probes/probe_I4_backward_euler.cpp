@@ -103,6 +103,10 @@ WB_PROBE(
   // (one_iteration's residual is not specified: NaN, or |G(y)|; backward_euler.h)
   P.out("one_iteration: report (iterations, converged, solver_failed, scale)",
         improbe::report(r2, false));
+  // (the header leaves one_iteration's residual open, NaN or |G(y)|, but never 0, which reads
+  // as solved)
+  P.out("one_iteration: residual reported as 0 (1: yes; expected NaN or |G(y)|)",
+        int(r2.residual == 0));
 }
 // The scale, one term at a time.
 WB_PROBE("I4", "gliding",
@@ -154,6 +158,41 @@ WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, 
   run(P, net, wbprobe::cols({{0, 0}, {0, 0}, {0, -1}}), 1.0, o,
       wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}),
       wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}), true, true);
+}
+
+// CG's warm start (NewtonWorkspace::dv): a workspace left by an earlier step holds a guess; the
+// step's first CG solve starts from it and leaves its own dv there. Two steps of the network
+// with one_iteration, each from such a workspace: with a tolerance the guess already meets
+// (cg_tol = 1e3: v' = v + guess), and with the default one (ws.dv: the solve's dv). One
+// output: a guess ignored shows in the first, a dv not kept in the second.
+WB_PROBE("I4", "warm-start",
+         "CG from the workspace's dv: the network with one_iteration, ws.dv a guess, "
+         "cg_tol 1e3 then 1e-12") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  const Mat2X g = wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}});
+  Eigen::VectorXd guess(8);
+  guess << 0.01, -0.02, 0.015, 0.005, -0.01, 0.02, 0.0, -0.005;
+  NewtonOptions tight = options(), loose = options();
+  tight.solver = loose.solver = NewtonOptions::kCG;
+  tight.one_iteration = loose.one_iteration = true;
+  loose.cg_tol = 1e3;
+  P.call("backward_euler_step");
+  improbe::network_in(P, net);
+  P.in("f_ext", g), P.in("h", 0.05), P.in("opt.solver (1: CG)", int(NewtonOptions::kCG));
+  P.in("opt.one_iteration", true), P.in("opt.cg_tol, then", 1e3), P.in("opt.cg_tol", 1e-12);
+  P.in("x", x), P.in("v", v), P.in("ws.dv (a workspace left by an earlier step)", guess);
+  P.tol(1e-6, 1e-8);  // CG stops within cg_tol of the scale
+  Mat2X x1 = x, v1 = v, x2 = x, v2 = v;
+  NewtonWorkspace ws1, ws2;
+  ws1.dv = guess, ws2.dv = guess;
+  backward_euler_step(net, g, 0.05, loose, x1, v1, ws1);
+  backward_euler_step(net, g, 0.05, tight, x2, v2, ws2);
+  P.group("warm start");
+  P.out("cg_tol 1e3: v", v1), P.out("cg_tol 1e3: ws.dv after", ws1.dv);
+  P.out("cg_tol 1e-12: ws.dv after", ws2.dv);
+  P.group("");
 }
 
 }  // namespace probe_I4_backward_euler
