@@ -92,8 +92,8 @@ WB_PROBE("I3", "pinned",
 
 // A later assembly of the same system: the chain above assembled at the start, then again
 // (the same sys: its pattern and slots kept) at a Newton iterate. The second must be what a
-// first assembly there gives: A's values zeroed, then each value added at its slot. A and b in
-// one output: a pattern reused wrongly can spoil either.
+// first assembly there gives: A's values zeroed, then each value added at its slot. A, b and
+// what A stores in one output: a pattern reused wrongly can spoil any of them.
 WB_PROBE("I3", "again",
          "the pinned chain assembled at the start, then again into the same sys at a Newton "
          "iterate") {
@@ -118,8 +118,8 @@ WB_PROBE("I3", "again",
   const Eigen::SparseMatrix<double> A = sys.A.selfadjointView<Eigen::Upper>();
   P.group("the second assembly");
   P.out("A", A), P.out("b", sys.b);
-  P.group("");
   stored_below(P, sys);
+  P.group("");
 }
 
 }  // namespace probe_I3_assemble_system

@@ -148,7 +148,8 @@ WB_PROBE("I4", "pinned", "a chain of three, the middle one pinned and arriving w
 }
 // A failed solve: with the exact block (definite = false) of a spring compressed to half its
 // rest length across x, and m = h^2 k, A has an exact zero pivot.
-WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, never NaN") {
+WB_PROBE("I4", "failed-solve",
+         "the first solve fails (a zero pivot; then an infinite dv): reported, never NaN") {
   SpringNetwork net;
   net.m = Eigen::Vector3d(1.0, 2.0, 1.5);
   net.pinned = {0, 1, 0};
@@ -158,6 +159,26 @@ WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, 
   run(P, net, wbprobe::cols({{0, 0}, {0, 0}, {0, -1}}), 1.0, o,
       wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}),
       wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}), true, true);
+  // A solve that reports success and still returns an infinite dv (backward_euler.h: a failed
+  // solve too): the same compressed spring alone, k a hair below m / h^2 (the pivot is
+  // 2^-52 m), moving across it at 1e300 m/s. Recorded as flags (its state is 1e300: as numbers
+  // it would set the probe's absolute tolerance).
+  SpringNetwork tiny;
+  tiny.m = Eigen::VectorXd::Constant(1, 1.0);
+  tiny.springs = {spring(0, -1, 1.0 - 0x1.0p-52, 2.0, 0.0, Vec2(0, 0))};
+  const Mat2X x1 = wbprobe::cols({{1, 0}}), v1 = wbprobe::cols({{0, 1e300}});
+  Mat2X xt = x1, vt = v1;
+  NewtonWorkspace wst;  // empty: a run's first step
+  const NewtonReport rt = backward_euler_step(tiny, Mat2X::Zero(2, 1), 1.0, o, xt, vt, wst);
+  P.note("then one particle of mass 1 on a spring (k = 1 - 2^-52, rest 2) to the origin, at "
+         "x = (1, 0), v = (0, 1e300), no f_ext, h = 1: LDLT succeeds, dv is infinite");
+  P.group("everything");
+  P.out("pivot 2^-52, v = 1e300: report (iterations, converged, solver_failed)",
+        Eigen::Vector3d(rt.iterations, rt.converged, rt.solver_failed));
+  P.out("pivot 2^-52, v = 1e300: residual NaN (1: yes)", int(std::isnan(rt.residual)));
+  P.out("pivot 2^-52, v = 1e300: v' = v and x' = x + h v exactly (1: yes)",
+        int(vt == v1 && xt == Mat2X(x1 + v1)));
+  P.group("");
 }
 
 // CG's warm start (NewtonWorkspace::dv): a workspace left by an earlier step holds a guess; the
