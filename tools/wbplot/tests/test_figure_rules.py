@@ -29,6 +29,8 @@ def _facts(tmp_path, draw, name="f.png"):
 
 
 def test_rounding_noise_is_constant_and_motion_is_not():
+    """Defect: a flat line of rounding noise drawn as motion (its axis zoomed to 1e-18), or a real
+    drift of 1e-8 called constant and hidden."""
     assert flat.is_constant([1e-18, -3e-18, 2e-18])          # 0 to rounding
     assert flat.is_constant([4.905, 4.905 + 1e-15], 5.0)      # a constant energy
     assert not flat.is_constant([0.0, 1e-6])                  # a micrometre is motion
@@ -37,6 +39,8 @@ def test_rounding_noise_is_constant_and_motion_is_not():
 
 
 def test_an_axis_zoomed_into_noise_is_found_and_a_flat_view_is_not(tmp_path):
+    """Defect: a figure whose axis matplotlib zoomed into rounding noise passes the check, so a
+    quantity at rest looks like it oscillates."""
     noise = [1e-18 * math.sin(k) for k in range(50)]
 
     def raw(fig, ax):
@@ -55,6 +59,8 @@ def test_an_axis_zoomed_into_noise_is_found_and_a_flat_view_is_not(tmp_path):
 
 
 def test_diverged_words_need_a_diverged_run(tmp_path):
+    """Defect: a figure says a run blew up when its summary says it did not (issue 32's false
+    'a run blew up'), or the flow's 'divergence' taken for a verdict on a run."""
     def said(fig, ax):
         ax.plot([0, 1], [0, 1])
         ax.set_title("log scale: a run blew up")
@@ -66,6 +72,7 @@ def test_diverged_words_need_a_diverged_run(tmp_path):
 
 
 def test_a_stub_run_is_marked_on_its_figure(tmp_path):
+    """Defect: a run its summary calls a stub drawn as if it were physics, with no STUB mark."""
     stub = {"status": "ok", "steps": 3, "stub": True, "warnings": ["C1 is still a stub?"]}
     runinfo.CURRENT = [stub]
     try:
@@ -78,6 +85,8 @@ def test_a_stub_run_is_marked_on_its_figure(tmp_path):
 
 
 def test_summary_file_is_the_last_line_of_a_run_stdout(tmp_path):
+    """Defect: a summary saved with `| tee` (warnings before it, blank lines after) is not read,
+    so the figure cannot know the run diverged or was a stub."""
     p = os.path.join(tmp_path, "run-summary.json")
     with open(p, "w") as f:
         f.write("noise\n" + json.dumps({"status": "diverged", "steps": 7}) + "\n\n")
@@ -106,6 +115,7 @@ def _box3d(fig, ax_unused, lims, scene=None, plane_first=True):
 
 
 def test_a_view_much_larger_than_the_bodies_is_found(tmp_path):
+    """Defect: a 3D picture whose view box dwarfs the bodies (they shrink to a dot) passes."""
     good = _facts(tmp_path, lambda f, a: _box3d(f, a, None))
     cube = _facts(tmp_path, lambda f, a: _box3d(f, a, 10.0), "cube.png")
     assert not [x for x in figcheck.check_frames(good) if "view spans" in x]
@@ -113,6 +123,8 @@ def test_a_view_much_larger_than_the_bodies_is_found(tmp_path):
 
 
 def test_planes_and_hinges_are_drawn_where_the_scene_puts_them(tmp_path):
+    """Defect: a scene's plane or hinge missing from its picture, or painted over the bodies in
+    mplot3d's own depth order, passes."""
     scene = {"planes": [{"point": [0, 0, 0], "normal": [0, 0, 1]}],
              "hinges": [{"body": 0, "anchor": [0, 0, 0.5], "axis": [0, 0, 1]}]}
     facts = _facts(tmp_path, lambda f, a: _box3d(f, a, None, scene))
@@ -125,6 +137,8 @@ def test_planes_and_hinges_are_drawn_where_the_scene_puts_them(tmp_path):
 
 
 def test_plane_polygon_lies_in_its_plane_and_in_the_box():
+    """Defect: a tilted plane drawn off its own plane or outside the view box; a plane outside the
+    box drawn anyway."""
     box = ((-1, -1, -1), (1, 1, 1))
     n = (-0.5, 0.0, math.sqrt(3) / 2)
     poly = scene3d.plane_polygon((0, 0, 0.2), n, box)
@@ -139,6 +153,8 @@ def test_plane_polygon_lies_in_its_plane_and_in_the_box():
 
 
 def test_a_timing_claim_needs_a_margin_of_two():
+    """Defect: a timing claim that holds by less than a factor 2 (it flips on a loaded or another
+    machine, as '> 2 at k/m = 1e2' did on a fresh one) is accepted."""
     c = Claim("t", "summary implicit/x cpu_s > 1", "")
     assert claimrules.margin_problem(c, 1.4)
     assert not claimrules.margin_problem(c, 2.5)
@@ -148,6 +164,8 @@ def test_a_timing_claim_needs_a_margin_of_two():
 
 
 def test_a_rest_sentence_needs_a_claim_on_positions(tmp_path):
+    """Defect: a sentence about rest or motion ('never come to rest', 'wanders') with no claim
+    that checks it against the run's positions or energy."""
     p = os.path.join(tmp_path, "h.md")
     with open(p, "w") as f:
         f.write("In `column` the discs never come to rest "

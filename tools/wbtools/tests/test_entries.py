@@ -62,3 +62,19 @@ def test_no_module_defines_a_name_twice():
             node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)))
         twice += [f"{os.path.relpath(path, TOOLS)}: {n}" for n, c in names.items() if c > 1]
     assert twice == []
+
+
+def test_every_tools_test_names_the_defect_it_guards():
+    """Defect: a unit test of the tools with no docstring: a maintainer who sees it fail cannot
+    tell which class of defect came back, nor whether the test still guards anything (issue 35:
+    each test names the defect class it guards)."""
+    bare = []
+    for path in sorted(glob.glob(os.path.join(TOOLS, "**", "tests", "test_*.py"),
+                                 recursive=True)):
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read(), path)
+        bare += [f"{os.path.relpath(path, TOOLS)}:{node.lineno} {node.name}"
+                 for node in ast.walk(tree)
+                 if isinstance(node, ast.FunctionDef) and node.name.startswith("test")
+                 and not ast.get_docstring(node)]
+    assert not bare, "tests without a docstring naming their defect:\n" + "\n".join(bare)

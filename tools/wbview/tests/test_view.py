@@ -135,6 +135,8 @@ def test_packed_positions_round_trip(tmp_path):
 
 
 def test_step_numbers_from_stats_else_summary():
+    """Defect: the viewer's step counter wrong or invented when the stats file is absent (the
+    summary's steps, else the scene's dt, else no step numbers at all)."""
     times = [0.0, 0.5, 1.0]
     stats = {"t": times, "step": [0.0, 5.0, 10.0]}
     assert model.step_numbers(times, stats, None, None)[0] == [0, 5, 10]
@@ -206,6 +208,8 @@ def test_cli_writes_nothing_on_bad_input(tmp_path, capsys):
 
 
 def test_cli_finds_stats_and_summary_beside(tmp_path):
+    """Defect: `tools/view run.csv` ignores the run's stats and summary written beside it, so a
+    diverged run is shown without its divergence."""
     run = write(tmp_path, "run.csv", trace_2d(3, 1))
     write(tmp_path, "run-stats.csv", "step,t,energy,kinetic,potential,px,py,force_evals\n"
           "0,0,1,1,0,0,0,0\n1,0.1,1,1,0,0,0,1\n2,0.2,1,1,0,0,0,2\n")
@@ -218,6 +222,8 @@ def test_cli_finds_stats_and_summary_beside(tmp_path):
 
 
 def test_view_help_runs():
+    """Defect: `tools/view --help` (what the README tells a student to run) fails or does not
+    name its argument."""
     p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "view"), "--help"],
                        capture_output=True, text=True)
     assert p.returncode == 0 and "RUN.csv" in p.stdout
