@@ -20,6 +20,14 @@ namespace {
 // Measured against 64, 128, 512 and 2048 (docs/benchmarks.md).
 constexpr Eigen::Index kBlock = 256;
 
+// rk4's arrays for one block of particles: a state, the stage point and four
+// accelerations. Kept by each thread from step to step (the last block of a
+// step has its own, its size may differ), so that no step after the first
+// allocates; not in wb::Scratch, whose arrays the labs' steps share.
+struct BlockArrays {
+  Mat2X x, v, x1, v1, a0, a1, a2, a3;
+};
+
 // One step from (x, v), written to (xo, vo): x and v themselves, or the
 // columns a block was copied from (xo holds x's values; the step adds to it).
 // With eval(x, v, a) the dynamics' accelerations. With positions false
@@ -74,7 +82,8 @@ void rk4_step(const Dynamics& dyn, double h, Mat2X& x, Mat2X& v, Scratch& s) {
   const bool positions = dyn.reads_positions();
   for (Eigen::Index first = 0; first < n; first += kBlock) {
     const Eigen::Index nb = std::min(kBlock, n - first);
-    Scratch::Block& b = first + nb == n ? s.last_block : s.block;
+    static thread_local BlockArrays block, last_block;
+    BlockArrays& b = first + nb == n ? last_block : block;
     if (positions) {
       b.x = x.middleCols(first, nb);
     } else if (b.x.cols() != nb) {

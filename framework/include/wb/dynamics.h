@@ -81,13 +81,6 @@ struct Scratch {
   Mat2X a0, a1, a2, a3;  // accelerations
   Mat2X x1, v1;          // intermediate state
   Mat2X xs, vs;          // running sums
-  // rk4's arrays for one block of particles (per-particle dynamics): a state,
-  // the stage point and four accelerations; the last block of a step has its
-  // own, so that blocks of two sizes allocate nothing after the first step.
-  struct Block {
-    Mat2X x, v, x1, v1, a0, a1, a2, a3;
-  };
-  Block block, last_block;
   void resize(Eigen::Index n) {
     for (Mat2X* m : {&a0, &a1, &a2, &a3, &x1, &v1, &xs, &vs}) m->resize(2, n);
   }
