@@ -19,6 +19,7 @@
 //                                 run's own step-loop clock (counter step_loop_cpu_s)
 //   loop_check[_separate]/<n>     the loop's per-step bookkeeping alone (one pass, or
 //                                 as before issue 34)
+//   blocks_nosums/rk4/<n>         rk4 by blocks without the bookkeeping's sums
 //   odeint_fused/rk4/<n>          a plain Boost.Odeint runge_kutta4_classic program
 //                                 with a fused right-hand side
 // and two bandwidth measurements (a[i] = b[i] + s c[i]):
@@ -593,6 +594,45 @@ void bm_scene(benchmark::State& st, const Method& method) {
 }
 
 #ifdef WB_BENCH_HAS_RK4
+// rk4 by blocks without the bookkeeping's sums (blocks_nosums/rk4/<n>): the same
+// blocks and evaluations as scene/rk4, through a Dynamics that forwards them but
+// does not sum the state as each block ends. scene/rk4 over this is what the
+// sums cost inside the step; run/rk4 over this, the whole loop's bookkeeping.
+struct BlocksNoSums : wb::Dynamics {
+  const wb::Dynamics& inner;
+  explicit BlocksNoSums(const wb::Dynamics& d) : inner(d) {}
+  bool per_particle() const override { return inner.per_particle(); }
+  bool reads_positions() const override { return inner.reads_positions(); }
+  void eval(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a) const override {
+    inner.acceleration(x, v, a);
+  }
+  void eval_block(Eigen::Index first, const wb::Mat2X& x, const wb::Mat2X& v,
+                  wb::Mat2X& a) const override {
+    inner.block_acceleration(first, x, v, a);
+  }
+};
+
+void bm_blocks_nosums(benchmark::State& st) {
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceList forces = wb::build_forces(scene);
+  const wb::ParticleDynamics inner(forces, scene.m);
+  const BlocksNoSums dyn(inner);
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(n);
+  wb::rk4_step(dyn, kH, x, v, s);  // warm-up: the first step may allocate
+  dyn.reset_evals();
+  const long before = allocations();
+  for (auto _ : st) {
+    wb::rk4_step(dyn, kH, x, v, s);
+    benchmark::DoNotOptimize(x.data());
+    benchmark::ClobberMemory();
+  }
+  report(st, "blocks_nosums/rk4", n, allocations() - before, dyn.evals());
+  st.SetLabel("framework/src/rk4.cpp, no bookkeeping sums");
+}
+
 // One step of odeint's runge_kutta4 (see odebench above).
 void odeint_step(odebench::Stepper& stepper, const wb::Dynamics& dyn, odebench::State& state,
                  double h) {
@@ -910,6 +950,7 @@ void register_all(const std::vector<Method>& all) {
 #ifdef WB_BENCH_HAS_RK4
     benchmark::RegisterBenchmark("odeint/rk4", bm_odeint)->Arg(n);
     benchmark::RegisterBenchmark("odeint_fused/rk4", bm_odeint_fused)->Arg(n);
+    benchmark::RegisterBenchmark("blocks_nosums/rk4", bm_blocks_nosums)->Arg(n);
 #endif
     for (const Method& method : all) {
       benchmark::RegisterBenchmark(("run/" + std::string(method.name)).c_str(), bm_run, method)

@@ -61,6 +61,8 @@ class UniformGravity : public Force {
     return -(g_.transpose() * x).dot(m);  // -sum m_i g . x_i
   }
   std::string type() const override { return "gravity"; }
+  bool per_particle() const override { return true; }
+  bool reads_positions() const override { return false; }
   const Vec2& g() const { return g_; }
   void bound(const Mat2X&, const Mat2X&, const VecX& m, VecX& b) const override {
     b += g_.cwiseAbs().maxCoeff() * m;
@@ -120,6 +122,7 @@ class Attractor : public Force {
     return V;
   }
   std::string type() const override { return "attractor"; }
+  bool per_particle() const override { return true; }
   void bound(const Mat2X& x, const Mat2X&, const VecX& m, VecX& b) const override {
     for (Eigen::Index i = 0; i < x.cols(); ++i) {
       const double r2 = (x.col(i) - c_).squaredNorm();
@@ -139,6 +142,8 @@ class Damping : public Force {
     add_damping(v, b_, f);
   }
   std::string type() const override { return "damping"; }
+  bool per_particle() const override { return true; }
+  bool reads_positions() const override { return false; }
   void bound(const Mat2X&, const Mat2X& v, const VecX&, VecX& b) const override {
     b += b_ * v.cwiseAbs().colwise().maxCoeff().transpose();
   }
@@ -185,6 +190,7 @@ class Vortex : public Force {
     add_vortex(x, v, p_, f);
   }
   std::string type() const override { return "vortex"; }
+  bool per_particle() const override { return true; }
   // |u| <= |omega| R (the Rankine vortex is fastest at its core's edge).
   void bound(const Mat2X&, const Mat2X& v, const VecX&, VecX& b) const override {
     b += (p_.drag * (std::abs(p_.omega) * p_.core + v.colwise().norm().array()))
@@ -203,6 +209,7 @@ class CurlNoise : public Force {
     add_curl_noise(x, v, p_, f);
   }
   std::string type() const override { return "curl-noise"; }
+  bool per_particle() const override { return true; }
   // |u| <= |grad psi| + (15/8) |psi| / d0 (the ramp's slope) with
   // |grad psi| <= 5 U / 0.883 + |wind| and |psi| <= U L / 0.883 + |wind| |x|.
   void bound(const Mat2X& x, const Mat2X& v, const VecX&, VecX& b) const override {
@@ -442,18 +449,60 @@ Springs& spring_term(ForceList& forces) {
 ParticleDynamics::ParticleDynamics(const ForceList& forces, const VecX& m)
     : forces_(forces),
       m_(m),
-      inv_m_(m.transpose().array().inverse()),
+      inv_m2_(m.transpose().array().inverse().replicate<2, 1>()),
       f_(Mat2X::Zero(2, m.size())) {}
 
 void ParticleDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+  sums_.ready = false;  // a step through the whole arrays: no sums of its state
   accumulate_forces(forces_, x, v, m_, f_);
   if (f_.cols() != x.cols()) {
     throw std::runtime_error("accumulate_forces left f with " + std::to_string(f_.cols()) +
                              " columns, expected one per particle (" + std::to_string(x.cols()) +
                              "): see TODO(F6)");
   }
-  a.array() = f_.array().rowwise() * inv_m_;
+  a.array() = f_.array() * inv_m2_;  // a_i = f_i / m_i
   if (!any_force_) any_force_ = !f_.isZero(0);
+}
+
+bool ParticleDynamics::per_particle() const {
+  for (const auto& term : forces_)
+    if (!term->per_particle()) return false;
+  return true;
+}
+
+bool ParticleDynamics::reads_positions() const {
+  for (const auto& term : forces_)
+    if (term->reads_positions()) return true;
+  return false;
+}
+
+void ParticleDynamics::eval_block(Eigen::Index first, const Mat2X& x, const Mat2X& v,
+                                  Mat2X& a) const {
+  const Eigen::Index nb = x.cols();
+  if (first < 0 || first + nb > m_.size()) {
+    throw std::logic_error("ParticleDynamics::eval_block: particles " + std::to_string(first) +
+                           ".." + std::to_string(first + nb) + " of " +
+                           std::to_string(m_.size()));
+  }
+  // The last block has arrays of its own (its size may differ), so that no
+  // step after the first allocates. A block's masses are copied when it
+  // starts: rk4 evaluates one block four times before the next.
+  Block& b = block_[first + nb == m_.size() ? 1 : 0];
+  if (b.first != first || b.m.size() != nb) {
+    b.first = first;
+    b.m = m_.segment(first, nb);
+  }
+  // An f of the block's size starts at zero (what the skeleton's F6, which does
+  // nothing, then leaves); F6 zeroes it (TODO(F6)) and every term adds to it.
+  if (b.f.cols() != nb) b.f.setZero(2, nb);
+  accumulate_forces(forces_, x, v, b.m, b.f);
+  if (b.f.cols() != nb) {
+    throw std::runtime_error("accumulate_forces left f with " + std::to_string(b.f.cols()) +
+                             " columns, expected one per particle (" + std::to_string(nb) +
+                             "): see TODO(F6)");
+  }
+  a.array() = b.f.array() * inv_m2_.middleCols(first, nb).array();
+  if (!any_force_) any_force_ = !b.f.isZero(0);
 }
 
 Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m) {
@@ -463,30 +512,78 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
   return e;
 }
 
-double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
-                      bool& finite) {
-  Vec2 g = Vec2::Zero();  // every uniform gravity term's field, summed
-  for (const auto& term : forces)
-    if (const auto* u = dynamic_cast<const UniformGravity*>(term.get())) g += u->g();
-  // One pass, two particles at a time (independent sums keep the adders busy):
-  // k = sum m v.*v (twice the kinetic energy, per axis) and w = sum m x, from
-  // which V_g = -g . w. A coordinate that is not finite makes k or w not
-  // finite (m > 0; each term of k is >= 0); the converse fails only when the
-  // finite sums overflow, and then the exact questions below decide.
-  Eigen::Array2d k0 = Eigen::Array2d::Zero(), k1 = k0, w0 = k0, w1 = k0;
-  const Eigen::Index n = x.cols() == m.size() && v.cols() == m.size() ? m.size() : 0;
-  Eigen::Index i = 0;
-  for (; i + 1 < n; i += 2) {
+namespace {
+
+// k += sum m_i v_i.*v_i and w += sum m_i x_i over columns first .. end - 1,
+// four particles at a time: eight independent sums, so that an addition waits
+// only for the one before it in its own sum (the loop is bound by the adders'
+// latency when the block is in cache).
+void add_sums(const Mat2X& x, const Mat2X& v, const VecX& m, Eigen::Index first, Eigen::Index end,
+              Eigen::Array2d& k, Eigen::Array2d& w) {
+  Eigen::Array2d k0 = Eigen::Array2d::Zero(), k1 = k0, k2 = k0, k3 = k0;
+  Eigen::Array2d w0 = k0, w1 = k0, w2 = k0, w3 = k0;
+  Eigen::Index i = first;
+  for (; i + 3 < end; i += 4) {
     k0 += m[i] * v.col(i).array().square();
     w0 += m[i] * x.col(i).array();
     k1 += m[i + 1] * v.col(i + 1).array().square();
     w1 += m[i + 1] * x.col(i + 1).array();
+    k2 += m[i + 2] * v.col(i + 2).array().square();
+    w2 += m[i + 2] * x.col(i + 2).array();
+    k3 += m[i + 3] * v.col(i + 3).array().square();
+    w3 += m[i + 3] * x.col(i + 3).array();
   }
-  if (i < n) {
+  for (; i < end; ++i) {
     k0 += m[i] * v.col(i).array().square();
     w0 += m[i] * x.col(i).array();
   }
-  const Eigen::Array2d k = k0 + k1, w = w0 + w1;
+  k += (k0 + k1) + (k2 + k3);
+  w += (w0 + w1) + (w2 + w3);
+}
+
+}  // namespace
+
+void ParticleDynamics::block_stepped(Eigen::Index first, Eigen::Index count, const Mat2X& x,
+                                     const Mat2X& v) const {
+  if (first == 0) sums_ = StepSums{};
+  if (first != sums_.done || first + count > m_.size() || x.cols() != m_.size() ||
+      v.cols() != m_.size()) {
+    sums_.done = -1;  // not the blocks of one step in order: no sums
+    return;
+  }
+  add_sums(x, v, m_, first, first + count, sums_.k, sums_.w);
+  sums_.done = first + count;
+}
+
+void ParticleDynamics::blocks_stepped(const Mat2X& x, const Mat2X& v) const {
+  sums_.ready = sums_.done == m_.size();
+  sums_.x = x.data();
+  sums_.v = v.data();
+}
+
+bool ParticleDynamics::take_step_sums(const Mat2X& x, const Mat2X& v, Eigen::Array2d& k,
+                                      Eigen::Array2d& w) const {
+  const bool ok = sums_.ready && sums_.x == x.data() && sums_.v == v.data() &&
+                  x.cols() == m_.size() && v.cols() == m_.size();
+  sums_.ready = false;
+  if (ok) k = sums_.k, w = sums_.w;
+  return ok;
+}
+
+double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
+                      bool& finite, const ParticleDynamics* dyn) {
+  Vec2 g = Vec2::Zero();  // every uniform gravity term's field, summed
+  for (const auto& term : forces)
+    if (const auto* u = dynamic_cast<const UniformGravity*>(term.get())) g += u->g();
+  // k = sum m v.*v (twice the kinetic energy, per axis) and w = sum m x, from
+  // which V_g = -g . w: summed by the step itself when it went by blocks (rk4
+  // on per-particle forces, while each block was in cache), else in one pass
+  // here. A coordinate that is not finite makes k or w not finite (m > 0; each
+  // term of k is >= 0); the converse fails only when the finite sums overflow,
+  // and then the exact questions below decide.
+  const Eigen::Index n = x.cols() == m.size() && v.cols() == m.size() ? m.size() : 0;
+  Eigen::Array2d k = Eigen::Array2d::Zero(), w = Eigen::Array2d::Zero();
+  if (!(dyn && dyn->take_step_sums(x, v, k, w))) add_sums(x, v, m, 0, n, k, w);
   if (n != m.size() || !k.allFinite() || !w.allFinite()) {  // rare: the run stops here
     finite = all_finite(x, v);
     return finite ? energy(forces, x, v, m).total() : NAN;

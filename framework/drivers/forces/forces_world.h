@@ -61,18 +61,47 @@ Springs& spring_term(ForceList& forces);
 class ParticleDynamics : public Dynamics {
  public:
   ParticleDynamics(const ForceList& forces, const VecX& m);
-  const Mat2X& last_forces() const { return f_; }
   // Did any evaluation give a non-zero force (what the forces' stubs never do)?
   bool any_force() const { return any_force_; }
+  // Every term is per-particle (Force::per_particle): rk4 then goes by blocks.
+  bool per_particle() const override;
+  // Some term's force depends on x (Force::reads_positions).
+  bool reads_positions() const override;
+  // Sums k = sum m v.*v and w = sum m x over the blocks of a step (rk4 by blocks).
+  void block_stepped(Eigen::Index first, Eigen::Index count, const Mat2X& x,
+                     const Mat2X& v) const override;
+  void blocks_stepped(const Mat2X& x, const Mat2X& v) const override;
+  // The sums of the last step, if it went by blocks and ended in exactly this
+  // x and v (the same arrays; no evaluation since): true once, then the next
+  // question needs another step. For a world that changes nothing between
+  // its step and its bookkeeping (ForceWorld: no after_step).
+  bool take_step_sums(const Mat2X& x, const Mat2X& v, Eigen::Array2d& k, Eigen::Array2d& w) const;
 
  protected:
   void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const override;
+  // accumulate_forces on one block: its masses, its own f.
+  void eval_block(Eigen::Index first, const Mat2X& x, const Mat2X& v, Mat2X& a) const override;
 
  private:
   const ForceList& forces_;
   VecX m_;
-  Eigen::Array<double, 1, Eigen::Dynamic> inv_m_;
+  // 1/m_i twice in column i: a = f * inv_m2_ coefficient by coefficient (the
+  // same products as f_i * (1/m_i), without shuffling pairs of columns).
+  Eigen::Array<double, 2, Eigen::Dynamic> inv_m2_;
   mutable Mat2X f_;
+  struct Block {  // eval_block's arrays: the block's masses and forces
+    Eigen::Index first = -1;
+    VecX m;
+    Mat2X f;
+  };
+  mutable Block block_[2];  // [1]: the last block's
+  struct StepSums {         // block_stepped's sums, and the state they were taken of
+    Eigen::Array2d k = Eigen::Array2d::Zero(), w = Eigen::Array2d::Zero();
+    Eigen::Index done = 0;  // particles summed
+    const double *x = nullptr, *v = nullptr;
+    bool ready = false;
+  };
+  mutable StepSums sums_;
   mutable bool any_force_ = false;
 };
 
@@ -82,7 +111,7 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
 // v, the kinetic energy and the uniform gravity's potential in one pass over
 // the particles, then the other terms' potentials.
 double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
-                      bool& finite);
+                      bool& finite, const ParticleDynamics* dyn = nullptr);
 
 // A particle scene's World: its forces, summed by accumulate_forces.
 class ForceWorld : public World {
@@ -91,7 +120,7 @@ class ForceWorld : public World {
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
   double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const override {
-    return wb::checked_energy(forces_, x, v, m_, finite);
+    return wb::checked_energy(forces_, x, v, m_, finite, &dyn_);
   }
   std::vector<const Force*> terms() const override;
   // A scene with forces whose every evaluation gave zero: the forces' stubs.

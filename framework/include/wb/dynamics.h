@@ -18,6 +18,32 @@ class Dynamics {
     eval(x, v, a);
   }
   long evals() const { return evals_; }
+
+  // Per-particle dynamics: a_i depends only on x_i, v_i and particle i's own data
+  // (gravity, damping, a vortex; not springs or gravity between particles). Such
+  // a system is many independent ones, and the provided rk4 steps it a block of
+  // particles at a time, in cache (docs/benchmarks.md, "RK4 in blocks"). False
+  // unless a Dynamics says so.
+  virtual bool per_particle() const { return false; }
+  // a for the particles first .. first + x.cols() - 1 alone, x and v theirs
+  // (only when per_particle()). Not counted: count whole evaluations with
+  // count_evals once every block is done.
+  void block_acceleration(Eigen::Index first, const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+    eval_block(first, x, v, a);
+  }
+  void count_evals(long k) const { evals_ += k; }
+  // A step that went by blocks tells the dynamics each block's new state
+  // (columns first .. first + count - 1 of x and v, still in cache), then that
+  // the step is done: a Dynamics may sum what the run's bookkeeping will ask of
+  // that state (ParticleDynamics: the kinetic energy and the uniform gravity's
+  // potential), so that the bookkeeping needs no pass of its own.
+  virtual void block_stepped(Eigen::Index /*first*/, Eigen::Index /*count*/, const Mat2X& /*x*/,
+                             const Mat2X& /*v*/) const {}
+  virtual void blocks_stepped(const Mat2X& /*x*/, const Mat2X& /*v*/) const {}
+  // False when a(x, v) does not depend on x (uniform gravity and damping
+  // alone): rk4 then skips its stages' positions (a scene pays only for what
+  // it declares). True unless a Dynamics says so.
+  virtual bool reads_positions() const { return true; }
   // Steps whose implicit solve did not converge (counted by the labs that
   // solve; a share above kMaxUnconvergedShare makes the run diverged).
   long unconverged() const { return unconverged_; }
@@ -26,6 +52,10 @@ class Dynamics {
 
  protected:
   virtual void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const = 0;
+  // Dynamics whose per_particle() is true override this; the default, never
+  // called then, evaluates nothing.
+  virtual void eval_block(Eigen::Index /*first*/, const Mat2X& /*x*/, const Mat2X& /*v*/,
+                          Mat2X& /*a*/) const {}
 
  private:
   mutable long evals_ = 0, unconverged_ = 0;

@@ -27,6 +27,13 @@ class Force {
   // The scene entry to name when this term's bound or potential is not finite
   // at (x, v): `key`, unless the term gathers several entries (the springs).
   virtual std::string blame(const Mat2X& /*x*/, const Mat2X& /*v*/) const { return key; }
+  // True when f_i depends only on x_i, v_i and m_i (and the term's parameters):
+  // then a list of such terms can be evaluated a block of particles at a time
+  // (wb::Dynamics::per_particle). False unless a term says so.
+  virtual bool per_particle() const { return false; }
+  // False when f does not depend on x (the term's add ignores it): uniform
+  // gravity, damping. True unless a term says so.
+  virtual bool reads_positions() const { return true; }
 };
 
 }  // namespace wb

@@ -103,6 +103,10 @@ WB_PROBE(
   // (one_iteration's residual is not specified: NaN, or |G(y)|; backward_euler.h)
   P.out("one_iteration: report (iterations, converged, solver_failed, scale)",
         improbe::report(r2, false));
+  // (the header leaves one_iteration's residual open, NaN or |G(y)|, but never 0, which reads
+  // as solved)
+  P.out("one_iteration: residual reported as 0 (1: yes; expected NaN or |G(y)|)",
+        int(r2.residual == 0));
 }
 // The scale, one term at a time.
 WB_PROBE("I4", "gliding",
@@ -144,7 +148,8 @@ WB_PROBE("I4", "pinned", "a chain of three, the middle one pinned and arriving w
 }
 // A failed solve: with the exact block (definite = false) of a spring compressed to half its
 // rest length across x, and m = h^2 k, A has an exact zero pivot.
-WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, never NaN") {
+WB_PROBE("I4", "failed-solve",
+         "the first solve fails (a zero pivot; then an infinite dv): reported, never NaN") {
   SpringNetwork net;
   net.m = Eigen::Vector3d(1.0, 2.0, 1.5);
   net.pinned = {0, 1, 0};
@@ -154,6 +159,61 @@ WB_PROBE("I4", "failed-solve", "the first solve fails (a zero pivot): reported, 
   run(P, net, wbprobe::cols({{0, 0}, {0, 0}, {0, -1}}), 1.0, o,
       wbprobe::cols({{1, 0}, {5, 0}, {5, 1.5}}),
       wbprobe::cols({{0.5, 0}, {0.25, 1}, {-0.5, 0.25}}), true, true);
+  // A solve that reports success and still returns an infinite dv (backward_euler.h: a failed
+  // solve too): the same compressed spring alone, k a hair below m / h^2 (the pivot is
+  // 2^-52 m), moving across it at 1e300 m/s. Recorded as flags (its state is 1e300: as numbers
+  // it would set the probe's absolute tolerance).
+  SpringNetwork tiny;
+  tiny.m = Eigen::VectorXd::Constant(1, 1.0);
+  tiny.springs = {spring(0, -1, 1.0 - 0x1.0p-52, 2.0, 0.0, Vec2(0, 0))};
+  const Mat2X x1 = wbprobe::cols({{1, 0}}), v1 = wbprobe::cols({{0, 1e300}});
+  Mat2X xt = x1, vt = v1;
+  NewtonWorkspace wst;  // empty: a run's first step
+  const NewtonReport rt = backward_euler_step(tiny, Mat2X::Zero(2, 1), 1.0, o, xt, vt, wst);
+  P.note("then one particle of mass 1 on a spring (k = 1 - 2^-52, rest 2) to the origin, at "
+         "x = (1, 0), v = (0, 1e300), no f_ext, h = 1: LDLT succeeds, dv is infinite");
+  P.group("everything");
+  P.out("pivot 2^-52, v = 1e300: report (iterations, converged, solver_failed)",
+        Eigen::Vector3d(rt.iterations, rt.converged, rt.solver_failed));
+  P.out("pivot 2^-52, v = 1e300: residual NaN (1: yes)", int(std::isnan(rt.residual)));
+  P.out("pivot 2^-52, v = 1e300: v' = v and x' = x + h v exactly (1: yes)",
+        int(vt == v1 && xt == Mat2X(x1 + v1)));
+  P.group("");
+}
+
+// CG's warm start (NewtonWorkspace::dv): a workspace left by an earlier step holds a guess; the
+// step's first CG solve starts from it and leaves its own dv there. Two steps of the network
+// with one_iteration, each from such a workspace: with a tolerance the guess already meets
+// (cg_tol = 1e3: v' = v + guess), and with the default one (ws.dv: the solve's dv). One
+// output: a guess ignored shows in the first, a dv not kept in the second.
+WB_PROBE("I4", "warm-start",
+         "CG from the workspace's dv: the network with one_iteration, ws.dv a guess, "
+         "cg_tol 1e3 then 1e-12") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  const Mat2X g = wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}});
+  Eigen::VectorXd guess(8);
+  guess << 0.01, -0.02, 0.015, 0.005, -0.01, 0.02, 0.0, -0.005;
+  NewtonOptions tight = options(), loose = options();
+  tight.solver = loose.solver = NewtonOptions::kCG;
+  tight.one_iteration = loose.one_iteration = true;
+  loose.cg_tol = 1e3;
+  P.call("backward_euler_step");
+  improbe::network_in(P, net);
+  P.in("f_ext", g), P.in("h", 0.05), P.in("opt.solver (1: CG)", int(NewtonOptions::kCG));
+  P.in("opt.one_iteration", true), P.in("opt.cg_tol, then", 1e3), P.in("opt.cg_tol", 1e-12);
+  P.in("x", x), P.in("v", v), P.in("ws.dv (a workspace left by an earlier step)", guess);
+  P.tol(1e-6, 1e-8);  // CG stops within cg_tol of the scale
+  Mat2X x1 = x, v1 = v, x2 = x, v2 = v;
+  NewtonWorkspace ws1, ws2;
+  ws1.dv = guess, ws2.dv = guess;
+  backward_euler_step(net, g, 0.05, loose, x1, v1, ws1);
+  backward_euler_step(net, g, 0.05, tight, x2, v2, ws2);
+  P.group("warm start");
+  P.out("cg_tol 1e3: v", v1), P.out("cg_tol 1e3: ws.dv after", ws1.dv);
+  P.out("cg_tol 1e-12: ws.dv after", ws2.dv);
+  P.group("");
 }
 
 }  // namespace probe_I4_backward_euler

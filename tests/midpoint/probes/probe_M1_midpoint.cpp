@@ -1,11 +1,25 @@
-// Diagnosis probes of M1 (tests/common/wb_probe_step.h).
+// Diagnosis probes of M1 (tests/midpoint/probes/midpoint_probes.h).
 #include "midpoint.h"
-#include "wb_probe_step.h"
+#include "midpoint_probes.h"
 
 // The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
 // namespace of its own.
 namespace probe_M1_midpoint {
 
-WB_STEP_PROBES("M1", midpoint_step, "midpoint_step")
+MIDPOINT_STEP_DETAILS("M1", midpoint_step, "midpoint_step")
+
+// The part probe: three particles thrown from the centre of a spring (a = -4 x, zero at the
+// start), with different velocities. The start acceleration is zero, so the midpoint velocity
+// is v and the new position x + h v; what the midpoint position does shows in the new velocity
+// and the second evaluation, the final update in the new state alone, an evaluation too many
+// or too few in the evaluations alone. The scratch holds zeros (a stale start acceleration is
+// then the right one here and shows only as a missing evaluation; the details hold NaN).
+WB_PROBE("M1", "launch",
+         "three particles thrown from the centre of a spring, a = -4 x, h = 0.25: x, v and "
+         "the evaluations") {
+  midprobe::step(P, &midpoint_step, "midpoint_step", "-4 x", wbprobe::spring(4),
+                 wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}),
+                 wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, 0.0);
+}
 
 }  // namespace probe_M1_midpoint

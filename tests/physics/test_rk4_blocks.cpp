@@ -1,0 +1,142 @@
+// rk4 by blocks (framework/src/rk4.cpp, docs/benchmarks.md "RK4 in blocks"): on
+// per-particle forces the provided rk4 steps 256 particles at a time, in cache, and sums
+// the run's bookkeeping (kinetic energy, gravity's potential) while each block is there.
+// Not graded, no student code: the forces lab's solution. What must hold:
+// - every particle's arithmetic is unchanged: the same bits as the whole arrays' step
+//   (a defect here would change every figure of a run past 256 particles);
+// - a step counts four evaluations, whatever the number of blocks;
+// - the bookkeeping's sums taken by the step give the energy a separate pass gives, and
+//   are used only for the state they were taken of;
+// - the blocked step is still RK4: a damped fall matches its closed form to RK4's error.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "forces_world.h"
+#include "wb/dynamics.h"
+#include "wb/rk4.h"
+
+namespace {
+
+wb::Scene make_scene(Eigen::Index n, const char* forces) {
+  wb::Scene s;
+  s.file = "<test_rk4_blocks>";
+  s.name = "blocks";
+  s.x.resize(2, n);
+  s.v.resize(2, n);
+  s.m.resize(n);
+  s.radius = wb::VecX::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i) {  // spread, and not symmetric: no bit is equal by luck
+    s.x.col(i) = wb::Vec2(std::sin(1.3 * i) * 40.0 + 0.01 * i, std::cos(0.7 * i) * 30.0);
+    s.v.col(i) = wb::Vec2(std::sin(2.1 * i + 0.3) * 5.0, std::cos(1.9 * i) * 4.0);
+    s.m[i] = 0.5 + 0.25 * (1.0 + std::sin(0.37 * i));
+  }
+  s.doc = wb::json::parse(forces);
+  return s;
+}
+
+// The whole arrays' path: the same accelerations through a Dynamics that does not say it
+// is per-particle.
+struct Whole : wb::Dynamics {
+  const wb::Dynamics& inner;
+  explicit Whole(const wb::Dynamics& d) : inner(d) {}
+  void eval(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a) const override {
+    inner.acceleration(x, v, a);
+  }
+};
+
+const char* const kGravityDamping =
+    R"({"forces":[{"type":"gravity","g":[0.3,-9.81]},{"type":"damping","b":0.4}]})";
+const char* const kWithVortex =  // the vortex reads positions: the stages' positions count
+    R"({"forces":[{"type":"gravity","g":[0,-9.81]},{"type":"damping","b":0.1},)"
+    R"({"type":"vortex","center":[1,2],"omega":3,"core":5,"drag":0.5}]})";
+
+}  // namespace
+
+TEST_CASE("rk4 by blocks: the same bits as the whole arrays, four evaluations a step",
+          "[physics][rk4]") {
+  for (const char* forces : {kGravityDamping, kWithVortex}) {
+    for (Eigen::Index n : {Eigen::Index(256), Eigen::Index(257), Eigen::Index(1000)}) {
+      const wb::Scene scene = make_scene(n, forces);
+      const wb::ForceList terms = wb::build_forces(scene);
+      const wb::ParticleDynamics dyn(terms, scene.m);
+      REQUIRE(dyn.per_particle());
+      const Whole whole(dyn);
+      wb::Mat2X xb = scene.x, vb = scene.v, xw = scene.x, vw = scene.v;
+      wb::Scratch sb, sw;
+      sb.resize(n);
+      sw.resize(n);
+      dyn.reset_evals();
+      for (int k = 0; k < 25; ++k) {
+        wb::rk4_step(dyn, 0.01, xb, vb, sb);
+        wb::rk4_step(whole, 0.01, xw, vw, sw);
+      }
+      INFO(forces << ", n = " << n);
+      CHECK(dyn.evals() == 25 * 4 * 2);  // 4 by blocks + 4 through the whole path
+      CHECK((xb.array() == xw.array()).all());
+      CHECK((vb.array() == vw.array()).all());
+    }
+  }
+}
+
+TEST_CASE("rk4 by blocks: the step's energy sums are the separate pass's, for that state only",
+          "[physics][rk4]") {
+  const Eigen::Index n = 1000;
+  const wb::Scene scene = make_scene(n, kGravityDamping);
+  const wb::ForceWorld world(scene);
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(n);
+  wb::rk4_step(world.dynamics(), 0.01, x, v, s);
+  bool finite_step = false, finite_pass = false;
+  const double from_step = world.checked_energy(x, v, finite_step);  // the step's sums
+  const double from_pass = world.checked_energy(x, v, finite_pass);  // taken once: a pass
+  const double exact = world.energy(x, v).total();
+  CHECK(finite_step);
+  CHECK(finite_pass);
+  // The same terms summed in another order: rounding, about n eps of the largest term.
+  const double scale = std::abs(exact) + 0.5 * (v.colwise().squaredNorm().dot(scene.m));
+  CHECK(std::abs(from_step - exact) <= 1e-12 * scale);
+  CHECK(std::abs(from_pass - exact) <= 1e-12 * scale);
+  // Sums are used only for the arrays the step wrote: a copy of the state, or the state
+  // after another step taken through the whole path, is summed anew.
+  wb::Mat2X x2 = x, v2 = v;
+  wb::rk4_step(world.dynamics(), 0.01, x, v, s);
+  bool finite = false;
+  const double e2 = world.energy(x2, v2).total();
+  CHECK(std::abs(world.checked_energy(x2, v2, finite) - e2) <=
+        1e-12 * (std::abs(e2) + world.energy(x2, v2).kinetic));
+  const Whole whole(world.dynamics());
+  wb::rk4_step(world.dynamics(), 0.01, x, v, s);  // sums ready for (x, v) ...
+  wb::rk4_step(whole, 0.01, x, v, s);             // ... which this step moves again
+  v.col(3) *= 100.0;
+  const double e3 = world.energy(x, v).total();
+  CHECK(std::abs(world.checked_energy(x, v, finite) - e3) <=
+        1e-12 * (std::abs(e3) + world.energy(x, v).kinetic));
+}
+
+TEST_CASE("rk4 by blocks: a damped fall matches its closed form to RK4's error",
+          "[physics][rk4]") {
+  // v' = g - (b/m) v: v(t) = v_inf + (v0 - v_inf) e^{-ct}, c = b/m, v_inf = g/c, and
+  // x(t) = x0 + v_inf t + (v0 - v_inf)(1 - e^{-ct})/c. RK4's global error on it is about
+  // (ch)^4/120 of the transient per unit time: with c <= 0.8 s^-1, h = 0.01 s, t = 2 s it
+  // is below 1e-10 m/s; kTol = 1e-8 (relative to the speeds, 10 m/s) leaves room.
+  constexpr double kTol = 1e-8;
+  const Eigen::Index n = 700;
+  const wb::Scene scene = make_scene(n, kGravityDamping);
+  const wb::ForceWorld world(scene);
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(n);
+  const double h = 0.01, b = 0.4, t = 2.0;
+  for (int k = 0; k < 200; ++k) wb::rk4_step(world.dynamics(), h, x, v, s);
+  const wb::Vec2 g(0.3, -9.81);
+  double worst = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double c = b / scene.m[i], e = std::exp(-c * t);
+    const wb::Vec2 vinf = g / c, v0 = scene.v.col(i), x0 = scene.x.col(i);
+    const wb::Vec2 ve = vinf + (v0 - vinf) * e;
+    const wb::Vec2 xe = x0 + vinf * t + (v0 - vinf) * (1 - e) / c;
+    worst = std::max({worst, (v.col(i) - ve).norm() / 10.0, (x.col(i) - xe).norm() / 10.0});
+  }
+  CHECK(worst <= kTol);
+}
