@@ -12,7 +12,7 @@ using wbprobe::vec;
 
 namespace {
 void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& m, double G, double eps,
-         wb::Mat2X f, bool each = false) {
+         wb::Mat2X f, bool each = false, bool sum_apart = false) {
   P.call("add_newton_gravity");
   P.in("x", x), P.in("m", m), P.in("G", G), P.in("eps", eps), P.in("f", f);
   const wb::Mat2X f0 = f;
@@ -23,6 +23,7 @@ void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& m, double G, dou
     P.group("f");  // the forces and their sum go wrong together
     P.out("f", f);
   }
+  if (sum_apart) P.group("");
   if (f.cols() == f0.cols()) P.out("sum", wb::Vec2((f - f0).rowwise().sum()));
   P.group("");
 }
@@ -39,6 +40,14 @@ WB_PROBE("F2", "masses", "masses 1 and 3, 1 apart, G = 1, no softening") {
 // The pair force, no softening.
 WB_PROBE("F2", "pair", "masses 2 and 3 at distance 5, G = 0.8, no softening") {
   run(P, cols({{0, 0}, {3, 4}}), vec({2, 3}), 0.8, 0.0, cols({{0, 0}, {0, 0}}));
+}
+// The pair loop: two equal masses at distance 1, where a pair force with the wrong power of the
+// distance or one body's mass twice is still right, while a pair visited twice, skipped, applied
+// to one body or paired with itself is not. The sum apart: a force on one body only shows there.
+WB_PROBE("F2", "unit-distance",
+         "masses 2 and 2 at distance 1, at (0.5, 1.5) and (1.1, 2.3), G = 0.8, no softening") {
+  run(P, cols({{0.5, 1.5}, {1.1, 2.3}}), vec({2, 2}), 0.8, 0.0, cols({{0, 0}, {0, 0}}), false,
+      true);
 }
 // The softening.
 WB_PROBE("F2", "softened", "the same pair softened by eps = 1.5") {
