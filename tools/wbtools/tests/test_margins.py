@@ -1,4 +1,7 @@
-"""Tests of tools/wbtools/margins.py (python3 -m pytest tools/wbtools/tests/test_margins.py)."""
+"""Margins (tools/wbtools/margins.py, run by tools/mutants): how widely a graded test catches a
+mutant, read from the test's own failure message. Guards against a mutant caught by a hair
+(within a factor 10 of a tolerance) counted as safely caught, and against a catch that
+nothing measured (values printed alike, an outer helper's message) counted as weak or wide."""
 import math
 from wbtools.margins import best, describe, margin
 

@@ -1,4 +1,6 @@
-"""Tests of tools/view-check's helpers (pytest): the screenshot reader, the camera."""
+"""tools/view-check's helpers (the headless-Chromium check of the viewer pages): the screenshot
+reader and the camera. Guards against a screenshot misread (then a blank or wrong page passes
+the check) and a body looked for where the page does not draw it."""
 import os
 import struct
 import sys

@@ -1,4 +1,7 @@
-"""Tests of tools/view's reading and packing (pytest). Each names the defect it guards."""
+"""tools/view's reading and packing (tools/wbview: the trace, stats and summary into one page).
+Guards against a run shown other than it ran (positions far from the origin rounded away, a
+diverged run drawn as fine, steps invented), a page a scene's text can break, and bad input
+that leaves a half-written page over a good one. Each test names the defect it guards."""
 import base64
 import json
 import math
