@@ -82,9 +82,10 @@ WB_PROBE("C5", "prepare-leaving",
 // The restitution target, its three cases in one output: closing faster than the threshold (a
 // bounce), slower (resting), separating. A mistake in which case applies shows here and in no
 // effective mass.
-WB_PROBE("C5", "prepare-targets",
-         "prepare_contact: the pair closing at 1.5 m/s, closing at 0.5 m/s, separating at 0.5 m/s; "
-         "e = 0.6, threshold 1") {
+WB_PROBE(
+    "C5", "prepare-targets",
+    "prepare_contact: the pair closing at 1.5 m/s, closing at 0.5 m/s, separating at 0.5 m/s; "
+    "e = 0.6, threshold 1") {
   P.call("prepare_contact (3 times)");
   const double un[3] = {-1.5, -0.5, 0.5};
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();

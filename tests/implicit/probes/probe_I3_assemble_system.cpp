@@ -111,15 +111,17 @@ WB_PROBE("I3", "again",
   const Mat2X f = wbprobe::cols({{0, -1}, {0, -1}, {0, -1}});
   P.call("assemble_system");
   improbe::network_in(P, net);
-  P.note("first assemble_system(net, x0, v0, x0, v0, f_ext, h, definite, sys) with sys empty, "
-         "then the call below with that sys, compared with the call below on an empty sys");
+  P.note(
+      "first assemble_system(net, x0, v0, x0, v0, f_ext, h, definite, sys) with sys empty, "
+      "then the call below with that sys, compared with the call below on an empty sys");
   P.in("x0", x), P.in("v0", v), P.in("xl", xl), P.in("vl", vl), P.in("f_ext", f);
   P.in("h", 0.1), P.in("definite", true);
   SparseSystem sys, fresh;
   assemble_system(net, x, v, x, v, f, 0.1, true, sys);
   assemble_system(net, x, v, xl, vl, f, 0.1, true, sys);
   assemble_system(net, x, v, xl, vl, f, 0.1, true, fresh);
-  const Eigen::MatrixXd again = Eigen::SparseMatrix<double>(sys.A.selfadjointView<Eigen::Upper>());
+  const Eigen::MatrixXd again =
+      Eigen::SparseMatrix<double>(sys.A.selfadjointView<Eigen::Upper>());
   const Eigen::MatrixXd first =
       Eigen::SparseMatrix<double>(fresh.A.selfadjointView<Eigen::Upper>());
   P.group("the second assembly");

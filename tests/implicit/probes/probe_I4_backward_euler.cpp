@@ -170,8 +170,9 @@ WB_PROBE("I4", "failed-solve",
   Mat2X xt = x1, vt = v1;
   NewtonWorkspace wst;  // empty: a run's first step
   const NewtonReport rt = backward_euler_step(tiny, Mat2X::Zero(2, 1), 1.0, o, xt, vt, wst);
-  P.note("then one particle of mass 1 on a spring (k = 1 - 2^-52, rest 2) to the origin, at "
-         "x = (1, 0), v = (0, 1e300), no f_ext, h = 1: LDLT succeeds, dv is infinite");
+  P.note(
+      "then one particle of mass 1 on a spring (k = 1 - 2^-52, rest 2) to the origin, at "
+      "x = (1, 0), v = (0, 1e300), no f_ext, h = 1: LDLT succeeds, dv is infinite");
   P.group("everything");
   P.out("pivot 2^-52, v = 1e300: report (iterations, converged, solver_failed)",
         Eigen::Vector3d(rt.iterations, rt.converged, rt.solver_failed));

@@ -1,6 +1,6 @@
 // Diagnosis probes of M2 (tests/midpoint/probes/midpoint_probes.h).
-#include "trapezoid.h"
 #include "midpoint_probes.h"
+#include "trapezoid.h"
 
 // The lab's probe files compile as one unit (cmake/labs.cmake): each keeps its helpers in a
 // namespace of its own.

@@ -89,8 +89,9 @@ WB_PROBE("R6", "prepare-slow",
   P.simple();
   prepare(P, falling(), 0.6, 5.0, corner(0.7, Vec3(0.1, 0, -0.05)));
 }
-WB_PROBE("R6", "prepare-leaving",
-         "prepare_contact: the same body leaving the floor at 0.5 m/s, not spinning, threshold 1") {
+WB_PROBE(
+    "R6", "prepare-leaving",
+    "prepare_contact: the same body leaving the floor at 0.5 m/s, not spinning, threshold 1") {
   P.simple();
   rigid::Body b = falling();
   b.v = Vec3(0.8, 0.5, 0.3), b.omega.setZero();
