@@ -1,7 +1,8 @@
 // Diagnosis probes of R6 (tests/common/wb_probe.h): prepare_contact of a corner of a turned,
-// spinning body (above and below the threshold, leaving), warm_start_contact, one
-// solve_contact from a closing contact, from stored totals to take back, with friction at its
-// bound and within it, and solve_plane_contacts with stored totals and from nothing.
+// spinning body (above and below the threshold, leaving), warm_start_contact, solve_contact
+// (once from a closing contact and with friction within its bound; twice on one contact, the
+// stored total added to then partly taken back, without friction and with it at its bound), and
+// solve_plane_contacts with stored totals and from nothing.
 #include <vector>
 
 #include "plane_contact.h"
@@ -64,6 +65,16 @@ void solve(wbprobe::Probe& P, rigid::Body b, Contact c, double mu) {
   P.in("mu", mu);
   const double dPn = solve_contact(b, c, kN, mu);
   P.out("returned", dPn), contact_out(P, c), rbprobe::body_out(P, b);
+}
+// Two iterations on one contact, the body's velocity changed between them by `push` (what
+// another contact would do): what the second leaves, recorded as solve's.
+void solve_twice(wbprobe::Probe& P, rigid::Body b, Contact c, double mu, const Vec3& push) {
+  P.call("solve_contact (2 times)"), rbprobe::body_in(P, b), contact_in(P, c), P.in("n", kN);
+  P.in("mu", mu), P.in("dv of the body between the calls", push);
+  solve_contact(b, c, kN, mu);
+  b.v += push;
+  const double dPn = solve_contact(b, c, kN, mu);
+  P.out("returned (2nd call)", dPn), contact_out(P, c), rbprobe::body_out(P, b);
 }
 }  // namespace
 
@@ -133,24 +144,35 @@ WB_PROBE("R6", "solve-closing", "solve_contact: closing, nothing stored, mu = 0.
   const rigid::Body b = falling();
   solve(P, b, prepared(b, 1.2, corner(0, Vec3::Zero())), 0.1);
 }
+// Stored totals taken back: two iterations on one contact, the point approaching at 0.5 m/s
+// adds to the stored normal total, then the body is pushed up and the total is partly taken
+// back. A total never taken back and one that forgot what was stored both leave a wrong total
+// and the same wrong body here (no friction: mu = 0).
 WB_PROBE("R6", "solve-take-back",
-         "solve_contact: separating slowly with Pn = 0.5 stored: partly taken back") {
+         "solve_contact twice: the point approaching at 0.5 m/s with Pn = 0.5 stored, then the "
+         "body pushed up at 0.7 m/s: the total partly taken back, mu = 0") {
   rigid::Body b = falling();
-  b.v = Vec3(0, 0.2, 0), b.omega.setZero();
-  solve(P, b, prepared(b, 0, corner(0.5, Vec3::Zero())), 0);
+  b.v = Vec3(0, -0.5, 0), b.omega.setZero();
+  solve_twice(P, b, prepared(b, 0, corner(0.5, Vec3::Zero())), 0, Vec3(0, 0.7, 0));
 }
 // The point right below the centre: the normal impulse does not change the sliding, the
 // friction impulse not the normal velocity; the order of the two steps shows only through the
 // bound. Sliding fast along x with friction stored against it: the friction ends on its bound
-// mu Pn (the new total), whatever impulse along the sliding took it there.
+// mu Pn (the new total), whatever impulse along the sliding took it there (the body not turned:
+// K is diagonal, so the friction along x leaves the sliding along x). Two iterations: the
+// point approaching at 0.1 m/s adds to the stored normal total (0.5 to 0.7), then the body is
+// pushed up and the total is partly taken back (to 0.2): the bound follows the total, and a
+// mistake of the accumulated total shows as one of the bound does.
 WB_PROBE("R6", "solve-friction",
-         "solve_contact: the point right below the centre sliding at 3 m/s along x, approaching "
-         "at 0.1 m/s, Pn = 0.5 and Pt = (-0.1, 0, 0) stored, mu = 0.2") {
+         "solve_contact twice: the body not turned, the point right below its centre sliding at "
+         "3 m/s along x, approaching at 0.1 m/s, Pn = 0.5 and Pt = (-0.1, 0, 0) stored, mu = "
+         "0.2; then the body pushed up at 0.25 m/s") {
   rigid::Body b = falling();
   b.v = Vec3(3.0, -0.1, 0.0), b.omega.setZero();
+  b.q = Eigen::Quaterniond::Identity();  // K diagonal: the sliding stays along x, call after call
   Contact c = corner(0.5, Vec3(-0.1, 0, 0));
   c.p = Vec3(b.x.x(), 0, b.x.z());
-  solve(P, b, prepared(b, 0, c), 0.2);
+  solve_twice(P, b, prepared(b, 0, c), 0.2, Vec3(0, 0.25, 0));
 }
 // The same point sliding slowly: the friction stops the sliding within its bound. A detail: a
 // wrong mass along the sliding and a bound applied when it should not be both show here alone.
@@ -177,8 +199,12 @@ WB_PROBE("R6", "solve-plane",
   P.in("contacts[1].p", cs[1].p), P.in("contacts[1].Pn", cs[1].Pn),
       P.in("contacts[1].Pt", cs[1].Pt);
   const double total = solve_plane_contacts(b, cs, kN, 0.6, 1.0, 0.5, 8);
-  P.out("returned", total), rbprobe::body_out(P, b);
+  // The totals together: what is returned is their sum (a total that forgot what was stored
+  // may sum to the stub's 0 while each total is wrong).
+  P.group("the totals");
+  P.out("returned", total);
   if (cs.size() == 2) P.out("contacts[0].Pn", cs[0].Pn), P.out("contacts[1].Pn", cs[1].Pn);
+  P.group(""), rbprobe::body_out(P, b);
 }
 // Nothing stored and one pass: the warm start does nothing here, every pass counts.
 WB_PROBE("R6", "solve-plane-once",
