@@ -67,6 +67,26 @@ WB_PROBE("F9", "potential-two", "curl_noise_potential between two discs, nearer 
   P.simple();
   potential(P, Vec2(3, -0.5), field({kDisc, Disc{Vec2(4, 0.5), 0.5}}, 2.5, 1));
 }
+// The curl (before the obstacles: a curl mistake's counterexample is a flow with no obstacle).
+WB_PROBE("F9", "flow-free", "curl_noise_flow with no obstacle, h = 0.1") {
+  flow(P, Vec2(1, 2), field({}, 1, 1));
+}
+// The step: psi with a cubic term, whose central difference is off the derivative by h^2/6 times
+// its third derivative, so that a step other than p.h shows; no obstacle, so that no ramp
+// mistake does.
+WB_PROBE("F9", "flow-cubic",
+         "curl_noise_flow with no obstacle, psi = x y + y^2/2 + x^2/4 + x^3/2 - y^3/3, h = 0.1") {
+  CurlNoiseParams p = field({}, 1, 1);
+  p.psi = [](const Vec2& x) {
+    return x.x() * x.y() + 0.5 * x.y() * x.y() + 0.25 * x.x() * x.x() +
+           0.5 * x.x() * x.x() * x.x() - x.y() * x.y() * x.y() / 3;
+  };
+  P.call("curl_noise_flow");
+  P.in("x", Vec2(1, 2));
+  P.note("psi(x) = x y + y^2/2 + x^2/4 + x^3/2 - y^3/3");
+  P.in("h", p.h);
+  P.out("returned", curl_noise_flow(Vec2(1, 2), p));
+}
 // The obstacles, in one output: the potential within the ramp of a disc, beyond it, between two
 // discs, deep inside a disc wider than the ramp (s < -1), nearer to a large disc's edge than to
 // a small one's whose centre is nearer, and the flow within the ramp.
@@ -89,26 +109,6 @@ WB_PROBE("F9", "obstacles",
             {curl_noise_potential(Vec2(3, -0.5), one), curl_noise_potential(Vec2(4.5, -0.5), one),
              curl_noise_potential(Vec2(3, -0.5), two), curl_noise_potential(Vec2(-3.5, 1.5), big),
              curl_noise_potential(Vec2(0.3, 1.3), big), u.x(), u.y()}));
-}
-// The curl.
-WB_PROBE("F9", "flow-free", "curl_noise_flow with no obstacle, h = 0.1") {
-  flow(P, Vec2(1, 2), field({}, 1, 1));
-}
-// The step: psi with a cubic term, whose central difference is off the derivative by h^2/6 times
-// its third derivative, so that a step other than p.h shows; no obstacle, so that no ramp
-// mistake does.
-WB_PROBE("F9", "flow-cubic",
-         "curl_noise_flow with no obstacle, psi = x y + y^2/2 + x^2/4 + x^3/2 - y^3/3, h = 0.1") {
-  CurlNoiseParams p = field({}, 1, 1);
-  p.psi = [](const Vec2& x) {
-    return x.x() * x.y() + 0.5 * x.y() * x.y() + 0.25 * x.x() * x.x() +
-           0.5 * x.x() * x.x() * x.x() - x.y() * x.y() * x.y() / 3;
-  };
-  P.call("curl_noise_flow");
-  P.in("x", Vec2(1, 2));
-  P.note("psi(x) = x y + y^2/2 + x^2/4 + x^3/2 - y^3/3");
-  P.in("h", p.h);
-  P.out("returned", curl_noise_flow(Vec2(1, 2), p));
 }
 WB_PROBE("F9", "flow-near", "curl_noise_flow 1.3 from a disc's edge, ramp distance 2.5") {
   P.simple();
