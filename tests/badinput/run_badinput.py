@@ -13,7 +13,8 @@ number of lines of a run that is not refused; `lines_prefix`: what every line of
 it starts with), nothing on stdout, no output
 file left behind (`absent`), special files still special (`special`: made by
 `fifo` with a reader, or `symlink` [name, target]), within TIME_LIMIT_S seconds
-(`max_seconds`: another limit; `max_cpu_seconds`: a limit on the CPU time it
+(`max_seconds`: another limit; `solution_not_stub`: on the solution side, no stub
+warning and no "stub" in the summary; `max_cpu_seconds`: a limit on the CPU time it
 used, which a loaded machine does not inflate) and MEMORY_LIMIT_BYTES of
 address space. `{exe}` in an `expect` string is the executable's name;
 `{badutf8}` in an argument is the byte 0xFF, `{name250}` and `{name300}` file
@@ -252,6 +253,13 @@ def run_case(case, args):
             if len(counted) != case["stderr_lines"]:
                 problems.append(f"stderr has {len(counted)} lines (besides stub warnings), "
                                 f"expected {case['stderr_lines']}")
+        if case.get("solution_not_stub") and args.side == "solution":
+            # A run the solution does right is never called a stub (a scene at rest,
+            # one moved only by its collision phase, a body held still by a hinge).
+            stubs = [ln for ln in lines[:-1] if ln.endswith(STUB_WARNING_ENDINGS)]
+            if stubs or b'"stub":true' in p.stdout:
+                problems.append("the solution's run is called a stub: "
+                                + (stubs[0][:200] if stubs else "\"stub\":true in the summary"))
         if "lines_prefix" in case:
             prefix = case["lines_prefix"].replace("{exe}", os.path.basename(exe))
             for ln in lines[:-1]:

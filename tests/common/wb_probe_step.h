@@ -18,11 +18,12 @@ using Accel = std::function<void(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat
 
 // A step of `name` (the step function `fn`) of size h from (x, v) under a(x, v) = `accel`,
 // described in words by `words`. The scratch holds NaN on entry (its contents are undefined).
-// What a step probe records: the new state, the evaluations, or both.
-enum Record { kState = 1, kEvaluations = 2, kBoth = 3 };
+// What a step probe records: the new state, the evaluations, or both; kEach: the new state
+// particle by particle (P.out_each), where a particle may go wrong alone.
+enum Record { kState = 1, kEvaluations = 2, kBoth = 3, kEach = 4 };
 
 inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& words,
-                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h, Record what = kBoth) {
+                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h, int what = kBoth) {
   std::vector<wb::Mat2X> seen_x, seen_v;
   wb::LambdaDynamics dyn([&](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
     seen_x.push_back(xx), seen_v.push_back(vv);
@@ -37,7 +38,10 @@ inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& w
   P.note("dyn: a(x, v) = " + words);
   P.in("h", h), P.in("x", x), P.in("v", v);
   fn(dyn, h, x, v, s);
-  if (what & kState) P.out("x", x), P.out("v", v);
+  if ((what & kState) && (what & kEach))
+    P.out_each("x", x), P.out_each("v", v);
+  else if (what & kState)
+    P.out("x", x), P.out("v", v);
   if (!(what & kEvaluations)) return;
   // The evaluations in one output: one column each (the first four), the state it was asked
   // at, particle after particle: (x_0, v_0, x_1, v_1, ...).
@@ -82,7 +86,18 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
 // first (one particle, no force; one particle falling from rest: the new state and the
 // evaluations), then the new state under one state dependence at a time and under all, then
 // the evaluations alone (where an update goes wrong apart from where the forces are asked).
-#define WB_STEP_PROBES(task, fn, name)                                                           \
+//
+// Which probes tell parts apart (docs/grading.md, "Writing probes"): the general one (every
+// dependence at once, generic values), the spring (a force that depends on x: where a force
+// evaluated at the wrong state shows in v) and the evaluations; the others isolate one factor
+// and are details. No force, a constant force and a drag alone are where a step that never
+// asks for the forces goes wrong and a force evaluated at a moved position does not, where a
+// position moved with the old velocity is right (at rest) and one moved with h/2 is not: as
+// part-telling probes they split the force evaluation and the position update in two.
+// `general`: how the general probe records the new state, kState or kState | kEach (particle
+// by particle: where a position moved with the new velocity makes a velocity mistake change x
+// and v of every particle, as a loop that skips the last particle changes them of that one).
+#define WB_STEP_PROBES(task, fn, name, general)                                                  \
   WB_PROBE(task, "free", "one particle, no force: h = 0.1") {                                    \
     P.simple();                                                                                  \
     wbprobe::step(P, &fn, name, "0", wbprobe::no_force(), wbprobe::cols({{1, 2}}),               \
@@ -94,11 +109,13 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
                   wbprobe::cols({{1, 2}}), wbprobe::cols({{0, 0}}), 0.1);                        \
   }                                                                                              \
   WB_PROBE(task, "drift", "three particles moving with no force, h = 0.25") {                    \
+    P.simple();                                                                                  \
     wbprobe::step(P, &fn, name, "0", wbprobe::no_force(),                                        \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
   WB_PROBE(task, "kick", "three particles at rest under constant forces, h = 0.25") {            \
+    P.simple();                                                                                  \
     const wb::Mat2X g = wbprobe::cols({{0, -10}, {2, 1}, {-3, 0.5}});                            \
     wbprobe::step(P, &fn, name, "a constant per particle: (0, -10), (2, 1), (-3, 0.5)",          \
                   wbprobe::constant(g), wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),             \
@@ -111,6 +128,7 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
   WB_PROBE(task, "drag", "three moving particles under a drag, a = -3 v, h = 0.25") {            \
+    P.simple();                                                                                  \
     wbprobe::step(P, &fn, name, "-3 v", wbprobe::drag(3),                                        \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
@@ -118,7 +136,7 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
   WB_PROBE(task, "general", "three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") {     \
     wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
-                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
+                  wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, general);              \
   }                                                                                              \
   WB_PROBE(task, "evaluations",                                                                  \
            "where the forces are evaluated: three moving particles, a = -4 x - 3 v + (0, -10), " \

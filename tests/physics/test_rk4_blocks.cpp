@@ -140,3 +140,18 @@ TEST_CASE("rk4 by blocks: a damped fall matches its closed form to RK4's error",
   }
   CHECK(worst <= kTol);
 }
+
+TEST_CASE("rk4 by blocks: a Dynamics that says it is per-particle without blocks fails loudly",
+          "[physics][rk4]") {
+  // A Dynamics that claims per_particle() but has no eval_block would otherwise get zero
+  // accelerations from the default, silently: a run of a still body, not an error.
+  struct NoBlocks : wb::Dynamics {
+    bool per_particle() const override { return true; }
+    void eval(const wb::Mat2X&, const wb::Mat2X& v, wb::Mat2X& a) const override { a = -v; }
+  };
+  const Eigen::Index n = 300;  // more than one block
+  wb::Mat2X x = wb::Mat2X::Zero(2, n), v = wb::Mat2X::Ones(2, n);
+  wb::Scratch s;
+  s.resize(n);
+  CHECK_THROWS_AS(wb::rk4_step(NoBlocks{}, 0.01, x, v, s), std::logic_error);
+}

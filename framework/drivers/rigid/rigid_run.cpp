@@ -99,16 +99,27 @@ wb::Summary simulate(const Scene& scene, const Integrator& integ, const wb::RunR
   }
   const Totals t0 = totals(scene, bodies);
   const double scale = wb::energy_scale(t0.kinetic, t0.potential, work_scale(scene, bodies));
+  // The stub warnings' questions: did any body move or turn, and did any have a velocity
+  // that moves it by more than rounding in a step (kStill: a body hanging at rest on its
+  // hinge keeps a velocity of rounding's size, which moves nothing)?
+  constexpr double kStill = 1e-9;  // m, or rad, per step
   bool moved = false;
+  long mover = -1;  // a body that had such a velocity, the first seen
   double drift = 0;
   StepState state;   // contacts' impulses, kept from step to step
   double angle = 0;  // largest angle of a revolute hinge's body axis from its axis
-  const Body first = bodies.front();
+  const std::vector<Body> first = bodies;
   wb::StepHooks hooks;
   hooks.step = [&] {
     drift = std::max(drift, step(scene, integ, r.dt, bodies, state));
     angle = std::max(angle, state.hinge_angle);
-    moved = moved || bodies.front().x != first.x || bodies.front().q.coeffs() != first.q.coeffs();
+    for (std::size_t i = 0; i < bodies.size() && !moved; ++i) {
+      const Body& b = bodies[i];
+      moved = b.x != first[i].x || b.q.coeffs() != first[i].q.coeffs();
+      if (mover < 0 && (r.dt * b.v.norm() > kStill || r.dt * b.omega.norm() > kStill)) {
+        mover = long(i);
+      }
+    }
   };
   hooks.finite = [&] { return finite(bodies); };
   hooks.energy = [&] { return totals(scene, bodies).energy(); };
@@ -124,9 +135,18 @@ wb::Summary simulate(const Scene& scene, const Integrator& integ, const wb::RunR
   };
   const wb::LoopResult loop = wb::run_steps(r.steps, r.every, r.dt, scale, hooks);
   const long k = loop.steps;
-  if (k > 0 && !moved && loop.reason.empty()) {
-    warnings.push_back("body 0 never moved or turned in " + std::to_string(k) +
-                       " steps: is integrate_position (R4) still a stub?");
+  // No body moved: a stub when one had a velocity (R4 did not move it), or when the
+  // scene's forces changed no velocity (R3 or R5 gave nothing). A body held at rest
+  // (a pendulum hanging on its hinge) had its velocity changed, then cancelled.
+  const bool pulled = scene.g != Vec3::Zero() || !scene.point_forces.empty();
+  if (k > 0 && !moved && loop.reason.empty() && mover >= 0) {
+    warnings.push_back("no body moved or turned in " + std::to_string(k) +
+                       " steps, though body " + std::to_string(mover) +
+                       " had a velocity: is integrate_position (R4) still a stub?");
+  } else if (k > 0 && !moved && loop.reason.empty() && pulled && !state.velocity_changed) {
+    warnings.push_back("no body's velocity changed in " + std::to_string(k) +
+                       " steps under the scene's forces: are apply_force and apply_gravity "
+                       "(R3) or integrate_velocity (R5) still stubs?");
   }
   const Totals t1 = totals(scene, bodies);
   files.trace.commit();

@@ -512,7 +512,11 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
     apply_force(b, pf.F, b.x + b.q.toRotationMatrix() * pf.point_body);
   }
   // Integrate velocities.
-  for (Body& b : bodies) integ.velocity(b, h);
+  for (Body& b : bodies) {
+    const Vec3 v0 = b.v, w0 = b.omega;
+    integ.velocity(b, h);
+    state.velocity_changed = state.velocity_changed || b.v != v0 || b.omega != w0;
+  }
   // Constraint impulses: hinges, then contacts.
   for (const Hinge& hg : scene.hinges) {
     if (hg.revolute) {

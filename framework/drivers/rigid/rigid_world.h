@@ -107,6 +107,9 @@ struct StepState {
   std::vector<std::vector<Contact>> contacts;  // [body * planes + plane][point]
   double hinge_angle = 0;  // after the last step: the largest angle between a revolute
                            // hinge's body axis and its axis (rad)
+  // Has a velocity update (forces and R5, before the constraints) changed any body's
+  // velocity or angular velocity in some step? What the run's stub warnings ask.
+  bool velocity_changed = false;
 };
 
 // One whole step of every body: forces, velocities, hinges, contacts, positions.

@@ -1,6 +1,7 @@
 // What an integrator sees of a particle system: accelerations a(x, v).
 #pragma once
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -52,10 +53,12 @@ class Dynamics {
 
  protected:
   virtual void eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const = 0;
-  // Dynamics whose per_particle() is true override this; the default, never
-  // called then, evaluates nothing.
+  // Dynamics whose per_particle() is true override this; the default says
+  // that a step asked for blocks of a Dynamics that has none.
   virtual void eval_block(Eigen::Index /*first*/, const Mat2X& /*x*/, const Mat2X& /*v*/,
-                          Mat2X& /*a*/) const {}
+                          Mat2X& /*a*/) const {
+    throw std::logic_error("Dynamics::eval_block: this Dynamics is not per_particle()");
+  }
 
  private:
   mutable long evals_ = 0, unconverged_ = 0;

@@ -45,10 +45,12 @@ WB_PROBE("C4", "no-slide-no-push",
   P.simple();
   run(P, Vec2(0, 1), 0, 0.5, 2, Vec2(0, -0.3));
 }
-// The cone, in one output: inside it, outside it, on its edge (each column: the impulse and v).
+// The cone, in one output: inside it, outside it, on its edge and at its tip (at rest with no
+// normal impulse: m |v_t| = mu jn = 0, still static), each column the impulse and v. Every
+// mistake in the cone test shows here, the tip's strict comparison too.
 WB_PROBE("C4", "cone",
-         "three contacts on a tilted plane: m |v_t| inside, outside and on the edge of the cone "
-         "mu jn") {
+         "four contacts on a tilted plane: m |v_t| inside, outside and on the edge of the cone "
+         "mu jn, and at its tip (at rest, jn = 0)") {
   P.call("friction_impulse");
   struct Case {
     double jn, mu, m;
@@ -56,9 +58,10 @@ WB_PROBE("C4", "cone",
   };
   const Case cs[] = {{2, 0.5, 0.5, 1.5 * kT + 0.3 * kN},
                      {1, 0.5, 4, 0.2 * kT + 0.3 * kN},
-                     {2, 0.5, 2, 0.5 * kT + 0.25 * kN}};
-  Eigen::MatrixXd in(5, 3), out(3, 3);
-  for (int k = 0; k < 3; ++k) {
+                     {2, 0.5, 2, 0.5 * kT + 0.25 * kN},
+                     {0, 0.5, 2, Vec2(0, 0)}};
+  Eigen::MatrixXd in(5, 4), out(3, 4);
+  for (int k = 0; k < 4; ++k) {
     Vec2 v = cs[k].v;
     in.col(k) << cs[k].jn, cs[k].mu, cs[k].m, v;
     const double j = friction_impulse(kN, cs[k].jn, cs[k].mu, cs[k].m, v);

@@ -1,7 +1,7 @@
 // Diagnosis probes of C5 (tests/common/wb_probe.h): prepare_contact (a pair and a plane, above
 // and below the threshold), warm_start_contact, and one solve_contact from a closing contact,
-// from stored totals that must be partly taken back, with friction on stored totals at its
-// bound and within it.
+// from stored totals that must be taken back, with friction on stored totals at its bound (the
+// normal total partly taken back) and within it.
 #include "contact_solver.h"
 #include "wb_probe.h"
 
@@ -44,8 +44,15 @@ void solve(wbprobe::Probe& P, const wb::VecX& w, Contact c, wb::Mat2X v) {
   P.call("solve_contact");
   P.in("w", w), contact_in(P, c), P.in("v", v);
   const double dPn = solve_contact(w, c, v);
-  P.group("everything");  // one part's mistakes change some, another's others
-  P.out("returned", dPn), contact_out(P, c), P.out("v", v);
+  // The normal step's outputs apart from the friction's: a mistake in the friction bound never
+  // changes the normal total (the friction acts along the tangent), one in the accumulated
+  // normal total changes both (the bound follows the total).
+  P.group("the normal total");
+  P.out("returned", dPn), P.out("c.Pn", c.Pn);
+  P.group("the friction total and v");
+  P.out("c.Pt", c.Pt), P.out("v", v);
+  P.group("the normal total");
+  P.out("c.mass_n", c.mass_n), P.out("c.bias", c.bias);
   P.group("");
 }
 const Vec2 kN(0.6, 0.8);
@@ -110,16 +117,22 @@ WB_PROBE("C5", "solve-closing",
          "solve_contact: the pair closing at 1.5 m/s, nothing stored, mu = 0.4") {
   solve(P, kW, contact(0, 1, kN, 0.4, 0, 0, 0.375, 0.9), kV);
 }
-// Stored totals larger than needed: the total is partly taken back, and stays >= 0.
+// Stored totals larger than needed: the total is taken back, and stays >= 0. A detail: the
+// friction probe below takes a total partly back.
 WB_PROBE("C5", "solve-take-back",
          "solve_contact: the pair separating at 0.5 m/s with Pn = 0.3 stored") {
+  P.simple();
   solve(P, kW, contact(0, 1, kN, 0, 0.3, 0, 0.375, 0), cols({{0.2, 0.2}, {-0.1, -0.2}}));
 }
-// Friction on stored totals: the bound is mu times the total, on the total; the sliding along
-// +perp(n), so that the friction total is negative.
+// Friction on stored totals: the bound is mu times the normal total of this iteration, on the
+// friction total; the sliding fast along +perp(n), so that the friction total is negative and
+// at its bound (any mass along the sliding gives the same total). The pair separates at 0.4
+// m/s: the stored normal total 0.5 is partly taken back (to 0.35), so that every mistake of
+// the accumulated total shows here as one of the bound does (the bound follows the total).
 WB_PROBE("C5", "solve-friction",
-         "solve_contact: the pair sliding fast with Pn = 0.5 and Pt = -0.15 stored, mu = 0.4") {
-  solve(P, kW, contact(0, 1, kN, 0.4, 0.5, -0.15, 0.375, 0), cols({{-1.7, 1.6}, {0.3, 0.4}}));
+         "solve_contact: the pair separating at 0.4 m/s and sliding fast with Pn = 0.5 and "
+         "Pt = -0.15 stored, mu = 0.4") {
+  solve(P, kW, contact(0, 1, kN, 0.4, 0.5, -0.15, 0.375, 0), cols({{-1.46, 2.22}, {0.3, 0.4}}));
 }
 // Sliding slowly: the friction stops the sliding within its bound. A detail: a wrong mass
 // along the sliding and a bound applied when it should not be both show here alone.

@@ -6,6 +6,7 @@
 // namespace of its own.
 namespace probe_E2_symplectic_euler {
 
-WB_STEP_PROBES("E2", symplectic_euler_step, "symplectic_euler_step")
+WB_STEP_PROBES("E2", symplectic_euler_step, "symplectic_euler_step",
+               wbprobe::kState | wbprobe::kEach)
 
 }  // namespace probe_E2_symplectic_euler

@@ -20,6 +20,23 @@ void stored_below(wbprobe::Probe& P, const SparseSystem& sys) {
   P.out("what A stores below its diagonal (nothing: only the upper triangle)", below);
 }
 
+// The symmetric matrix A's values stand for, whichever triangle holds them: each entry off
+// the diagonal read from the upper triangle, or from the lower one where the upper holds
+// nothing. A wrong value goes wrong here; a triangle stored the other way round, or both, goes
+// wrong in what A stores below its diagonal alone (the storage, apart from the values).
+Eigen::MatrixXd values(const Eigen::SparseMatrix<double>& A) {
+  Eigen::MatrixXd V(A);
+  if (V.rows() != V.cols()) return V;  // the wrong size shows as it is
+  for (Eigen::Index j = 0; j < V.cols(); ++j)
+    for (Eigen::Index i = 0; i < j; ++i) V(i, j) = V(j, i) = V(i, j) != 0 ? V(i, j) : V(j, i);
+  return V;
+}
+
+// A as a solver that reads its upper triangle sees it (Eigen::Upper, as backward_euler does).
+Eigen::MatrixXd as_upper(const Eigen::SparseMatrix<double>& A) {
+  return Eigen::MatrixXd(Eigen::SparseMatrix<double>(A.selfadjointView<Eigen::Upper>()));
+}
+
 void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
          const Mat2X& xl, const Mat2X& vl, const Mat2X& f_ext, double h, bool definite) {
   P.call("assemble_system");
@@ -28,9 +45,8 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& x0, const Mat
   P.in("h", h), P.in("definite", definite);
   SparseSystem sys;
   assemble_system(net, x0, v0, xl, vl, f_ext, h, definite, sys);
-  // A's stored upper triangle, mirrored: the symmetric matrix it stands for.
-  const Eigen::SparseMatrix<double> A = sys.A.selfadjointView<Eigen::Upper>();
-  P.out("A", A), P.out("b", sys.b);
+  P.out("A (the values, from whichever triangle stores them)", values(sys.A));
+  P.out("b", sys.b);
   stored_below(P, sys);
 }
 
@@ -54,6 +70,22 @@ WB_PROBE("I3", "one-anchored",
   net.springs = {spring(0, -1, 10, 0.5, 0, Vec2(0, 0))};
   const Mat2X x = wbprobe::cols({{1, 0}}), v = wbprobe::cols({{0, 0}});
   run(P, net, x, v, x, v, wbprobe::cols({{0, 0}}), 0.1, true);
+}
+// What a solver reading the upper triangle sees (a detail: a storage mistake shows here as a
+// wrong value, and it tells the lower triangle from both).
+WB_PROBE("I3", "upper",
+         "two free particles on a stretched spring: A read from its upper "
+         "triangle (Eigen::Upper)") {
+  P.simple();
+  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {-0.75, 0.5}});
+  P.call("assemble_system");
+  improbe::network_in(P, pair(2));
+  P.in("x0", kX), P.in("v0", kV), P.in("xl", kX + 0.1 * vl), P.in("vl", vl);
+  P.in("f_ext", wbprobe::cols({{0, -1.5}, {0.5, 0}})), P.in("h", 0.1), P.in("definite", true);
+  SparseSystem sys;
+  assemble_system(pair(2), kX, kV, kX + 0.1 * vl, vl, wbprobe::cols({{0, -1.5}, {0.5, 0}}), 0.1,
+                  true, sys);
+  P.out("A read from its upper triangle, mirrored", as_upper(sys.A));
 }
 // The matrix and b at a Newton iterate (x_l = x0 + h v_l).
 WB_PROBE("I3", "iterate",
