@@ -4,8 +4,10 @@
 // and at which states (the first four evaluations), so that a wrong evaluation point shows
 // apart from a wrong update.
 #pragma once
+#include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,13 +19,15 @@ namespace wbprobe {
 using Accel = std::function<void(const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a)>;
 
 // A step of `name` (the step function `fn`) of size h from (x, v) under a(x, v) = `accel`,
-// described in words by `words`. The scratch holds NaN on entry (its contents are undefined).
+// described in words by `words`. The scratch holds NaN on entry (its contents are undefined:
+// any value is one a correct step ignores), or `fill` when given, and a note then says so.
 // What a step probe records: the new state, the evaluations, or both; kEach: the new state
 // particle by particle (P.out_each), where a particle may go wrong alone.
 enum Record { kState = 1, kEvaluations = 2, kBoth = 3, kEach = 4 };
 
 inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& words,
-                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h, int what = kBoth) {
+                 const Accel& accel, wb::Mat2X x, wb::Mat2X v, double h, int what = kBoth,
+                 std::optional<double> fill = std::nullopt) {
   std::vector<wb::Mat2X> seen_x, seen_v;
   wb::LambdaDynamics dyn([&](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
     seen_x.push_back(xx), seen_v.push_back(vv);
@@ -33,9 +37,13 @@ inline void step(Probe& P, wb::StepFn fn, const char* name, const std::string& w
   s.resize(x.cols());
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   for (wb::Mat2X* m : {&s.a0, &s.a1, &s.a2, &s.a3, &s.x1, &s.v1, &s.xs, &s.vs})
-    m->setConstant(nan);
+    m->setConstant(fill.value_or(nan));
   P.call(name);
   P.note("dyn: a(x, v) = " + words);
+  if (fill)
+    P.note(*fill == 0          ? "the scratch s holds zeros on entry"
+           : std::isnan(*fill) ? "the scratch s holds NaN on entry"
+                               : "the scratch s holds " + std::to_string(*fill) + " on entry");
   P.in("h", h), P.in("x", x), P.in("v", v);
   fn(dyn, h, x, v, s);
   if ((what & kState) && (what & kEach))
@@ -97,7 +105,11 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
 // `general`: how the general probe records the new state, kState or kState | kEach (particle
 // by particle: where a position moved with the new velocity makes a velocity mistake change x
 // and v of every particle, as a loop that skips the last particle changes them of that one).
-#define WB_STEP_PROBES(task, fn, name, general)                                                  \
+// `which`: kTellParts, or kDetailsOnly where another probe tells the parts apart (midpoint's
+// two-stage steps: tests/midpoint/probes/midpoint_probes.h says why).
+enum StepProbes { kTellParts, kDetailsOnly };
+
+#define WB_STEP_PROBES(task, fn, name, general, which)                                           \
   WB_PROBE(task, "free", "one particle, no force: h = 0.1") {                                    \
     P.simple();                                                                                  \
     wbprobe::step(P, &fn, name, "0", wbprobe::no_force(), wbprobe::cols({{1, 2}}),               \
@@ -123,6 +135,7 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
   }                                                                                              \
   WB_PROBE(task, "spring",                                                                       \
            "three moving particles on springs to the origin, a = -4 x, h = 0.25") {              \
+    if ((which) == wbprobe::kDetailsOnly) P.simple();                                            \
     wbprobe::step(P, &fn, name, "-4 x", wbprobe::spring(4),                                      \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
@@ -134,6 +147,7 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kState);      \
   }                                                                                              \
   WB_PROBE(task, "general", "three moving particles, a = -4 x - 3 v + (0, -10), h = 0.25") {     \
+    if ((which) == wbprobe::kDetailsOnly) P.simple();                                            \
     wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, general);              \
@@ -141,6 +155,7 @@ inline Accel mixed(double w2, double c, const wb::Vec2& g) {
   WB_PROBE(task, "evaluations",                                                                  \
            "where the forces are evaluated: three moving particles, a = -4 x - 3 v + (0, -10), " \
            "h = 0.25") {                                                                         \
+    if ((which) == wbprobe::kDetailsOnly) P.simple();                                            \
     wbprobe::step(P, &fn, name, "-4 x - 3 v + (0, -10)", wbprobe::mixed(4, 3, wb::Vec2(0, -10)), \
                   wbprobe::cols({{1, 2}, {-0.5, 0}, {2, -1}}),                                   \
                   wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25,                        \

@@ -1,7 +1,7 @@
 // Diagnosis probes of C5 (tests/common/wb_probe.h): prepare_contact (a pair and a plane, above
-// and below the threshold), warm_start_contact, and one solve_contact from a closing contact,
-// from stored totals that must be taken back, with friction on stored totals at its bound (the
-// normal total partly taken back) and within it.
+// and below the threshold), warm_start_contact, and solve_contact: once from a closing contact,
+// from stored totals that must be taken back and with friction within its bound; twice on one
+// contact (the normal total added to, then partly taken back) with friction at its bound.
 #include "contact_solver.h"
 #include "wb_probe.h"
 
@@ -40,20 +40,34 @@ void warm(wbprobe::Probe& P, const wb::VecX& w, const Contact& c, wb::Mat2X v) {
   warm_start_contact(w, c, v);
   P.out("v", v);
 }
-void solve(wbprobe::Probe& P, const wb::VecX& w, Contact c, wb::Mat2X v) {
-  P.call("solve_contact");
-  P.in("w", w), contact_in(P, c), P.in("v", v);
-  const double dPn = solve_contact(w, c, v);
-  // The normal step's outputs apart from the friction's: a mistake in the friction bound never
-  // changes the normal total (the friction acts along the tangent), one in the accumulated
-  // normal total changes both (the bound follows the total).
+// What solve_contact returned and left. The normal step's outputs apart from the friction's: a
+// mistake in the friction bound never changes the normal total (the friction acts along the
+// tangent), one in the accumulated normal total changes both (the bound follows the total).
+void solve_out(wbprobe::Probe& P, const char* returned, double dPn, const Contact& c,
+               const wb::Mat2X& v) {
   P.group("the normal total");
-  P.out("returned", dPn), P.out("c.Pn", c.Pn);
+  P.out(returned, dPn), P.out("c.Pn", c.Pn);
   P.group("the friction total and v");
   P.out("c.Pt", c.Pt), P.out("v", v);
   P.group("the normal total");
   P.out("c.mass_n", c.mass_n), P.out("c.bias", c.bias);
   P.group("");
+}
+void solve(wbprobe::Probe& P, const wb::VecX& w, Contact c, wb::Mat2X v) {
+  P.call("solve_contact");
+  P.in("w", w), contact_in(P, c), P.in("v", v);
+  const double dPn = solve_contact(w, c, v);
+  solve_out(P, "returned", dPn, c, v);
+}
+// Two iterations on one contact, the velocities changed between them by `push` on particle 0
+// (what another contact would do): what the second leaves.
+void solve_twice(wbprobe::Probe& P, const wb::VecX& w, Contact c, wb::Mat2X v, const Vec2& push) {
+  P.call("solve_contact (2 times)");
+  P.in("w", w), contact_in(P, c), P.in("v", v), P.in("dv of particle 0 between the calls", push);
+  solve_contact(w, c, v);
+  if (v.cols() > 0) v.col(0) += push;
+  const double dPn = solve_contact(w, c, v);
+  solve_out(P, "returned (2nd call)", dPn, c, v);
 }
 const Vec2 kN(0.6, 0.8);
 const wb::VecX kW = vec({2.0 / 3, 2.0});  // masses 1.5 and 0.5
@@ -126,13 +140,19 @@ WB_PROBE("C5", "solve-take-back",
 }
 // Friction on stored totals: the bound is mu times the normal total of this iteration, on the
 // friction total; the sliding fast along +perp(n), so that the friction total is negative and
-// at its bound (any mass along the sliding gives the same total). The pair separates at 0.4
-// m/s: the stored normal total 0.5 is partly taken back (to 0.35), so that every mistake of
-// the accumulated total shows here as one of the bound does (the bound follows the total).
+// at its bound (any mass along the sliding gives the same total). Two iterations on one
+// contact: the pair closing at 0.2 m/s adds to the stored normal total (0.5 to 0.575), then
+// particle 0 is pushed apart (as another contact would) and the total is partly taken back (to
+// 0.425). Every mistake of the accumulated total then shows in the normal total as a wrong
+// value (a total never taken back, one that forgot what was stored), and every mistake of the
+// bound in the friction total (the bound follows the total, call after call).
 WB_PROBE("C5", "solve-friction",
-         "solve_contact: the pair separating at 0.4 m/s and sliding fast with Pn = 0.5 and "
-         "Pt = -0.15 stored, mu = 0.4") {
-  solve(P, kW, contact(0, 1, kN, 0.4, 0.5, -0.15, 0.375, 0), cols({{-1.46, 2.22}, {0.3, 0.4}}));
+         "solve_contact twice: the pair closing at 0.2 m/s and sliding fast with Pn = 0.5 and "
+         "Pt = -0.15 stored, mu = 0.4; then particle 0 pushed apart at 0.4 m/s") {
+  const Contact c = contact(0, 1, kN, 0.4, 0.5, -0.15, 0.375, 0);
+  const wb::Mat2X v = cols({{-1.82, 1.74}, {0.3, 0.4}});
+  const Vec2 push = 0.4 * kN;
+  solve_twice(P, kW, c, v, push);
 }
 // Sliding slowly: the friction stops the sliding within its bound. A detail: a wrong mass
 // along the sliding and a bound applied when it should not be both show here alone.

@@ -6,6 +6,7 @@
 // namespace of its own.
 namespace probe_E1_explicit_euler {
 
-WB_STEP_PROBES("E1", explicit_euler_step, "explicit_euler_step", wbprobe::kState)
+WB_STEP_PROBES("E1", explicit_euler_step, "explicit_euler_step", wbprobe::kState,
+               wbprobe::kTellParts)
 
 }  // namespace probe_E1_explicit_euler

@@ -7,6 +7,6 @@
 namespace probe_E2_symplectic_euler {
 
 WB_STEP_PROBES("E2", symplectic_euler_step, "symplectic_euler_step",
-               wbprobe::kState | wbprobe::kEach)
+               wbprobe::kState | wbprobe::kEach, wbprobe::kTellParts)
 
 }  // namespace probe_E2_symplectic_euler

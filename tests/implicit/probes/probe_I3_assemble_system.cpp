@@ -60,6 +60,20 @@ SpringNetwork pair(double rest) {
 }
 const Mat2X kX = wbprobe::cols({{0, 0}, {3, 4}});
 const Mat2X kV = wbprobe::cols({{0.5, -1}, {-0.5, 0.25}});
+
+// Three particles in a chain, the middle one pinned, drag 0.5; its state and a Newton
+// iterate's velocity (the middle particle's 0).
+SpringNetwork chain() {
+  SpringNetwork net;
+  net.m = Eigen::Vector3d(1.5, 2, 0.5);
+  net.drag = 0.5;
+  net.pinned = {0, 1, 0};
+  net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
+  return net;
+}
+const Mat2X kChainX = wbprobe::cols({{0, 0}, {3, 4}, {4, 2}});
+const Mat2X kChainV = wbprobe::cols({{0.5, -1}, {0, 0}, {-0.5, 0.25}});
+const Mat2X kChainVl = wbprobe::cols({{0.25, -0.5}, {0, 0}, {-0.75, 0.5}});
 }  // namespace
 
 WB_PROBE("I3", "one-anchored",
@@ -111,14 +125,8 @@ WB_PROBE("I3", "compressed-clamped",
 // A pinned particle between two free ones.
 WB_PROBE("I3", "pinned",
          "three particles in a chain, the middle one pinned, at a Newton iterate") {
-  SpringNetwork net;
-  net.m = Eigen::Vector3d(1.5, 2, 0.5);
-  net.drag = 0.5;
-  net.pinned = {0, 1, 0};
-  net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
-  const Mat2X x = wbprobe::cols({{0, 0}, {3, 4}, {4, 2}});
-  const Mat2X v = wbprobe::cols({{0.5, -1}, {0, 0}, {-0.5, 0.25}});
-  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {0, 0}, {-0.75, 0.5}});
+  const SpringNetwork net = chain();
+  const Mat2X &x = kChainX, &v = kChainV, &vl = kChainVl;
   run(P, net, x, v, x + 0.1 * vl, vl, wbprobe::cols({{0, -1}, {0, -1}, {0, -1}}), 0.1, true);
 }
 
@@ -131,14 +139,8 @@ WB_PROBE("I3", "pinned",
 WB_PROBE("I3", "again",
          "the pinned chain assembled at the start, then again into the same sys at a Newton "
          "iterate: minus a first assembly there") {
-  SpringNetwork net;
-  net.m = Eigen::Vector3d(1.5, 2, 0.5);
-  net.drag = 0.5;
-  net.pinned = {0, 1, 0};
-  net.springs = {spring(0, 1, 20, 2, 0.3), spring(1, 2, 15, 1, 0.2)};
-  const Mat2X x = wbprobe::cols({{0, 0}, {3, 4}, {4, 2}});
-  const Mat2X v = wbprobe::cols({{0.5, -1}, {0, 0}, {-0.5, 0.25}});
-  const Mat2X vl = wbprobe::cols({{0.25, -0.5}, {0, 0}, {-0.75, 0.5}});
+  const SpringNetwork net = chain();
+  const Mat2X &x = kChainX, &v = kChainV, &vl = kChainVl;
   const Mat2X xl = x + 0.1 * vl;
   const Mat2X f = wbprobe::cols({{0, -1}, {0, -1}, {0, -1}});
   P.call("assemble_system");

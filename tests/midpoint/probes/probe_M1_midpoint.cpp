@@ -1,4 +1,4 @@
-// Diagnosis probes of M1 (tests/midpoint/probes/midpoint_probes.h).
+// Diagnosis probes of M1 (tests/midpoint/probes/midpoint_probes.h, tests/common/wb_probe_step.h).
 #include "midpoint.h"
 #include "midpoint_probes.h"
 
@@ -17,9 +17,9 @@ MIDPOINT_STEP_DETAILS("M1", midpoint_step, "midpoint_step")
 WB_PROBE("M1", "launch",
          "three particles thrown from the centre of a spring, a = -4 x, h = 0.25: x, v and "
          "the evaluations") {
-  midprobe::step(P, &midpoint_step, "midpoint_step", "-4 x", wbprobe::spring(4),
-                 wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}),
-                 wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, 0.0);
+  wbprobe::step(P, &midpoint_step, "midpoint_step", "-4 x", wbprobe::spring(4),
+                wbprobe::cols({{0, 0}, {0, 0}, {0, 0}}),
+                wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kBoth, 0.0);
 }
 
 }  // namespace probe_M1_midpoint
