@@ -50,6 +50,28 @@ const char* const kWithVortex =  // the vortex reads positions: the stages' posi
     R"({"forces":[{"type":"gravity","g":[0,-9.81]},{"type":"damping","b":0.1},)"
     R"({"type":"vortex","center":[1,2],"omega":3,"core":5,"drag":0.5}]})";
 
+// A scene's world and the state a test steps: one set-up for the tests below.
+struct Run {
+  wb::Scene scene;
+  wb::ForceWorld world;
+  wb::Mat2X x, v;
+  wb::Scratch s;
+  Run(Eigen::Index n, const char* forces)
+      : scene(make_scene(n, forces)), world(scene), x(scene.x), v(scene.v) {
+    s.resize(n);
+  }
+  Run(const Run&) = delete;  // world's dynamics refers to its own terms
+};
+
+// The bookkeeping's energy of (x, v) is the energy summed apart, to rounding (about n eps
+// of the largest term).
+bool checked_agrees(const wb::ForceWorld& world, const wb::Mat2X& x, const wb::Mat2X& v) {
+  bool finite = false;
+  const double checked = world.checked_energy(x, v, finite);
+  const wb::Energy e = world.energy(x, v);
+  return finite && std::abs(checked - e.total()) <= 1e-12 * (std::abs(e.total()) + e.kinetic);
+}
+
 }  // namespace
 
 TEST_CASE("rk4 by blocks: the same bits as the whole arrays, four evaluations a step",
@@ -80,38 +102,20 @@ TEST_CASE("rk4 by blocks: the same bits as the whole arrays, four evaluations a 
 
 TEST_CASE("rk4 by blocks: the step's energy sums are the separate pass's, for that state only",
           "[physics][rk4]") {
-  const Eigen::Index n = 1000;
-  const wb::Scene scene = make_scene(n, kGravityDamping);
-  const wb::ForceWorld world(scene);
-  wb::Mat2X x = scene.x, v = scene.v;
-  wb::Scratch s;
-  s.resize(n);
-  wb::rk4_step(world.dynamics(), 0.01, x, v, s);
-  bool finite_step = false, finite_pass = false;
-  const double from_step = world.checked_energy(x, v, finite_step);  // the step's sums
-  const double from_pass = world.checked_energy(x, v, finite_pass);  // taken once: a pass
-  const double exact = world.energy(x, v).total();
-  CHECK(finite_step);
-  CHECK(finite_pass);
-  // The same terms summed in another order: rounding, about n eps of the largest term.
-  const double scale = std::abs(exact) + 0.5 * (v.colwise().squaredNorm().dot(scene.m));
-  CHECK(std::abs(from_step - exact) <= 1e-12 * scale);
-  CHECK(std::abs(from_pass - exact) <= 1e-12 * scale);
+  Run r(1000, kGravityDamping);
+  wb::rk4_step(r.world.dynamics(), 0.01, r.x, r.v, r.s);
+  CHECK(checked_agrees(r.world, r.x, r.v));  // the step's sums
+  CHECK(checked_agrees(r.world, r.x, r.v));  // taken once: now a pass of its own
   // Sums are used only for the arrays the step wrote: a copy of the state, or the state
   // after another step taken through the whole path, is summed anew.
-  wb::Mat2X x2 = x, v2 = v;
-  wb::rk4_step(world.dynamics(), 0.01, x, v, s);
-  bool finite = false;
-  const double e2 = world.energy(x2, v2).total();
-  CHECK(std::abs(world.checked_energy(x2, v2, finite) - e2) <=
-        1e-12 * (std::abs(e2) + world.energy(x2, v2).kinetic));
-  const Whole whole(world.dynamics());
-  wb::rk4_step(world.dynamics(), 0.01, x, v, s);  // sums ready for (x, v) ...
-  wb::rk4_step(whole, 0.01, x, v, s);             // ... which this step moves again
-  v.col(3) *= 100.0;
-  const double e3 = world.energy(x, v).total();
-  CHECK(std::abs(world.checked_energy(x, v, finite) - e3) <=
-        1e-12 * (std::abs(e3) + world.energy(x, v).kinetic));
+  const wb::Mat2X x2 = r.x, v2 = r.v;
+  wb::rk4_step(r.world.dynamics(), 0.01, r.x, r.v, r.s);
+  CHECK(checked_agrees(r.world, x2, v2));
+  const Whole whole(r.world.dynamics());
+  wb::rk4_step(r.world.dynamics(), 0.01, r.x, r.v, r.s);  // sums ready for (x, v) ...
+  wb::rk4_step(whole, 0.01, r.x, r.v, r.s);               // ... which this step moves again
+  r.v.col(3) *= 100.0;
+  CHECK(checked_agrees(r.world, r.x, r.v));
 }
 
 TEST_CASE("rk4 by blocks: a damped fall matches its closed form to RK4's error",
@@ -122,13 +126,11 @@ TEST_CASE("rk4 by blocks: a damped fall matches its closed form to RK4's error",
   // is below 1e-10 m/s; kTol = 1e-8 (relative to the speeds, 10 m/s) leaves room.
   constexpr double kTol = 1e-8;
   const Eigen::Index n = 700;
-  const wb::Scene scene = make_scene(n, kGravityDamping);
-  const wb::ForceWorld world(scene);
-  wb::Mat2X x = scene.x, v = scene.v;
-  wb::Scratch s;
-  s.resize(n);
+  Run r(n, kGravityDamping);
+  const wb::Scene& scene = r.scene;
+  const wb::Mat2X &x = r.x, &v = r.v;
   const double h = 0.01, b = 0.4, t = 2.0;
-  for (int k = 0; k < 200; ++k) wb::rk4_step(world.dynamics(), h, x, v, s);
+  for (int k = 0; k < 200; ++k) wb::rk4_step(r.world.dynamics(), h, r.x, r.v, r.s);
   const wb::Vec2 g(0.3, -9.81);
   double worst = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
