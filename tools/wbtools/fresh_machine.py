@@ -314,7 +314,8 @@ def readme_commands(readme):
 # tools/check's stages that need the full build, run with --verify on the instructor's (the
 # report's) instead of a second build on the host: (what, command).
 BUILD_CHECKS = [
-    ("every skeleton run on every default scene warns it is a stub", "tools/pattern stubs"),
+    ("every skeleton run on every default scene warns it is a stub, no solution run does",
+     "tools/pattern stubs"),
     ("no scene lets a do-nothing step score zero error", "tools/pattern periods"),
     ("a figure of a stub run says so", "tools/pattern stubfigs"),
     ("graded tests against the solutions", "ctest --preset default -L solution --no-tests=error"),

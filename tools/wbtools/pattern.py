@@ -4,7 +4,9 @@ Each stage covers every lab folder it finds (labs/<lab>/, scenes/<lab>/, handout
 tests/<lab>/), so a new lab is checked without anyone remembering it:
 
   stubs     every lab's skeleton (build/bin/<lab>) on every default scene prints a stub
-            warning on stderr ("<lab>: warning: ...") and in its summary's "warnings"
+            warning on stderr ("<lab>: warning: ...") and in its summary's "warnings";
+            its solution (build/bin/<lab>-solution, where solutions/<lab> exists) on the
+            same scenes warns of nothing (about 10 s)
   periods   every lab's skeleton sweep on every scene with an exact solution ("exact" key)
             gives each integrator an error well above round-off: no scene ends where a step
             that does nothing scores 0 (a whole period); on a scene whose exact values are
@@ -117,6 +119,25 @@ def stage_stubs(build, out, verbose):
                     "the lab's glue detect what its stubs do")
             elif verbose:
                 print(f"ok: {where}: {warned[0].strip()}")
+        # The converse: the solution runs every default scene without being called a stub
+        # (a warning there would mark the solution's figures "stub" too).
+        sol = os.path.join(build, "bin", f"{lab}-solution")
+        if not os.path.isdir(os.path.join(ROOT, "solutions", lab)):
+            continue  # a student's pack: no solution to run
+        if not os.path.exists(sol):
+            findings.append(f"{rel(sol)}: not built (the solution of lab {lab}); build first "
+                            "(cmake --build --preset default)")
+            continue
+        for scene in scenes(lab):
+            status, stdout, stderr = run([sol, "--scene", rel(scene)])
+            s = summary_line(stdout)
+            where = f"{rel(scene)} on the solution ({rel(sol)})"
+            if status != 0 or s is None:
+                why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
+                findings.append(f"{where}: the run failed: {why}")
+            elif s.get("stub") or s.get("warnings"):
+                findings.append(f"{where}: called a stub: {(s.get('warnings') or ['?'])[0]}: "
+                                "the lab's stub warnings must hold only for what stubs do")
     return findings
 
 
