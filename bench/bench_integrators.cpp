@@ -20,6 +20,8 @@
 //   loop_check[_separate]/<n>     the loop's per-step bookkeeping alone (one pass, or
 //                                 as before issue 34)
 //   blocks_nosums/rk4/<n>         rk4 by blocks without the bookkeeping's sums
+//   bookkeeping/rk4/<n>           steps without the sums and steps with them and the
+//                                 loop's check, alternately: their paired share
 //   odeint_fused/rk4/<n>          a plain Boost.Odeint runge_kutta4_classic program
 //                                 with a fused right-hand side
 // and two bandwidth measurements (a[i] = b[i] + s c[i]):
@@ -40,6 +42,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -633,6 +636,60 @@ void bm_blocks_nosums(benchmark::State& st) {
   st.SetLabel("framework/src/rk4.cpp, no bookkeeping sums");
 }
 
+// The bookkeeping's share, paired (bookkeeping/rk4/<n>): every timed iteration
+// takes one rk4 step through BlocksNoSums (no sums), then one through the
+// world's own dynamics followed by the run loop's per-step check
+// (World::checked_energy, which takes the step's sums), on the same arrays, each
+// timed by the steady clock. Taken alternately, both see the same caches and
+// clock speed, so the difference is not the noise of two benchmarks timed apart
+// (run/ and blocks_nosums/ move by +-3 % from one to the other). Counters: the
+// median over iterations of (with - without) / with (`share`), and the mean
+// times of both steps.
+void bm_bookkeeping(benchmark::State& st) {
+  using Clock = std::chrono::steady_clock;
+  const long n = long(st.range(0));
+  const wb::Scene scene = make_scene(n);
+  const wb::ForceWorld world(scene);
+  const BlocksNoSums nosums(world.dynamics());
+  wb::Mat2X x = scene.x, v = scene.v;
+  wb::Scratch s;
+  s.resize(n);
+  bool finite = true;
+  wb::rk4_step(nosums, kH, x, v, s);  // warm-up: the first steps may allocate
+  wb::rk4_step(world.dynamics(), kH, x, v, s);
+  benchmark::DoNotOptimize(world.checked_energy(x, v, finite));
+  std::vector<double> shares;
+  shares.reserve(100000);
+  double without = 0, with = 0;
+  const long before = allocations();
+  for (auto _ : st) {
+    const Clock::time_point t0 = Clock::now();
+    wb::rk4_step(nosums, kH, x, v, s);
+    benchmark::ClobberMemory();
+    const Clock::time_point t1 = Clock::now();
+    wb::rk4_step(world.dynamics(), kH, x, v, s);
+    benchmark::DoNotOptimize(world.checked_energy(x, v, finite));
+    benchmark::ClobberMemory();
+    const Clock::time_point t2 = Clock::now();
+    const double a = std::chrono::duration<double>(t1 - t0).count();
+    const double b = std::chrono::duration<double>(t2 - t1).count();
+    without += a;
+    with += b;
+    if (shares.size() < shares.capacity()) shares.push_back((b - a) / b);
+    st.SetIterationTime(a + b);
+  }
+  const long allocs = allocations() - before;
+  if (!finite) st.SkipWithError("the state is not finite");
+  std::sort(shares.begin(), shares.end());
+  const double iters = double(std::max<benchmark::IterationCount>(1, st.iterations()));
+  st.counters["share"] = shares.empty() ? 0.0 : shares[shares.size() / 2];
+  st.counters["share_of_sums"] = with > 0 ? (with - without) / with : 0.0;
+  st.counters["step_s"] = without / iters;
+  st.counters["step_and_check_s"] = with / iters;
+  report(st, "bookkeeping/rk4", n, allocs, -1);
+  st.SetLabel("rk4 by blocks: + sums + World::checked_energy, against without");
+}
+
 // One step of odeint's runge_kutta4 (see odebench above).
 void odeint_step(odebench::Stepper& stepper, const wb::Dynamics& dyn, odebench::State& state,
                  double h) {
@@ -951,6 +1008,7 @@ void register_all(const std::vector<Method>& all) {
     benchmark::RegisterBenchmark("odeint/rk4", bm_odeint)->Arg(n);
     benchmark::RegisterBenchmark("odeint_fused/rk4", bm_odeint_fused)->Arg(n);
     benchmark::RegisterBenchmark("blocks_nosums/rk4", bm_blocks_nosums)->Arg(n);
+    benchmark::RegisterBenchmark("bookkeeping/rk4", bm_bookkeeping)->Arg(n)->UseManualTime();
 #endif
     for (const Method& method : all) {
       benchmark::RegisterBenchmark(("run/" + std::string(method.name)).c_str(), bm_run, method)

@@ -12,7 +12,10 @@ TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 # odeint: Boost.Odeint's runge_kutta4 on the machinery's dynamics; odeint_fused: a plain
 # runge_kutta4_classic program with a fused right-hand side; run: a whole wb::simulate,
 # timed per step by its own step-loop clock (counters step_loop_cpu_s, step_loop_wall_s)
-KINDS = ("scene", "hand_passes", "hand_fused", "odeint", "odeint_fused", "run")
+# blocks_nosums: rk4 by blocks without the bookkeeping's sums; bookkeeping: steps without and
+# with the bookkeeping taken alternately, its counter `share` the paired share (issue 34)
+KINDS = ("scene", "hand_passes", "hand_fused", "odeint", "odeint_fused", "run", "blocks_nosums",
+         "bookkeeping")
 SINGLE = ("triad_dram", "triad_fit", "loop_check", "loop_check_separate")  # <kind>/<n>
 BOOKKEEPING_TARGET = 0.05  # issue 34: the loop's bookkeeping at most 5 % of the step loop
 TARGET_RATIO = 1.1  # issue target for scene / hand_passes at 10^6 particles
@@ -77,7 +80,8 @@ def load(path):
 
 def split_name(path, i, name):
     """'scene/rk4/1000' -> ('scene', 'rk4', 1000); 'triad_dram/33554432' -> ('triad_dram', None, len)."""
-    parts = [p for p in name.split("/") if ":" not in p]  # drop min_time:, repeats:, ...
+    # drop min_time:, repeats:, ..., and manual_time (bookkeeping/ is timed by hand)
+    parts = [p for p in name.split("/") if ":" not in p and p != "manual_time"]
     try:
         if parts[0] in SINGLE and len(parts) == 2:
             return parts[0], None, int(parts[1])
@@ -95,6 +99,7 @@ def collect(doc, path, time_key):
         raise BadInput(f"{path}: no \"benchmarks\" list at the top level; expected the output of "
                        "bench_integrators --benchmark_format=json")
     runs, medians, allocs, failures = {}, {}, {}, []
+    shares = {}  # bookkeeping/<integrator>/<n>: the paired share of every repetition
     order = {}  # integrator -> position of its first benchmark (the program's teaching order)
     for i, b in enumerate(doc["benchmarks"]):
         if not isinstance(b, dict):
@@ -110,6 +115,14 @@ def collect(doc, path, time_key):
             continue
         run_type = b.get("run_type", "iteration")
         if run_type == "aggregate" and b.get("aggregate_name") != "median":
+            continue
+        if key[0] == "bookkeeping":
+            share = b.get("share")
+            if not isinstance(share, (int, float)) or not math.isfinite(share):
+                raise BadInput(f"{path}: benchmarks[{i}] ({name}): share={share!r}; expected "
+                               "a number")
+            if run_type != "aggregate":
+                shares.setdefault(key, []).append(float(share))
             continue
         t = b.get(time_key)
         unit = b.get("time_unit", "ns")
@@ -134,7 +147,7 @@ def collect(doc, path, time_key):
         med = statistics.median(reps) if reps else medians[key]
         spread = (max(reps) - min(reps)) / med if len(reps) > 1 else math.nan
         times[key] = (med, spread, runs.get(key, {}))
-    return times, allocs, failures, order
+    return times, allocs, failures, order, shares
 
 
 def best(entry):
@@ -225,7 +238,8 @@ def main():
     args = parse_args()
     try:
         doc = load(args.json_file)
-        times, allocs, failures, order = collect(doc, args.json_file, args.time + "_time")
+        times, allocs, failures, order, shares = collect(doc, args.json_file,
+                                                         args.time + "_time")
         ctx = doc.get("context", {}) if isinstance(doc.get("context"), dict) else {}
         listed = str(ctx.get("wb_integrators", "")).split(",")  # the program's teaching order
         order = {name: listed.index(name) if name in listed else len(listed) + k
@@ -274,6 +288,9 @@ def main():
         for k in runs:
             run, scene = times[k][0], times[("scene",) + k[1:]][0]
             line = f"  {k[1]:<16} n={k[2]:<8} {(run - scene) / run:+.3f}"
+            nosums = times.get(("blocks_nosums",) + k[1:])
+            if nosums:
+                line += f"   (run - blocks_nosums) / run {(run - nosums[0]) / run:+.3f}"
             fused = times.get(("odeint_fused",) + k[1:])
             if fused:
                 lo, hi = ratio_range(fused, times[k])
@@ -300,6 +317,15 @@ def main():
                 parts.append(text)
             print(f"  n={n:<8} {times[k][0] / n * 1e9:.2f} ns/particle"
                   + (f" (before {sep[0] / n * 1e9:.2f})" if sep else "") + ": " + ", ".join(parts))
+    if shares:
+        print()
+        print("the bookkeeping, paired (bookkeeping/<integrator>/<n>: steps without the sums and "
+              "steps with them and World::checked_energy, alternately): (with - without) / with, "
+              f"median (min max) over repetitions (target <= {BOOKKEEPING_TARGET:g})")
+        for k in sorted(shares, key=lambda k: (order.get(k[1], 0), k[2])):
+            v = shares[k]
+            print(f"  {k[1]:<6} n={k[2]:<8} {statistics.median(v):.4f} ({min(v):.4f} "
+                  f"{max(v):.4f})")
     big = [r for r in rows if r["n"] == 1000000]
     for r in big:
         if r["vs_hand_passes"] > TARGET_RATIO:

@@ -10,6 +10,7 @@
 // - the blocked step is still RK4: a damped fall matches its closed form to RK4's error.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 
 #include "forces_world.h"
 #include "wb/dynamics.h"
@@ -156,4 +157,67 @@ TEST_CASE("rk4 by blocks: a Dynamics that says it is per-particle without blocks
   wb::Scratch s;
   s.resize(n);
   CHECK_THROWS_AS(wb::rk4_step(NoBlocks{}, 0.01, x, v, s), std::logic_error);
+}
+
+// The bookkeeping's sums run in whichever vector instructions the processor has
+// (a clone per instruction set, chosen when the program loads). Every clone must
+// give the bits of this scalar loop in the same order (no fused multiply-add, no
+// other grouping): else a run's divergence verdict could depend on the machine.
+TEST_CASE("the bookkeeping's energy sums give the same bits as their scalar order",
+          "[physics][rk4]") {
+  struct {  // splitmix64: uniform doubles in [0, 1)
+    std::uint64_t s = 2024;
+    double next() {
+      std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+    }
+  } rng;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Index n = 1 + Eigen::Index(rng.next() * 600);
+    const Eigen::Index first = Eigen::Index(rng.next() * double(n));
+    wb::Mat2X x(2, n), v(2, n);
+    wb::VecX m(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      x.col(i) = wb::Vec2(2e3 * rng.next() - 1e3, 2e3 * rng.next() - 1e3);
+      v.col(i) = wb::Vec2(std::exp(20 * rng.next() - 10), -std::exp(20 * rng.next() - 10));
+      m[i] = std::exp(10 * rng.next() - 5);
+    }
+    // The kernel's order: eight particles at a time in four sums of four lanes
+    // (x, y of particles i, i+1 in sum 0, i+2, i+3 in sum 1, ...), the sums added
+    // as (0 + 1) + (2 + 3) lane by lane, then per axis lanes c + (c + 2), then the
+    // rest of the particles one by one.
+    double sum[4][4] = {}, wsum[4][4] = {};
+    Eigen::Index i = first;
+    for (; i + 7 < n; i += 8)
+      for (int s = 0; s < 4; ++s)
+        for (int l = 0; l < 4; ++l) {
+          const Eigen::Index p = i + 2 * s + l / 2;
+          sum[s][l] += m[p] * (v(l % 2, p) * v(l % 2, p));
+          wsum[s][l] += m[p] * x(l % 2, p);
+        }
+    double kl[4], wl[4];
+    for (int l = 0; l < 4; ++l) {
+      kl[l] = (sum[0][l] + sum[1][l]) + (sum[2][l] + sum[3][l]);
+      wl[l] = (wsum[0][l] + wsum[1][l]) + (wsum[2][l] + wsum[3][l]);
+    }
+    double k[2], w[2];
+    for (int c = 0; c < 2; ++c) {
+      k[c] = kl[c] + kl[c + 2];
+      w[c] = wl[c] + wl[c + 2];
+    }
+    for (; i < n; ++i)
+      for (int c = 0; c < 2; ++c) {
+        k[c] += m[i] * (v(c, i) * v(c, i));
+        w[c] += m[i] * x(c, i);
+      }
+    Eigen::Array2d kk(1.5, -2.5), ww(0.25, 4.0);  // the sums add to what is there
+    wb::add_energy_sums(x, v, m, first, n, kk, ww);
+    INFO("n = " << n << ", first = " << first);
+    CHECK(kk[0] == 1.5 + k[0]);
+    CHECK(kk[1] == -2.5 + k[1]);
+    CHECK(ww[0] == 0.25 + w[0]);
+    CHECK(ww[1] == 4.0 + w[1]);
+  }
 }

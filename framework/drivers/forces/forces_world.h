@@ -107,6 +107,16 @@ class ParticleDynamics : public Dynamics {
 
 Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m);
 
+// k += sum m_i v_i.*v_i and w += sum m_i x_i over particles first .. end - 1
+// (per axis: k / 2 is the kinetic energy, -g . w the uniform gravity's
+// potential): the run's per-step bookkeeping (checked_energy, and rk4's blocks
+// as each ends). Vectorised for the processor it runs on, in one fixed order
+// of operations and without fused multiply-adds (the kernel in
+// forces_world.cpp), so that every processor gets the same bits
+// (tests/physics/test_rk4_blocks.cpp holds it against a scalar loop).
+void add_energy_sums(const Mat2X& x, const Mat2X& v, const VecX& m, Eigen::Index first,
+                     Eigen::Index end, Eigen::Array2d& k, Eigen::Array2d& w);
+
 // World::checked_energy of a world with these forces: the finiteness of x and
 // v, the kinetic energy and the uniform gravity's potential in one pass over
 // the particles, then the other terms' potentials.
