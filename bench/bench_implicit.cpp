@@ -21,6 +21,8 @@
 //                             second (60 steps from rest): the same motion at every n,
 //                             so that times per step compare across sizes
 //   fast_setup/<shape>/<n>    the fast path's analysis alone (once per run)
+//   product/cloth_<how>/<n>   one product with I3's A: Eigen's upper-triangle product
+//                             against the provided UpperBlocks that I4's CG uses
 //   se/<shape>/<n>            symplectic_euler_step on the same springs and
 //                             gravity (network_forces), h = 1e-4 s, inside its
 //                             stability limit (h sqrt(k/m) = 0.1 per spring)
@@ -188,6 +190,38 @@ void se(benchmark::State& state, bool is_cloth) {
   state.counters["n"] = double(n);
 }
 
+// One product with I3's matrix A of the network at rest (the lab's assemble_system, h =
+// 1/60 s): product/<shape>_upper: Eigen's A.selfadjointView<Eigen::Upper>() * x, as
+// Eigen::ConjugateGradient<SparseMatrix, Upper> multiplies; product/<shape>_blocks: the
+// same through the provided UpperBlocks (labs/implicit/upper_blocks.h), as I4's CG does;
+// product/<shape>_blocks_compute: UpperBlocks::compute(A) with its pattern already
+// analysed (once per solve). Counters: stored entries, and the two products' largest
+// difference over |A x| (rounding).
+void product(benchmark::State& state, bool is_cloth, int which) {
+  Setup s = make(is_cloth, state.range(0));
+  SparseSystem sys;
+  assemble_system(s.net, s.x, s.v, s.x, s.v, s.f_ext, 1.0 / 60.0, true, sys);
+  UpperBlocks blocks;
+  blocks.compute(sys.A);
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(sys.A.rows(), -1.0, 1.0);
+  Eigen::VectorXd y(x.size());
+  const Eigen::VectorXd want = sys.A.selfadjointView<Eigen::Upper>() * x;
+  for (auto _ : state) {
+    if (which == 0) {
+      y.noalias() = sys.A.selfadjointView<Eigen::Upper>() * x;
+    } else if (which == 1) {
+      y.noalias() = blocks * x;
+    } else {
+      blocks.compute(sys.A);
+    }
+    benchmark::DoNotOptimize(y.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["nnz"] = double(sys.A.nonZeros());
+  const Eigen::VectorXd got = blocks * x;
+  state.counters["rel_diff"] = (got - want).cwiseAbs().maxCoeff() / want.cwiseAbs().maxCoeff();
+}
+
 void sizes(benchmark::internal::Benchmark* b) {
   for (long n : {100, 1000, 10000, 100000}) b->Arg(n);
   b->Unit(benchmark::kMicrosecond);
@@ -206,6 +240,9 @@ BENCHMARK_CAPTURE(be, cloth_cg, true, NewtonOptions::kCG, false)->Apply(sizes);
 BENCHMARK_CAPTURE(be, rope_cg1, false, NewtonOptions::kCG, true)->Apply(sizes);
 BENCHMARK_CAPTURE(be, cloth_cg1, true, NewtonOptions::kCG, true)->Apply(sizes);
 BENCHMARK_CAPTURE(se, cloth, true)->Apply(sizes);
+BENCHMARK_CAPTURE(product, cloth_upper, true, 0)->Apply(sizes);
+BENCHMARK_CAPTURE(product, cloth_blocks, true, 1)->Apply(sizes);
+BENCHMARK_CAPTURE(product, cloth_blocks_compute, true, 2)->Apply(sizes);
 
 BENCHMARK_CAPTURE(fast_setup, rope, false)->Apply(sizes);
 BENCHMARK_CAPTURE(fast_setup, cloth, true)->Apply(sizes);

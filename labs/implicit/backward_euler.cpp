@@ -10,10 +10,11 @@
 //          views it as the 2n vector of the unknowns);
 //       2. assemble_system at (x, v) into ws.sys -> A, b_0; scale = |M v| + |b_0| + h |f_ext|;
 //          solve A dv = b_0: LDLT: ws.ldlt.analyzePattern(A) if ws.ldlt.rows() != A.rows(),
-//          then ws.ldlt.factorize(A), ws.ldlt.solve(b); CG:
-//          Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper> cg, tolerance
-//          opt.cg_tol * scale / |b|, cg.compute(A), cg.solveWithGuess(b, ws.dv) (ws.dv
-//          resized to 2n zeros first if it is not 2n long); check info() and
+//          then ws.ldlt.factorize(A), ws.ldlt.solve(b); CG: ws.blocks.compute(A),
+//          Eigen::ConjugateGradient<UpperBlocks, Eigen::Lower | Eigen::Upper,
+//          UpperBlocksJacobi> cg, tolerance opt.cg_tol * scale / |b|, cg.compute(ws.blocks),
+//          cg.solveWithGuess(b, ws.dv) (ws.dv resized to 2n zeros first if it is not 2n
+//          long); check info() and
 //          dv.allFinite(); y += dv, ws.dv = dv;
 //       3. one_iteration: residual = |G(y)| from network_forces at (x + h y, y), stop;
 //          else loop: assemble_system at (x + h y, y) -> A, b; residual = |b|;

@@ -13,10 +13,11 @@ bool solve(NewtonWorkspace& ws, const NewtonOptions& opt, double scale,
   const Eigen::SparseMatrix<double>& A = ws.sys.A;
   const Eigen::VectorXd& b = ws.sys.b;
   if (opt.solver == NewtonOptions::kCG) {
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Upper> cg;  // A: upper
+    ws.blocks.compute(A);  // A's upper triangle, read block by block
+    Eigen::ConjugateGradient<UpperBlocks, Eigen::Lower | Eigen::Upper, UpperBlocksJacobi> cg;
     const double bn = b.norm();
     if (bn > 0) cg.setTolerance(opt.cg_tol * scale / bn);
-    cg.compute(A);
+    cg.compute(ws.blocks);
     if (cg.info() != Eigen::Success) return false;
     dv = cg.solveWithGuess(b, guess);
     if (cg.info() != Eigen::Success) return false;
