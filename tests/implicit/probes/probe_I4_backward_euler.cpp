@@ -26,6 +26,7 @@ void run(wbprobe::Probe& P, const SpringNetwork& net, const Mat2X& f_ext, double
   P.in("f_ext", f_ext), P.in("h", h);
   P.in("opt.one_iteration", o.one_iteration), P.in("opt.max_iterations", o.max_iterations);
   P.in("opt.tol", o.tol), P.in("opt.definite", o.definite);
+  if (o.solver == NewtonOptions::kCG) P.in("opt.solver (1: CG)", 1), P.in("opt.cg_tol", o.cg_tol);
   P.in("x", x), P.in("v", v);
   P.tol(1e-6, 1e-8);    // Newton stops within tol = 1e-9 of the scale: alternatives differ there
   NewtonWorkspace ws1;  // empty: a run's first step
@@ -180,6 +181,22 @@ WB_PROBE("I4", "failed-solve",
   P.out("pivot 2^-52, v = 1e300: v' = v and x' = x + h v exactly (1: yes)",
         int(vt == v1 && xt == Mat2X(x1 + v1)));
   P.group("");
+}
+
+// Newton's iteration with CG, from an empty workspace (no warm start to use): each solve must
+// hand the new A to CG's view of it (NewtonWorkspace::blocks, upper_blocks.h). A view never
+// handed A fails; one handed only the first A makes Newton a chord method, linear: at h = 0.1
+// with the exact Jacobian (definite false) it needs more solves than Newton's few.
+WB_PROBE("I4", "cg-newton",
+         "the network by Newton's method with CG (cg_tol 1e-12), h = 0.1, definite false") {
+  SpringNetwork net;
+  Mat2X x, v;
+  improbe::small_network(net, x, v);
+  NewtonOptions o = options();
+  o.solver = NewtonOptions::kCG;
+  o.cg_tol = 1e-12;
+  o.definite = false;
+  run(P, net, wbprobe::cols({{0, -9.8}, {0, -19.6}, {0, -4.9}, {0, -14.7}}), 0.1, o, x, v, false);
 }
 
 // CG's warm start (NewtonWorkspace::dv): a workspace left by an earlier step holds a guess; the
