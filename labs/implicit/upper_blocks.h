@@ -191,11 +191,6 @@ struct generic_product_impl<UpperBlocks, Rhs, SparseShape, DenseShape, GemvProdu
 // a SparseMatrix): z = r ./ diag(A), an entry that is 0 taken as 1.
 class UpperBlocksJacobi {
  public:
-  UpperBlocksJacobi() = default;
-  template <typename MatType>
-  explicit UpperBlocksJacobi(const MatType& A) {
-    compute(A);
-  }
   UpperBlocksJacobi& analyzePattern(const UpperBlocks&) { return *this; }
   UpperBlocksJacobi& factorize(const UpperBlocks& A) {
     inv_.resize(A.rows());

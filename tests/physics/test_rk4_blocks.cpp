@@ -174,6 +174,11 @@ TEST_CASE("the bookkeeping's energy sums give the same bits as their scalar orde
       return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
     }
   } rng;
+  // a b rounded on its own, never fused into the sum it is added to (as the kernel does)
+  auto product = [](double a, double b) {
+    const volatile double ab = a * b;
+    return double(ab);
+  };
   for (int trial = 0; trial < 200; ++trial) {
     const Eigen::Index n = 1 + Eigen::Index(rng.next() * 600);
     const Eigen::Index first = Eigen::Index(rng.next() * double(n));
@@ -194,8 +199,8 @@ TEST_CASE("the bookkeeping's energy sums give the same bits as their scalar orde
       for (int s = 0; s < 4; ++s)
         for (int l = 0; l < 4; ++l) {
           const Eigen::Index p = i + 2 * s + l / 2;
-          sum[s][l] += m[p] * (v(l % 2, p) * v(l % 2, p));
-          wsum[s][l] += m[p] * x(l % 2, p);
+          sum[s][l] += product(m[p], v(l % 2, p) * v(l % 2, p));
+          wsum[s][l] += product(m[p], x(l % 2, p));
         }
     double kl[4], wl[4];
     for (int l = 0; l < 4; ++l) {
@@ -209,8 +214,8 @@ TEST_CASE("the bookkeeping's energy sums give the same bits as their scalar orde
     }
     for (; i < n; ++i)
       for (int c = 0; c < 2; ++c) {
-        k[c] += m[i] * (v(c, i) * v(c, i));
-        w[c] += m[i] * x(c, i);
+        k[c] += product(m[i], v(c, i) * v(c, i));
+        w[c] += product(m[i], x(c, i));
       }
     Eigen::Array2d kk(1.5, -2.5), ww(0.25, 4.0);  // the sums add to what is there
     wb::add_energy_sums(x, v, m, first, n, kk, ww);

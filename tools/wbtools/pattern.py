@@ -98,17 +98,25 @@ def skeleton(lab, build):
 # stubs: every skeleton run says it is a stub
 
 
+def _run_scene(exe, scene, where, findings):
+    """The run's summary and stderr, or (None, stderr) with a finding when it failed."""
+    status, stdout, stderr = run([exe, "--scene", rel(scene)])
+    s = summary_line(stdout)
+    if status != 0 or s is None:
+        why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
+        findings.append(f"{where}: the run failed: {why}")
+        return None, stderr
+    return s, stderr
+
+
 def stage_stubs(build, out, verbose):
     findings = []
     for lab in labs():
         exe = skeleton(lab, build)
         for scene in scenes(lab):
-            status, stdout, stderr = run([exe, "--scene", rel(scene)])
-            s = summary_line(stdout)
             where = f"{rel(scene)} on the skeleton ({rel(exe)})"
-            if status != 0 or s is None:
-                why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
-                findings.append(f"{where}: the run failed: {why}")
+            s, stderr = _run_scene(exe, scene, where, findings)
+            if s is None:
                 continue
             warned = [ln for ln in stderr.splitlines() if f"{lab}: warning:" in ln]
             if not warned or not s.get("warnings"):
@@ -129,13 +137,9 @@ def stage_stubs(build, out, verbose):
                             "(cmake --build --preset default)")
             continue
         for scene in scenes(lab):
-            status, stdout, stderr = run([sol, "--scene", rel(scene)])
-            s = summary_line(stdout)
             where = f"{rel(scene)} on the solution ({rel(sol)})"
-            if status != 0 or s is None:
-                why = (stderr.strip().splitlines() or [f"exit status {status}"])[-1]
-                findings.append(f"{where}: the run failed: {why}")
-            elif s.get("stub") or s.get("warnings"):
+            s, _ = _run_scene(sol, scene, where, findings)
+            if s is not None and (s.get("stub") or s.get("warnings")):
                 findings.append(f"{where}: called a stub: {(s.get('warnings') or ['?'])[0]}: "
                                 "the lab's stub warnings must hold only for what stubs do")
     return findings

@@ -531,6 +531,8 @@ typedef double Lanes __attribute__((vector_size(32)));
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
 #define WB_SUMS_CLONES \
   __attribute__((target_clones("avx2", "default"), optimize("fp-contract=off")))
+#elif defined(__GNUC__) && !defined(__clang__)
+#define WB_SUMS_CLONES __attribute__((optimize("fp-contract=off")))  // FMA-capable targets too
 #else
 #define WB_SUMS_CLONES
 #endif
