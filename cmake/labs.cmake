@@ -238,7 +238,7 @@ endfunction()
 # The diagnosis probes of one lab (tests/<lab>/probes/*.cpp, tests/common/wb_probe.h): fixed
 # inputs on which the grader calls a task's functions to tell mistakes apart. Never built by
 # default: <lab>[-solution]-probes links the lab's code in an ordinary build (an instructor's
-# look), the worker's stubs in the grader's (tools/grader/diagnose.py); <lab>-probes-direct,
+# look), the worker's stubs in the grader's (tools/diagnosis/probes.py); <lab>-probes-direct,
 # with WB_DIRECT_TESTS, links the lab for tools/mutants, which records the catalogue's outputs.
 function(wb_lab_probes lab side suffix)
   file(GLOB probe_sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/${lab}/probes/*.cpp)

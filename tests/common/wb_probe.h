@@ -4,7 +4,7 @@
 // A probe is not a test: it carries no points and checks nothing. It records the inputs it
 // gives and the outputs it gets; tools/mutants records the same probes' outputs for the
 // solution, the skeleton and every catalogued mistake (tests/mutants/<lab>/signatures.json,
-// numbers only), and tools/wbgrade_hints.py compares a submission's outputs with them: the
+// numbers only), and tools/diagnosis/hints.py compares a submission's outputs with them: the
 // first probe whose output differs is the counterexample the student reads, and the outputs
 // that go wrong point at the part of the computation the mistake is in.
 //

@@ -513,8 +513,11 @@ class Grader:
         h.update(json.dumps(parts, default=str).encode())
         for name in sorted(overlay):
             h.update(name.encode() + b"\0" + hashlib.sha256(overlay[name]).digest())
-        for rel in (os.path.join("tools", "wbgrade_hints.py"),
-                    os.path.join("tests", "mutants", lab, "signatures.json")):
+        # The diagnosis' code (its words are part of a report) and this lab's catalogue.
+        ddir = os.path.join(self.repo, "tools", "diagnosis")
+        names = sorted(n for n in os.listdir(ddir) if n.endswith(".py")) if os.path.isdir(ddir) else []
+        for rel in ([os.path.join("tools", "diagnosis", n) for n in names] +
+                    [os.path.join("tests", "mutants", lab, "signatures.json")]):
             try:
                 with open(os.path.join(self.repo, rel), "rb") as f:
                     h.update(rel.encode() + b"\0" + f.read())
@@ -692,7 +695,7 @@ class Grader:
         return reports
 
     def diagnose(self, reports, labs, futures, lists, overlays, probers, workers, end):
-        """Each gradable lab's diagnosis of its failing tasks (diagnose.py), in rep.diagnosis:
+        """Each gradable lab's diagnosis of its failing tasks (tools/diagnosis/probes.py), in rep.diagnosis:
         the probes run after every test, inside the submission's budget; a diagnosis that
         fails or runs out of time never changes a score."""
         if not self.diagnosis:
@@ -713,7 +716,7 @@ class Grader:
 
 
 def _diagnose_one(grader, lab, results, overlay, prober, worker, end):
-    from .diagnose import LAB_BUDGET, PROBES_TIMEOUT, diagnose_lab, run_probes
+    from diagnosis.probes import LAB_BUDGET, PROBES_TIMEOUT, diagnose_lab, run_probes
     end = min(end, time.monotonic() + LAB_BUDGET)  # the submission's budget, and the lab's
 
     def run(ids):
@@ -799,7 +802,7 @@ def report_to_json(rep):
 
 
 def report_from_json(data):
-    from .diagnose import wh
+    from diagnosis import hints as wh
     rep = LabReport(data["lab"], [], list(data["notes"]), data["compile_error"], data["refused"])
     for r in data["results"]:
         rep.results.append(TestResult(TestCase(**r["test"]), int(r["score"]), r["status"],

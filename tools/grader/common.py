@@ -67,7 +67,7 @@ class LabReport:
     notes: list = field(default_factory=list)
     compile_error: str = ""
     refused: str = ""  # why screening refused a submitted file ("" = accepted)
-    diagnosis: dict = field(default_factory=dict)  # {task: wbgrade_hints.Diagnosis} (diagnose.py)
+    diagnosis: dict = field(default_factory=dict)  # {task: diagnosis.hints.Diagnosis}
 
     @property
     def gradable(self):

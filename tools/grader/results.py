@@ -10,11 +10,11 @@ import tempfile
 from .common import RESULTS_CAP, printable
 
 DIAGNOSIS_LINES = 40  # lines of one task's diagnosis kept
-DIAGNOSIS_CHARS = 400  # characters of one line kept (wbgrade_hints.LINE_CHARS, capped here too)
+DIAGNOSIS_CHARS = 400  # characters of one line kept (diagnosis.hints.LINE_CHARS, capped here too)
 
 
 def task_lines(d):
-    """One task's diagnosis (a wbgrade_hints.Diagnosis) as printable lines."""
+    """One task's diagnosis (a diagnosis.hints.Diagnosis) as printable lines."""
     try:
         lines = d.lines()
     except Exception as e:  # a broken diagnosis never changes a score

@@ -5,7 +5,7 @@ The zip holds setup.sh and run_autograder at its root, and the pristine
 project the grader needs: CMakeLists.txt, CMakePresets.json, cmake/,
 framework/, labs/ (whole: a lab may link another lab's skeleton), scenes/,
 tests/common/ and tests/<LAB>/ (the grader grades the labs whose tests it
-has: its probes too), tools/grade and tools/grader/, the diagnosis tools/wbgrade_hints.py with
+has: its probes too), tools/grade and tools/grader/, the diagnosis tools/diagnosis/ with
 the lab's catalogue tests/mutants/<LAB>/signatures.json, tools/setup and the sandbox launcher's source. Never
 solutions/, tests/mutants/, other labs' tests or a build folder. Files are
 the checkout's tracked files (git ls-files) as they are in the work tree.
@@ -18,7 +18,7 @@ import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ENTRIES = ["CMakeLists.txt", "CMakePresets.json", "cmake", "framework", "labs", "scenes",
-           "tests/common", "tools/grade", "tools/grader", "tools/setup", "tools/wbgrade_hints.py",
+           "tests/common", "tools/grade", "tools/grader", "tools/setup", "tools/diagnosis",
            "tools/gradescope/sandbox.c"]
 AT_ROOT = ["tools/gradescope/setup.sh", "tools/gradescope/run_autograder"]
 DATE = (2020, 1, 1, 0, 0, 0)  # fixed: the same tree gives the same zip

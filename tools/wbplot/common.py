@@ -8,9 +8,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
-
-class InputError(Exception):
-    """Bad input: the message is complete and meant for the user (exit status 2)."""
+from .errors import InputError  # noqa: E402,F401  (the tools raise it as common.InputError)
 
 
 # One look for every figure: readable at handout size (about 16 cm wide).

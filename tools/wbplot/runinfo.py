@@ -13,7 +13,7 @@ From it a figure takes
 """
 import json
 
-from .common import InputError
+from .errors import InputError
 
 # The summaries of the runs the current tools/plot command draws ([] without --summary):
 # set by cli.run() before the figure is drawn, read by stamp() and by the figures.

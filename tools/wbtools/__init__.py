@@ -2,8 +2,8 @@
 tools/wbtools/<name>.py and calls its entry function (run(); in pattern.py entry(), its run()
 being the helper that runs a program), which calls main() with the command line and exits
 with its status. The grader's layers (tools/grader/), the figures (tools/wbplot/), the
-viewer (tools/wbview/) and the hint matcher (tools/wbgrade_hints.py) are packages and
-modules of their own.
+viewer (tools/wbview/) and the diagnosis of a failing task (tools/diagnosis/) are packages of
+their own.
 
   claims.py         tools/claims              handout claims against the runs
   fresh_machine.py  tools/fresh-machine       the README's commands on brand-new Debian roots

@@ -10,7 +10,7 @@
 #     differently) must score 100.
 #   - the mutants' failure signatures (which tests each fails, at which
 #     assertion) must equal the stored tests/mutants/<lab>/signatures.json, the
-#     data the grader's hints come from (tools/wbgrade_hints.py); --signatures
+#     data the grader's hints come from (tools/diagnosis/hints.py); --signatures
 #     rewrites it, --leave-one-out measures the hints from it (no build);
 #   - every variant is judged the same way when run again: each failed test is run a
 #     second time (and a variant the grader judged is graded a second time), and a
@@ -58,8 +58,9 @@ def load_grade():
 
 grade = load_grade()
 sys.path.insert(0, TOOLS)
-import wbgrade_hints as hints  # noqa: E402
-from wbtools import diagnosis as diag  # noqa: E402
+from diagnosis import catalogue as diag  # noqa: E402
+from diagnosis import hints  # noqa: E402
+from diagnosis.catalogue import header_value  # noqa: E402
 from wbtools import margins  # noqa: E402
 
 
@@ -252,7 +253,7 @@ def print_heldout(labs, rows, args):
 
 # ------------------------------------------------------------ run again, compare
 # A variant judged twice on the same tree must be judged the same way: the same tests
-# failed, each with the same failure text as a signature keeps it (wbgrade_hints.failure_text:
+# failed, each with the same failure text as a signature keeps it (diagnosis.hints.failure_text:
 # numbers blanked). Run again, at a small cost (tools/check's mutants stage, ~1 % of it):
 # every test that failed, in the direct path (the run is seconds; the build is most of a
 # variant's time and is not repeated), and the whole grading of a variant the grader judged
@@ -364,16 +365,6 @@ def apply_hunks(text, hunks, what):
         offset += len(new) - len(old)
         floor = p + len(new)
     return "".join(lines)
-
-
-def header_value(comments, key):
-    """The text of the '# <key>: ...' lines of a header, joined ("" when there is none)."""
-    out = []
-    for c in comments:
-        m = re.match(rf"^{key}:\s*(.*)$", c, re.IGNORECASE)
-        if m and m.group(1).strip():
-            out.append(m.group(1).strip())
-    return " ".join(out)
 
 
 def caught_by(comments):
@@ -519,7 +510,7 @@ def print_rows(rows, verbose):
 
 
 def signature_doc(repo, lab, tests, rows, solution, skeleton, digest):
-    """The catalogue of one lab (tools/wbtools/diagnosis.py): generated, compared as a whole."""
+    """The catalogue of one lab (tools/diagnosis/catalogue.py): generated, compared as a whole."""
     muts = []
     for r in rows:
         if r.expected == "100" or r.signature is None:

@@ -38,8 +38,8 @@ SHIPPED = ["CMakeLists.txt", "CMakePresets.json", ".clang-format", ".gitignore",
 # them), instructor material, CI, build trees.
 NEVER = {"solutions", "mutants", "hostile", "badinput", "bench", "gradescope", "pack.d", ".ci",
          ".git", "__pycache__", "fuzz"}
-STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "wbplot", "wbview",
-                 "wbgrade_hints.py"}  # the rest stays home
+STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "diagnosis", "wbplot",
+                 "wbview"}  # the rest stays home
 STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md"}
 INSTRUCTOR_BLOCK = re.compile(r"<!--\s*instructor\s*-->.*?<!--\s*/instructor\s*-->\n?", re.S)
 CLAIM_MARKER = re.compile(r" ?<!--\s*(?:not-a-)?claim:.*?-->", re.S)  # claim markers

@@ -34,6 +34,8 @@ tests/<lab>/), so a new lab is checked without anyone remembering it:
   docrefs   what every Markdown file of the repository quotes from the code exists there:
             the flags of a tool's or a lab's command, the arguments of a task function or
             a tool's Python function, the paths (tools/wbtools/docrefs.py says how)
+  imports   no module of tools/ imports one that imports it back, directly or around a ring
+            (a lazy import inside a function counts: tools/wbtools/imports.py)
 
 With no stage, all of them. Exit status: 0 every stage passed, 1 a stage found something
 (each finding on one line: file, what, what to do), 2 bad input (a flag, a missing build)."""
@@ -54,7 +56,7 @@ from wbplot import recipes  # noqa: E402
 from wbplot.common import summary_line  # noqa: E402
 
 STAGES = ["stubs", "periods", "claims", "asserts", "nanfree", "answers", "reportdoc", "stubfigs",
-          "testnames", "docrefs"]
+          "testnames", "docrefs", "imports"]
 RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
 # The smallest error a skeleton's sweep may show for an integrator, relative to the scene
 # size: a stub that does nothing is off by O(1) of the motion, rounding by 1e-16; a whole
@@ -649,6 +651,17 @@ def stage_docrefs(build, out, verbose):
     if verbose or not findings:
         print(f"pattern: docrefs: {counts['docs']} Markdown files: {counts['flags']} flags, "
               f"{counts['calls']} calls and {counts['paths']} paths quoted, checked")
+    return findings
+
+
+# ----------------------------------------------------------------------------
+# imports: no import circle in tools/ (tools/wbtools/imports.py)
+
+def stage_imports(build, out, verbose):
+    from wbtools import imports
+    findings, n = imports.check(ROOT)
+    if verbose or not findings:
+        print(f"pattern: imports: {n} modules of tools/, no module imports one that imports it back")
     return findings
 
 

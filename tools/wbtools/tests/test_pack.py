@@ -146,7 +146,7 @@ def test_the_gradescope_zip_holds_what_the_grader_imports():
     sys.path.insert(0, os.path.join(TOOLS, "gradescope"))
     import make_zip
     files = [rel for rel in repo_files("tools", "tests") if make_zip.wanted(rel, "euler")]
-    assert "tools/grader/build.py" in files and "tools/wbgrade_hints.py" in files
+    assert "tools/grader/build.py" in files and "tools/diagnosis/hints.py" in files
     assert "tests/mutants/euler/signatures.json" in files
     assert not [f for f in files if f.startswith(("tests/rigid/", "tools/grader/tests/"))
                 or f.endswith(".patch")]

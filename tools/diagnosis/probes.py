@@ -1,6 +1,6 @@
 """Diagnosis of each failing task (docs/grading.md, "Diagnosis"): the lab's pristine probe binary
 (<lab>-probes, the stubs linked like the test binary: no student code in it) calls the task's
-functions on fixed inputs through the sandboxed worker, as a test does; tools/wbgrade_hints.py
+functions on fixed inputs through the sandboxed worker, as a test does; hints.py
 compares what comes back with the catalogue (the solution's and every known mistake's outputs on
 the same inputs, numbers only).
 
@@ -9,17 +9,13 @@ Trust: the probe process is the trusted side; every value in its report came fro
 import hashlib
 import os
 import re
-import sys
 import time
 
-from .common import IDLE_LIMIT, WORKER_OUTPUT_CAP, log
-from .procs import _kill_tree, signal_name
-from .worker import _cpu_ticks, _ExitWaiter
+from grader.common import IDLE_LIMIT, WORKER_OUTPUT_CAP, log
+from grader.procs import _kill_tree, signal_name
+from grader.worker import _cpu_ticks, _ExitWaiter
 
-_TOOLS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-if _TOOLS not in sys.path:
-    sys.path.insert(0, _TOOLS)
-import wbgrade_hints as wh  # noqa: E402
+from . import hints as wh
 
 PROBES_TIMEOUT = 20.0  # s, all the probes of one task (each takes milliseconds)
 LAB_BUDGET = 60.0  # s, all the probes of one lab: a submission whose every task loops forever
@@ -136,7 +132,7 @@ def pristine_tasks(overlay, tasks):
 
 
 def diagnose_lab(repo, lab, results, overlay, run, say=log):
-    """{task: wbgrade_hints.Diagnosis} of one graded lab: every task with a failed test.
+    """{task: hints.Diagnosis} of one graded lab: every task with a failed test.
 
     results  [(test name, passed?, output)]
     overlay  {student file name: bytes} the submission gave for this lab

@@ -1,4 +1,4 @@
-"""The diagnosis of a failing task (tools/wbgrade_hints.py, run by tools/grader/diagnose.py):
+"""The diagnosis of a failing task (tools/diagnosis/hints.py, run by tools/diagnosis/probes.py):
 what the probes' outputs say against the catalogue. Guards against a named mistake or part
 that is not the student's, a task that says nothing, a task disturbed by another, and a
 diagnosis that breaks grading (hostile values, a broken catalogue)."""
@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-import wbgrade_hints as wh
+from diagnosis import hints as wh
 from grader import build, common, results
 from grader.common import LabReport
 
@@ -211,7 +211,7 @@ def test_not_started_is_the_skeletons_bytes_not_the_checkouts():
     """Defect: in a student's checkout labs/ holds the student's work, so a task compared with
     labs/ reads "not started" while it is wrong."""
     import hashlib
-    from grader.diagnose import pristine_tasks
+    from diagnosis.probes import pristine_tasks
     skel = b"void f() {}\n"
     tasks = {"T": {"files": ["s.cpp"], "skeleton_sha256": {"s.cpp": hashlib.sha256(skel).hexdigest()}},
              "U": {"files": ["u.cpp"]}}

@@ -6,7 +6,7 @@ Pure standard library, no grader internals, shipped in the student pack with the
 so that a grade at home says what the autograder says. docs/grading.md, "Diagnosis", has the
 long version.
 
-    import wbgrade_hints as wh
+    from diagnosis import hints as wh
     cat = wh.load_catalogue(repo, "forces")                 # None: no diagnosis, grading goes on
     d = wh.diagnose(cat, "F3", outputs, failed_tests)       # outputs: {probe id: record}
     print("\\n".join(d.lines()))

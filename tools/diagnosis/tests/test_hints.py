@@ -1,8 +1,8 @@
-"""What the catalogue keeps of a failed test (tools/wbgrade_hints.py, failure_text): tools/mutants
+"""What the catalogue keeps of a failed test (tools/diagnosis/hints.py, failure_text): tools/mutants
 compares it between runs. The hint matching these tests once covered (a lab's failed tests
 matched against the stored signatures) was replaced by the diagnosis by execution, which
 test_diagnosis.py covers (issue 30)."""
-import wbgrade_hints as hints
+from diagnosis import hints
 
 
 def test_failure_text_blanks_numbers_and_keeps_the_first_paragraph():

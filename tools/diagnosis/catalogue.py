@@ -2,7 +2,7 @@
 <lab>-probes-direct in the mutants' scratch build) run on the solution, the skeleton, every
 mutant and every alternative, and written to tests/mutants/<lab>/signatures.json (numbers
 only: the pack ships it, never the mutants), with the leave-one-out figures of the rule that
-names a mistake's part (tools/wbgrade_hints.py; docs/grading.md, "Diagnosis").
+names a mistake's part (hints.py; docs/grading.md, "Diagnosis").
 
 Trust: runs our own code (the solution, the skeleton, the mutants), never a submission."""
 import collections
@@ -13,7 +13,7 @@ import re
 import subprocess
 import time
 
-import wbgrade_hints as wh
+from . import hints as wh
 
 PROBE_TIMEOUT = 60.0  # s, one variant's probes run directly (the slowest take < 1 s)
 
@@ -54,6 +54,17 @@ def mutant_task(tasks, name):
 
 
 # ---------------------------------------------------------------- recording
+
+def header_value(comments, key):
+    """The text of the '# <key>: ...' lines of a mutant's header, joined ("" when there is
+    none)."""
+    out = []
+    for c in comments:
+        m = re.match(rf"^{key}:\s*(.*)$", c, re.IGNORECASE)
+        if m and m.group(1).strip():
+            out.append(m.group(1).strip())
+    return " ".join(out)
+
 
 def has_probes(repo, lab):
     return os.path.isdir(os.path.join(repo, "tests", lab, "probes"))
@@ -165,11 +176,10 @@ def deviates(probes_by_id, records, task):
 
 
 def catalogue(repo, lab, tests, solution, skeleton, mutants, digest):
-    """The lab's catalogue (tools/wbgrade_hints.py reads it).
+    """The lab's catalogue (hints.py reads it).
 
     solution, skeleton: {probe id: record}; mutants: [(name, comments, failed {test: text},
     records)] with header values read by `value(comments, key)`."""
-    from wbtools.mutants import header_value
     tasks = lab_tasks(repo, lab)
     probes = [probe_entry(r, wh.compact_any(skeleton.get(pid)) if skeleton is not None else None)
               for pid, r in solution.items()]
