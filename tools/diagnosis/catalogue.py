@@ -394,3 +394,82 @@ def mid_lab_check(repo, grader, lab, cat, variant_files, log):
         log(f"mutants: {lab}: mid-lab {sorted(t for t, m in plan.items() if m and m != 'solution')} "
             f"in {time.monotonic() - t0:.1f} s")
     return problems
+
+
+# ------------------------------------------------------------ fresh mistakes
+
+def fresh_outcome(cat, name, kind, rep):
+    """What a mistake written apart from the catalogue gets (tools/mutants --fresh): (verdict,
+    part named or why, the diagnosis' lines). verdict: right, wrong (another part named, or
+    "not started" for started code), counterexample (no part named, the first wrong probe
+    shown), tests (every probe agrees: the failed test's message shown), silent (nothing to
+    act on: no diagnosis, or expected and got printed alike), missed (100 points), does not
+    compile."""
+    stem = name.split(".")[0]
+    if rep.compile_error:
+        return "does not compile", rep.compile_error.splitlines()[-1:], []
+    if rep.score >= rep.max_score:
+        return "missed", "", []
+    task = task_of_file((cat or {}).get("tasks") or {}).get(stem + ".cpp", "")
+    d = rep.diagnosis.get(task)
+    if d is None:
+        return "silent", f"no diagnosis of {task or stem}", []
+    lines = d.lines()
+    named = None
+    if d.status == "mistake":
+        parts = {wh.part_key(n, cat["mutants"][n]) for n in d.mistake_names}
+        named = parts.pop() if len(parts) == 1 else None
+    elif d.status == "part":
+        named = tuple(d.part)
+    if named is not None:
+        if not kind:
+            return "named", f"{named[0]}: {named[1]}", lines
+        return ("right" if named == (stem, kind) else "wrong"), f"{named[0]}: {named[1]}", lines
+    if d.status == "not started":
+        return "wrong", "not started", lines
+    if d.status == "counterexample":
+        return "counterexample", "", lines
+    if d.status in ("tests", "no probes"):
+        pairs = re.findall(r"expected[:\s]+(.+?)\s*\n\s*got[:\s]+(.+)", d.test_message)
+        if pairs and all(a.strip() == b.strip() for a, b in pairs):
+            return "silent", "expected and got printed alike", lines
+        return "tests", "", lines
+    return "silent", d.status, lines
+
+
+FRESH = ["right", "counterexample", "tests", "wrong", "silent", "missed"]
+
+
+def fresh_table(rows, labs, markdown=False, verbose=False):
+    """The figures of tools/mutants --fresh; returns the exit status (1: a mistake missed, a
+    wrong part named, a silent one, or a student's text with a long line or harness words)."""
+    for lab, name, kind, verdict, named, lines, problems in sorted(rows):
+        print(f"{lab:10} {name:44} {verdict:14} {named if isinstance(named, str) else ''}"
+              + (f"  (expected: {kind})" if verdict == "wrong" else ""))
+        if verbose or verdict in ("wrong", "silent", "bad"):
+            print("\n".join("      " + l for l in lines))
+        for p in problems:
+            print(f"      TEXT: {p}")
+    head = ["lab", "mistakes"] + FRESH
+    table = []
+    for lab in labs + ["all"]:
+        rs = [r for r in rows if lab in ("all", r[0])]
+        n = len(rs)
+        table.append([lab, str(n)] + [f"{sum(r[3] == v for r in rs)} ({100 * sum(r[3] == v for r in rs) / n:.0f}%)"
+                                      if n else "0" for v in FRESH])
+    print()
+    if markdown:
+        print("| " + " | ".join(head) + " |")
+        print("|" + "---|" * len(head))
+        for l in table:
+            print("| " + " | ".join(l) + " |")
+    else:
+        w = [max(len(h), *(len(l[k]) for l in table)) for k, h in enumerate(head)]
+        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
+        for l in table:
+            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+    text = sum(1 for r in rows if r[6])
+    print(f"\n{text} of {len(rows)} students' texts have a line over 100 characters or a word "
+          "of the harness")
+    bad = [r for r in rows if r[3] in ("wrong", "silent", "missed", "bad", "does not compile")]
+    return 1 if bad or text else 0

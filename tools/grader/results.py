@@ -13,6 +13,27 @@ DIAGNOSIS_LINES = 40  # lines of one task's diagnosis kept
 DIAGNOSIS_CHARS = 400  # characters of one line kept (diagnosis.hints.LINE_CHARS, capped here too)
 
 
+LINE_LIMIT = 100  # characters of a line a student reads in a terminal
+# Words of the test harness, the grader's plumbing and the standard library's internals: none may
+# reach a student's text (docs/grading.md, "The output").
+INTERNALS = re.compile(r"test_helpers\.h|\.h:\d+|\.cpp:\d+|REQUIRE|CHECK\(|with expansion|"
+                       r"Unknown expression|:= |\bpipe\b|sandbox|\bworker\b|Catch2?\b|"
+                       r"libstdc\+\+|__glibcxx|_GLIBCXX|Assertion .* failed|std::__|"
+                       r"/usr/include|terminate called")
+
+
+def student_text_problems(text):
+    """What a student's text breaks: a line over LINE_LIMIT characters, a word of the harness."""
+    out = []
+    for k, line in enumerate(text.splitlines(), 1):
+        if len(line) > LINE_LIMIT:
+            out.append(f"line {k} has {len(line)} characters: {line[:60]}...")
+        m = INTERNALS.search(line)
+        if m:
+            out.append(f"line {k} has the harness's {m.group(0)!r}: {line.strip()[:80]}")
+    return out
+
+
 def task_lines(d):
     """One task's diagnosis (a diagnosis.hints.Diagnosis) as printable lines."""
     try:

@@ -717,6 +717,90 @@ def run_lab(repo, grader, lab, args, stop):
     return rows
 
 
+def fresh_variants(repo, folder, lab):
+    """[(name, files {student name: bytes} or an error, '# kind:' expected)] of folder/<lab>/:
+    mistakes written apart from the catalogue, each a whole file <file>.<what>.cpp (its
+    expected part on a '// kind: ...' line) or a patch of the solution in the catalogue's
+    format (with a '# kind: ...' line)."""
+    names = grade.student_files(repo, lab)
+    sol = {n: read(os.path.join(repo, "solutions", lab, n)) for n in names}
+    d = os.path.join(folder, lab)
+    out = []
+    for f in sorted(os.listdir(d)) if os.path.isdir(d) else []:
+        files, kind = dict(sol), ""
+        try:
+            if f.endswith(".cpp"):
+                target = f.split(".")[0] + ".cpp"
+                if target not in names:
+                    raise PatchError(f"{target} is not a student file of {lab}")
+                files[target] = read(os.path.join(d, f))
+                m = re.search(rb"^//\s*kind:\s*(.*?)\s*$", files[target], re.M)
+                kind = m.group(1).decode("utf-8", "replace") if m else ""
+            elif f.endswith(".patch"):
+                with open(os.path.join(d, f), encoding="utf-8") as fh:
+                    comments, patched = parse_patch(fh.read())
+                kind = header_value(comments, "kind")
+                for old, hunks in patched:
+                    target = os.path.basename(old)
+                    if target not in names:
+                        raise PatchError(f"{target} is not a student file of {lab}")
+                    files[target] = apply_hunks(files[target].decode("utf-8"), hunks,
+                                                f"solutions/{lab}/{target}").encode("utf-8")
+            else:
+                continue
+        except (PatchError, OSError, UnicodeDecodeError) as e:
+            files = f"bad variant: {e}"
+        out.append((f, files, kind))
+    return out
+
+
+def fresh(repo, labs, args):
+    """--fresh DIR: every mistake of DIR/<lab>/ graded through the grader, with every other file
+    the solution's, and what its task's diagnosis says against the part it is in
+    (diagnosis.catalogue.fresh_outcome); the table per lab, and each student's text checked
+    for lines over 100 characters and the harness's words."""
+    from grader import results as res
+    import io
+    tmp = None
+    root = args.build_dir
+    if root is None:
+        tmp = root = tempfile.mkdtemp(prefix="wb-mutants-")
+    rows = []
+    labs = [lab for lab in labs if os.path.isdir(os.path.join(args.fresh, lab))]
+    groups = lab_groups(repo, labs, max(1, args.parallel))
+
+    def run_group(k, group):
+        grader = grade.Grader(repo, os.path.join(root, str(k)), args.jobs, args.timeout,
+                              seed=args.seed)
+        grader.say = lambda *a, **kw: None
+        try:
+            for lab in group:
+                cat = hints.load_catalogue(repo, lab)
+                for name, files, kind in fresh_variants(repo, args.fresh, lab):
+                    if isinstance(files, str):
+                        rows.append((lab, name, kind, "bad", files, [], []))
+                        continue
+                    grade.log(f"mutants: fresh: {lab}: {name}")
+                    rep = grader.grade({lab: files}, [lab])[lab]
+                    buf = io.StringIO()
+                    res.print_table({lab: rep}, {}, out=buf)
+                    text = buf.getvalue()
+                    verdict, named, lines = diag.fresh_outcome(cat, name, kind, rep)
+                    rows.append((lab, name, kind, verdict, named, lines,
+                                 res.student_text_problems(text)))
+        finally:
+            grader.close()
+
+    try:
+        with concurrent.futures.ThreadPoolExecutor(len(groups) or 1) as pool:
+            for f in [pool.submit(run_group, k, g) for k, g in enumerate(groups)]:
+                f.result()
+    finally:
+        if tmp:
+            shutil.rmtree(tmp, ignore_errors=True)
+    return diag.fresh_table(rows, labs, args.markdown, args.verbose)
+
+
 def mid_lab(repo, labs, args):
     """--mid-lab: diagnosis.mid_lab_check of every lab with a catalogue, in one scratch build."""
     tmp = None
@@ -817,7 +901,15 @@ def main(argv):
                         "at its skeleton and one catalogued mistake in each of the others: each "
                         "task's diagnosis must be the whole-lab one, each skeleton task 'not "
                         "started' (builds; exit 1 otherwise)")
-    p.add_argument("--markdown", action="store_true", help="with --leave-one-out: a Markdown table")
+    p.add_argument("--fresh", metavar="DIR",
+                   help="grade through the grader each mistake of DIR/<lab>/ (written apart from "
+                        "the catalogue: a whole file <file>.<what>.cpp with a '// kind: ...' line, "
+                        "or a patch with '# kind: ...'), every other file the solution's; print "
+                        "what its task's diagnosis names against that part, the figures per lab, "
+                        "and any line of the student's text over 100 characters or with the "
+                        "harness's words (builds)")
+    p.add_argument("--markdown", action="store_true",
+                   help="with --leave-one-out or --fresh: a Markdown table")
     p.add_argument("--seed", default="1", metavar="N",
                    help="the held-out inputs' seed of every grading (default 1: the stored "
                         "signatures hold for it)")
@@ -848,6 +940,12 @@ def main(argv):
                               args.max_wrong, args.max_wrong_alone)
     if args.mid_lab:
         return mid_lab(repo, labs, args)
+    if args.fresh:
+        if not os.path.isdir(args.fresh):
+            raise grade.BadInput(f"--fresh {args.fresh}: not a folder")
+        args.fresh = os.path.abspath(args.fresh)
+        return fresh(repo, args.lab or [l for l in known if os.path.isdir(
+            os.path.join(args.fresh, l))], args)
     if args.refresh_hints:
         return refresh_hints(repo, labs)
     if args.signatures:
