@@ -9,6 +9,7 @@
 //     implementation; expected values come from closed forms or laws
 #pragma once
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -27,11 +28,31 @@ inline bool near(double a, double b, double abs_tol, double rel_tol = 0.0) {
   return std::abs(a - b) <= abs_tol + rel_tol * std::max(std::abs(a), std::abs(b));
 }
 
-inline std::string str(const wb::Vec2& v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << v.x() << ", " << v.y() << ")";
-  return s.str();
+// A number as a failure message prints it: the shortest text that reads back as the same
+// double (0.1, not 0.10000000000000001; 1.0000000000000002, not 1), so that two values that
+// differ never print alike. The grader shows a student the digits that tell expected from got.
+inline std::string num(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+inline std::string str(const wb::Vec2& v) { return "(" + num(v.x()) + ", " + num(v.y()) + ")"; }
+
+// A matrix or vector on one line: a column vector (x, y, z), a matrix by rows [a, b; c, d]
+// (Eigen's own operator<< spreads it over lines, which a one-line reason cannot hold).
+template <class M>
+std::string text(const Eigen::DenseBase<M>& m) {
+  std::string s = m.cols() == 1 ? "(" : "[";
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    if (m.cols() == 1) {
+      s += (i ? ", " : "") + num(double(m(i, 0)));
+      continue;
+    }
+    for (Eigen::Index j = 0; j < m.cols(); ++j)
+      s += (j ? ", " : (i ? "; " : "")) + num(double(m(i, j)));
+  }
+  return s + (m.cols() == 1 ? ")" : "]");
 }
 
 // Checks one vector against its expected value; `what` names the quantity
@@ -39,15 +60,15 @@ inline std::string str(const wb::Vec2& v) {
 inline void require_near(const wb::Vec2& got, const wb::Vec2& expected, double abs_tol,
                          const std::string& what, double rel_tol = 0.0) {
   INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got) << "\n  tolerance "
-            << abs_tol << " + " << rel_tol << " * |value|");
+            << num(abs_tol) << " + " << num(rel_tol) << " * |value|");
   REQUIRE(near(got.x(), expected.x(), abs_tol, rel_tol));
   REQUIRE(near(got.y(), expected.y(), abs_tol, rel_tol));
 }
 
 inline void require_near(double got, double expected, double abs_tol, const std::string& what,
                          double rel_tol = 0.0) {
-  INFO(what << "\n  expected " << expected << "\n  got      " << got << "\n  tolerance "
-            << abs_tol << " + " << rel_tol << " * |value|");
+  INFO(what << "\n  expected " << num(expected) << "\n  got      " << num(got) << "\n  tolerance "
+            << num(abs_tol) << " + " << num(rel_tol) << " * |value|");
   REQUIRE(near(got, expected, abs_tol, rel_tol));
 }
 
@@ -113,8 +134,7 @@ inline void require_finite(const wb::Mat2X& m, const std::string& what) {
   if (m.allFinite()) return;
   // The first columns only: the matrix came from the lab's code and may be huge.
   INFO(what << ": every entry must be finite (no NaN or inf)\n  got (first columns of "
-            << m.cols() << ")\n"
-            << m.leftCols(std::min<Eigen::Index>(m.cols(), 8)));
+            << m.cols() << ") " << text(m.leftCols(std::min<Eigen::Index>(m.cols(), 8))));
   REQUIRE(m.allFinite());
 }
 

@@ -162,7 +162,7 @@ inline void check_random_steps(wbtest::HeldOut& g, wb::StepFn step, bool velocit
       const Mat2X xn = r.x, vn = r.v;
       const std::size_t before = r.seen_x.size();
       r.step(step, h);
-      INFO("step " << k << " from x = " << xn << ", v = " << vn);
+      INFO("step " << k << " from x = " << wbtest::text(xn) << ", v = " << wbtest::text(vn));
       {
         INFO("force evaluations in this step: expected 1, got " << r.seen_x.size() - before);
         REQUIRE(r.seen_x.size() == before + 1);

@@ -292,7 +292,7 @@ inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
       seen_x.clear(), seen_v.clear();
       wb::Scratch s = nan_scratch(n);
       step(dyn, h, x, v, s);
-      INFO("step " << k << " from x = " << xn << ", v = " << vn);
+      INFO("step " << k << " from x = " << wbtest::text(xn) << ", v = " << wbtest::text(vn));
       {
         INFO("force evaluations in this step: expected 2, got " << seen_x.size());
         REQUIRE(seen_x.size() == 2);

@@ -20,26 +20,20 @@ using rigid::Body;
 using rigid::Mat3;
 using rigid::Vec3;
 
-inline std::string str(const Vec3& v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
-  return s.str();
-}
+inline std::string str(const Vec3& v) { return wbtest::text(v); }
 
 // Every component of a 3-vector: |got - expected| <= abs_tol + rel_tol |.|.
 inline void require_near(const Vec3& got, const Vec3& expected, double abs_tol,
                          const std::string& what, double rel_tol = 0.0) {
   INFO(what << "\n  expected " << str(expected) << "\n  got      " << str(got) << "\n  tolerance "
-            << abs_tol << " + " << rel_tol << " * |value|");
+            << wbtest::num(abs_tol) << " + " << wbtest::num(rel_tol) << " * |value|");
   for (int i = 0; i < 3; ++i) REQUIRE(wbtest::near(got[i], expected[i], abs_tol, rel_tol));
 }
 
 inline void require_near(const Mat3& got, const Mat3& expected, double abs_tol,
                          const std::string& what) {
-  INFO(what << "\n  expected\n"
-            << expected << "\n  got\n"
-            << got << "\n  tolerance " << abs_tol << " on every entry");
+  INFO(what << "\n  expected " << wbtest::text(expected) << "\n  got      " << wbtest::text(got)
+            << "\n  tolerance " << wbtest::num(abs_tol) << " on every entry");
   REQUIRE(wbtest::max_abs_diff(got, expected) <= abs_tol);  // NaN anywhere fails
 }
 

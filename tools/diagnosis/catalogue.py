@@ -20,20 +20,36 @@ PROBE_TIMEOUT = 60.0  # s, one variant's probes run directly (the slowest take <
 
 # ------------------------------------------------------------------- tasks
 
+# An output the header says to add to: "f  2 x n forces (N); add, do not overwrite",
+# "b.f, b.tau  ADDED to (other forces may already be there)".
+_ADDS = re.compile(r"^//\s+(?:Outputs?:\s*)?([A-Za-z_][\w.]*(?:,\s*[A-Za-z_][\w.]*)*)\s.*?"
+                   r"\b(?:add(?:,|\s+to\b)|added\s+to\b)", re.I | re.M)
+
+
+def header_adds(text):
+    """The outputs a header's contract says to add to, never to overwrite (the only ones for
+    which the diagnosis may say "add to ..., do not overwrite it")."""
+    return sorted({n.strip() for m in _ADDS.finditer(text) for n in m.group(1).split(",")})
+
+
 def lab_tasks(repo, lab):
-    """{task: {"title", "handout", "files"}} from the 'TODO(<task>) <title>: ... Handout: ...'
-    line that opens each of the lab's headers."""
+    """{task: {"title", "handout", "files", "adds"}} from the 'TODO(<task>) <title>: ...
+    Handout: ...' line that opens each of the lab's headers, and the outputs each header says
+    to add to (header_adds)."""
     tasks = {}
     d = os.path.join(repo, "labs", lab)
     for name in sorted(os.listdir(d)):
         if not name.endswith(".h"):
             continue
         with open(os.path.join(d, name), encoding="utf-8") as f:
-            head = re.sub(r"\n//\s*", " ", f.read(600))  # the opening comment on one line
+            text = f.read()
+        head = re.sub(r"\n//\s*", " ", text[:600])  # the opening comment on one line
         m = re.search(r"TODO\((\w+)\)\s*([^:.]*)", head)
         if not m:
             continue
-        t = tasks.setdefault(m.group(1), {"title": m.group(2).strip(), "handout": "", "files": []})
+        t = tasks.setdefault(m.group(1), {"title": m.group(2).strip(), "handout": "", "files": [],
+                                          "adds": []})
+        t["adds"] = sorted(set(t["adds"]) | set(header_adds(text)))
         h = re.search(r"Handout:\s*(\S+?)\.?\s", head.replace("\n//", " "))
         if h and not t["handout"]:
             t["handout"] = h.group(1)

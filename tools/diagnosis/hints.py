@@ -36,8 +36,10 @@ import re
 
 CATALOGUE_VERSION = 2
 MAX_LIST = 3        # probes listed as "right on" / "wrong on"
-VALUE_CHARS = 240   # characters of one value shown in a counterexample
-LINE_CHARS = 400    # characters of one line of a diagnosis
+VALUE_CHARS = 160   # characters of a value shown whole; a longer one shows the entries that differ
+LINE_WIDTH = 96     # characters of one line of a diagnosis (indented by 2 under its lab: <= 100);
+                    # a longer line goes on over the next ones, indented, never cut
+LINE_CHARS = 400    # characters of one line kept by the grader's table (results.DIAGNOSIS_CHARS)
 
 
 def catalogue_path(repo, lab):
@@ -410,6 +412,10 @@ class Diagnosis:
         return f"{head}: {tests}"
 
     def lines(self):
+        """The diagnosis as a student reads it: lines of at most LINE_WIDTH characters."""
+        return [w for l in self._lines() for w in wrap(l, LINE_WIDTH)]
+
+    def _lines(self):
         if self.status == "passed":
             return []
         out = [self.headline()]
@@ -434,13 +440,43 @@ class Diagnosis:
             out.append("  Wrong on: " + "; ".join(self.wrong[:MAX_LIST]) +
                        (" ..." if len(self.wrong) > MAX_LIST else ""))
         if self.status == "tests":
-            out.append("  Every probe agrees with the solution; the first failed test says:")
+            out.append("  The probes (fixed example inputs) do not show this mistake; the first "
+                       "failed test does:")
             out += ["    " + l for l in self.test_message.splitlines()[:8]]
         if self.status == "no probes":
             out.append("  (the probes could not run: out of time, or no catalogue); the first "
                        "failed test says:")
             out += ["    " + l for l in self.test_message.splitlines()[:8]]
-        return [l[:LINE_CHARS] for l in out]
+        return out
+
+
+def wrap(line, width=LINE_WIDTH):
+    """One line as lines of at most `width` characters, broken at spaces (a word longer than a
+    line is broken where it must), the lines after the first indented 2 more than it. Nothing
+    is cut."""
+    if len(line) <= width:
+        return [line]
+    lead = len(line) - len(line.lstrip(" "))
+    pad = " " * min(lead + 2, width // 2)
+    out, cur = [], line
+    while len(cur) > width:
+        cut = cur.rfind(" ", len(pad) + 1 if out else lead + 1, width + 1)
+        if cut <= (len(pad) if out else lead):
+            cut = width
+        out.append(cur[:cut].rstrip())
+        cur = pad + cur[cut:].lstrip(" ")
+    return out + [cur]
+
+
+def wrong_outputs(probe, got):
+    """The names of a probe's outputs that differ from the expected ones."""
+    exp, g = expand(probe.get("expected")) or {}, expand(got)
+    if g is None:
+        return list(exp)
+    rel, ab = tolerance(probe)
+    return [n for n, (r, c, ev) in exp.items()
+            if n not in g or g[n][:2] != (r, c) or not all(_close(a, b, rel, ab)
+                                                         for a, b in zip(g[n][2], ev))]
 
 
 def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
@@ -476,7 +512,11 @@ def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
         return d
     wrong = [p for p in probes if not same(got[p["probe"]], p.get("expected"), tolerance(p))]
     d.right = [p.get("title", p["probe"]) for p in probes if p not in wrong]
-    d.wrong = [p.get("title", p["probe"]) for p in wrong]
+    d.wrong = []
+    for p in wrong:  # a probe of several outputs says which of them are wrong
+        bad, every = wrong_outputs(p, got[p["probe"]]), list(expand(p.get("expected")) or {})
+        d.wrong.append(p.get("title", p["probe"]) + (
+            f" (its {', '.join(bad)} only)" if bad and len(bad) < len(every) else ""))
     if not wrong:
         d.status = "tests"
         return d
@@ -495,7 +535,8 @@ def diagnose(cat, task, outputs, tests, title="", exclude=(), pristine=False):
         d.part = part_of(cat, task, got, exclude)
         if d.part:
             d.status = "part"
-    d.counterexample = counterexample(wrong[0], got[wrong[0]["probe"]])
+    adds = ((cat.get("tasks") or {}).get(task) or {}).get("adds") or ()
+    d.counterexample = counterexample(wrong[0], got[wrong[0]["probe"]], adds)
     return d
 
 
@@ -510,37 +551,67 @@ def compact_any(rec):
 
 # ------------------------------------------------------------ counterexample
 
-def fmt_number(v, integer=False):
+def _digits(a, b):
+    """The significant digits that show a and b apart (6 when they differ there already, up to
+    17, the digits of a double; 6 when they are equal)."""
+    if not (math.isfinite(a) and math.isfinite(b)) or a == b:
+        return 6
+    for p in range(6, 18):
+        if f"{a:.{p}g}" != f"{b:.{p}g}":
+            return p
+    return 17
+
+
+def fmt_number(v, integer=False, digits=6):
     if math.isnan(v):
         return "NaN"
     if math.isinf(v):
         return "inf" if v > 0 else "-inf"
     if integer or (v == int(v) and abs(v) < 1e12):
         return str(int(v))
-    return f"{v:.6g}"
+    return f"{v:.{digits}g}"
 
 
-def fmt_value(rows, cols, vs, integer=False):
-    f = [fmt_number(v, integer) for v in vs]
-    if rows == 1 and cols == 1 and f:
-        text = f[0]
-    elif cols == 1 and rows in (2, 3, 4):
-        text = "(" + ", ".join(f) + ")"
-    elif cols == 1:
-        text = "[" + ", ".join(f) + "]"
-    elif rows in (2, 3) and cols != rows:  # columns are points: particles, bodies
-        text = "[" + ", ".join("(" + ", ".join(f[c * rows:(c + 1) * rows]) + ")"
-                               for c in range(cols)) + "]"
-    else:  # a matrix: by rows
-        text = "[" + "; ".join(", ".join(f[c * rows + r] for c in range(cols))
-                               for r in range(rows)) + "]"
+def _entries(rows, cols):
+    """How one entry of a value is named: a point's index, a vector's index, a matrix's (row,
+    column)."""
+    if cols == 1:
+        return lambda k: f"[{k}]"
+    if rows in (2, 3) and cols != rows:
+        return lambda k: f"[{k // rows}].{'xyz'[k % rows]}"
+    return lambda k: f"({k % rows}, {k // rows})"
+
+
+def fmt_value(rows, cols, vs, integer=False, other=None, only=None):
+    """A value as a student reads it: a number, a point (x, y), points [(x, y), ...], a matrix by
+    rows [a, b; c, d]. Each number has the digits that tell it from the same entry of `other`
+    (the expected value for a got, the got for an expected). `only`: the entries to show (the
+    ones that differ, for a value too long to show whole), named by index."""
+    digits = [(_digits(v, other[k]) if other is not None and k < len(other) else 6)
+              for k, v in enumerate(vs)]
+    f = [fmt_number(v, integer, digits[k]) for k, v in enumerate(vs)]
+    if only is not None:
+        name = _entries(rows, cols)
+        return ", ".join(f"{name(k)} = {f[k]}" for k in only)
     if rows * cols == 0:
-        text = f"(empty, {rows} x {cols})"
-    return text if len(text) <= VALUE_CHARS else text[:VALUE_CHARS] + " ..."
+        return f"(empty, {rows} x {cols})"
+    if rows == 1 and cols == 1 and f:
+        return f[0]
+    if cols == 1 and rows in (2, 3, 4):
+        return "(" + ", ".join(f) + ")"
+    if cols == 1:
+        return "[" + ", ".join(f) + "]"
+    if rows in (2, 3) and cols != rows:  # columns are points: particles, bodies
+        return "[" + ", ".join("(" + ", ".join(f[c * rows:(c + 1) * rows]) + ")"
+                               for c in range(cols)) + "]"
+    return "[" + "; ".join(", ".join(f[c * rows + r] for c in range(cols))  # a matrix: by rows
+                           for r in range(rows)) + "]"
 
 
-def counterexample(probe, got):
-    """Lines: the probe's call, expected, got, and what differs."""
+def counterexample(probe, got, adds=()):
+    """Lines: the probe's call, expected, got, and what differs. `adds`: the outputs the task's
+    header says to add to (its contract: "add, do not overwrite"), the only ones for which
+    overwriting is named as the mistake."""
     lines = [f"Counterexample ({probe['probe']}: {probe.get('title', '')}):"]
     ins = probe.get("in") or []
     args = []
@@ -565,23 +636,39 @@ def counterexample(probe, got):
         return lines
     rel, ab = tolerance(probe)
     base = {name: (rows, cols, vs) for name, rows, cols, vs, _ in inputs({"in": ins})}
+    skel = expand(probe.get("skeleton")) or {}
     for name, (rows, cols, ev) in exp.items():
         gv = g.get(name)
         if gv is not None and gv[:2] == (rows, cols) and \
                 all(_close(a, b, rel, ab) for a, b in zip(gv[2], ev)):
             continue
-        lines.append(f"  expected {name} = {fmt_value(rows, cols, ev)}")
         if gv is None:
+            lines.append(f"  expected {name} = {fmt_value(rows, cols, ev)}")
             lines.append(f"  got      no {name}")
             continue
-        lines.append(f"  got      {name} = {fmt_value(*gv)}")
+        same_shape = gv[:2] == (rows, cols)
+        e_text = fmt_value(rows, cols, ev, other=gv[2] if same_shape else None)
+        g_text = fmt_value(*gv, other=ev if same_shape else None)
+        if same_shape and max(len(e_text), len(g_text)) > VALUE_CHARS:  # the differing entries
+            bad = [k for k, (a, b) in enumerate(zip(gv[2], ev)) if not _close(a, b, rel, ab)]
+            rest = f" (the other {len(ev) - len(bad)} of {len(ev)} entries agree)" \
+                if len(bad) < len(ev) else ""
+            e_text = fmt_value(rows, cols, ev, other=gv[2], only=bad) + rest
+            g_text = fmt_value(*gv, other=ev, only=bad)
+        lines.append(f"  expected {name} = {e_text}")
+        lines.append(f"  got      {name} = {g_text}")
         try:
-            why = explain(name, (rows, cols, ev), gv, base.get(name), rel, ab)
+            why = explain(name, (rows, cols, ev), gv, base.get(name), rel, ab,
+                          adds=adds, skeleton=skel.get(name))
         except (ValueError, ArithmeticError, IndexError):
             why = ""
         if why:
             lines.append(f"  {name}: {why}")
     return lines
+
+
+FACTOR_MIN = 3  # numbers that must differ alike before a constant factor is named: with one
+                # or two, any wrong value "is off by a factor", which says nothing
 
 
 def _ratio(dg, de, rel, ab):
@@ -609,36 +696,54 @@ def _pretty(c):
         if abs(c * den - round(c * den)) < 1e-9 and round(c * den) != 0:
             n = int(round(c * den))
             return str(n) if den == 1 else f"{n}/{den}"
-    return f"{c:.4g}"
+    return fmt_number(c, digits=_digits(c, 1.0))
 
 
-def explain(name, expected, got, before, rel, ab):
-    """What differs between expected and got, in words ("" when nothing simple is seen)."""
+def _base_name(name):
+    return name.rsplit(".", 1)[-1]
+
+
+def explain(name, expected, got, before, rel, ab, adds=(), skeleton=None):
+    """What differs between expected and got, in words ("" when nothing simple is seen). Each
+    relation is said only where it holds: a constant factor across at least FACTOR_MIN
+    differing numbers; a sign flip when every number is the expected one negated; "nothing
+    computed" only when the output is the input's value or the skeleton's; "add, do not
+    overwrite" only for an output the header says to add to (`adds`)."""
     rows, cols, ev = expected
     gr, gc, gv = got
     if (gr, gc) != (rows, cols):
         return f"the size is {gr} x {gc}, expected {rows} x {cols}"
     if any(not math.isfinite(v) for v in gv) and all(math.isfinite(v) for v in ev):
-        return "not a number (NaN or inf) where the expected value is finite: a division by zero?"
+        return "not a number (NaN or inf) where the expected value is finite"
+
+    def alike(a, b):
+        return all(_close(x, y, rel, ab) for x, y in zip(a, b))
+    adds = {_base_name(a) for a in adds}
+    accumulates = _base_name(name) in adds
     bv = before[2] if before and before[:2] == (rows, cols) else None
-    if bv is not None and any(abs(v) > ab for v in bv):
-        if all(_close(a, b, rel, ab) for a, b in zip(gv, bv)):
+    sv = skeleton[2] if skeleton and skeleton[:2] == (rows, cols) else None
+    if bv is not None and alike(gv, bv):
+        if accumulates:
             return f"unchanged: nothing was added to what {name} held before the call"
+        return f"unchanged: {name} is what it was before the call (nothing computed?)"
+    if sv is not None and alike(gv, sv) and not alike(ev, sv):
+        return "what the skeleton gives (nothing computed?)"
+    if bv is not None and any(abs(v) > ab for v in bv):
         contrib = [e - b for e, b in zip(ev, bv)]
-        if all(_close(a, b, rel, ab) for a, b in zip(gv, contrib)):
-            return (f"what {name} held before the call is lost: add to {name}, do not "
-                    "overwrite it")
+        if alike(gv, contrib):
+            return (f"what {name} held before the call is lost: add to {name}, do not overwrite "
+                    "it" if accumulates else f"what {name} held before the call is lost")
         de, dg = contrib, [g - b for g, b in zip(gv, bv)]
         its = "its change"
     else:
         de, dg, its = ev, gv, ""
-    if all(abs(v) <= ab for v in dg) and any(abs(v) > ab for v in de):
-        return "zero (nothing computed?)" if not its else "unchanged: nothing was done to it"
+    differ = sum(1 for a, b in zip(dg, de) if not _close(a, b, rel, ab))
+    if differ and all(_close(a, -b, rel, ab) for a, b in zip(dg, de)):
+        return f"the sign of {its} is flipped" if its else "the sign is flipped"
     c = _ratio(dg, de, rel, ab)
-    if c is not None and not _close(c, 1.0, 1e-6, 0):
-        if _close(c, -1.0, 1e-6, 0):
-            return f"the sign of {its} is flipped" if its else "the sign is flipped"
-        return (f"{its} is" if its else "it is") + f" off by a constant factor {_pretty(c)}"
+    if c is not None and differ >= FACTOR_MIN and c != 0 and not _close(c, 1.0, 1e-9, 0):
+        return (f"{its} is" if its else "it is") + \
+            f" off by a constant factor {_pretty(c)} (in all {differ} numbers that differ)"
     if rows in (2, 3) and cols >= 1:
         comps = "xyz"[:rows]
         per = [all(_close(gv[c * rows + r], ev[c * rows + r], rel, ab) for c in range(cols))

@@ -11,6 +11,7 @@ import os
 import re
 import time
 
+from grader import wording
 from grader.common import IDLE_LIMIT, WORKER_OUTPUT_CAP, log
 from grader.procs import _kill_tree, signal_name
 from grader.worker import _cpu_ticks, _ExitWaiter
@@ -105,6 +106,9 @@ def run_probes(sandbox, binary, worker, ids, cwd, timeout=PROBES_TIMEOUT):
             if r.get("probe") in todo and r["probe"] not in out:
                 if GONE in str(r.get("error", "")):
                     break  # this probe's call found the worker gone: reported below
+                if r.get("error"):  # what the code did, in a student's words (no library file)
+                    r = dict(r, error=wording.exception(str(r["error"])).removeprefix(
+                        "the test stopped on an exception: "))
                 out[r["probe"]] = r
         rest = [i for i in todo if i not in out]
         if not rest:

@@ -13,7 +13,7 @@ from .common import BadInput, Defect, log
 from . import heldout
 from .procs import kill_all
 from .project import repo_root
-from .results import layers_data, layers_text, print_table, results_json, write_atomic
+from .results import wrap, layers_data, layers_text, print_table, results_json, write_atomic
 from .submission import resolve_submission
 
 # --------------------------------------------------------------------- main
@@ -103,7 +103,6 @@ def main(argv):
     seed = (heldout.parse_seed(args.seed) if args.seed is not None else
             heldout.seed_from_key(args.seed_key, overlays) if args.seed_key else
             heldout.random_seed())
-    log(f"grade: held-out inputs from seed {seed:#x} (--seed {seed:#x} replays them)")
     build_dir, own = args.build_dir, False
     if build_dir is None and not args.fresh:
         build_dir, own = default_build_dir(repo), True
@@ -117,7 +116,7 @@ def main(argv):
         reports = grader.grade(overlays, labs, {l: r for l, r in refused.items() if r})
     finally:
         grader.close()
-    print_table(reports, notes)
+    print_table(reports, notes, seed=grader.seed)  # the one line that names the seed
     layers = layers_text(grader)  # how the tests and the build ran: for TAs (grade-log.txt, -v)
     where = ta_log(grader, layers, args.verbose)
     if not grader.screen:
@@ -127,11 +126,14 @@ def main(argv):
         for rep in reports.values():
             for r in rep.results:
                 if r.status == "failed" and rep.gradable:
-                    print(f"\n--- {r.test.lab}: {r.test.name}\n{r.output}")
+                    print()
+                    for l in f"--- {r.test.lab}: {r.test.name}\n{r.output}".split("\n"):
+                        print("\n".join(wrap(l)))
     sys.stdout.flush()
     if args.results:  # last, atomically: nothing after this can change the verdict
         write_atomic(args.results, json.dumps(results_json(reports, notes, layers,
-                                                          layers_data(grader)), indent=2) + "\n")
+                                                          layers_data(grader), grader.seed),
+                                             indent=2) + "\n")
         log(f"grade: wrote {args.results}")
     if args.require_score is not None:
         wrong = [f"{lab} scored {rep.score}" for lab, rep in reports.items() if rep.score != args.require_score]

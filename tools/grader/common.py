@@ -56,8 +56,9 @@ class TestResult:
     test: TestCase
     score: int
     status: str  # "passed" or "failed"
-    reason: str  # one line
+    reason: str  # the first failure in a student's words: the check's message, then its context
     output: str  # the details (failure text, captured output, compile error)
+    check: str = ""  # the failed checks in the harness's words (file:line, expansion): TAs' tools
 
 
 @dataclass

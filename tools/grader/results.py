@@ -78,27 +78,68 @@ def layers_data(grader):
             "sandbox_missing": dict(grader.sandbox.missing)}
 
 
-def print_table(reports, notes, out=sys.stdout):
-    results = [r for rep in reports.values() for r in rep.results]
-    lab_w = max([3] + [len(l) for l in reports])
-    name_w = min(80, max([4] + [len(r.test.name) for r in results]))
+REASON_LINES = 8  # lines of a failed test's reason under it in the table (-v: all of it)
+INDENT = 10  # the points' column and its gap: a test's name and its reason start here
+
+
+def wrap(line, width=LINE_LIMIT, indent=0):
+    """`line` (printable) as lines of at most `width` characters, the first indented by
+    `indent`, the others 2 more; broken at spaces, never cut."""
+    from diagnosis.hints import wrap as _wrap
+    return _wrap(" " * indent + line, width)
+
+
+def reason_lines(r, limit=REASON_LINES):
+    """A failed test's reason under its name: the check that failed (what, expected, got),
+    then its context; the tolerance stays in the details (-v, results.json)."""
+    from . import wording
+    lines = [l for l in wording.differing(printable(r.reason or "")).split("\n")
+             if l.strip() and not l.strip().startswith("tolerance ")]
+    out = []
+    for l in lines:
+        lead = len(l) - len(l.lstrip(" "))
+        out += wrap(l.strip(), indent=INDENT + lead)
+    if len(out) > limit:
+        out = out[:limit - 1] + [" " * INDENT + f"[... {len(out) - limit + 1} more lines: "
+                                 "tools/grade -v shows the whole test]"]
+    return out
+
+
+def print_table(reports, notes, out=sys.stdout, seed=None):
+    """The student's table: every line at most LINE_LIMIT characters. Per lab, each test's
+    points and name, a failed test's reason under it; then what the lab's functions do on the
+    probes; then the scores. `seed`: the grade's held-out seed, printed once, whole."""
     for lab, rep in reports.items():
         for n in notes.get(lab, []):
-            print(f"{lab}: note: {printable(n, keep_newlines=False)}", file=out)
+            for l in wrap(f"{lab}: note: {printable(n, keep_newlines=False)}"):
+                print(l, file=out)
         if rep.refused:
-            print(f"{lab}: REFUSED: {printable(rep.refused)}", file=out)
-    print(f"{'lab':<{lab_w}}  {'points':>7}  {'status':<6}  {'test':<{name_w}}  reason", file=out)
-    for r in results:
-        pts = f"{r.score}/{r.test.points}"
-        print(f"{r.test.lab:<{lab_w}}  {pts:>7}  {r.status:<6}  {r.test.name:<{name_w}}  {r.reason}".rstrip(),
+            for k, l in enumerate(printable(rep.refused).split("\n")):
+                for w in wrap((f"{lab}: REFUSED: " if k == 0 else "  ") + l):
+                    print(w, file=out)
+    if seed is not None:
+        for l in wrap(f"held-out inputs from seed {seed:#x} (--seed {seed:#x} replays this "
+                      "grade)"):
+            print(l, file=out)
+    for lab, rep in reports.items():
+        print(f"{lab}: the tests, each with its points (a failed test says why under it)",
               file=out)
+        for r in rep.results:
+            pts = f"{r.score}/{r.test.points}"
+            name = wrap(r.test.name, indent=INDENT)
+            print(f"{pts:>{INDENT - 2}}  {name[0][INDENT:]}", file=out)
+            for l in name[1:]:
+                print(l, file=out)
+            if r.status != "passed" or r.score < r.test.points:
+                for l in reason_lines(r):
+                    print(l, file=out)
     print(file=out)
     for lab, rep in reports.items():
         lines = lab_diagnosis(lab, rep)
         if lines:
             print(f"{lab}: what your functions do on the probes (fixed example inputs; no points):",
                   file=out)
-            print("\n".join("  " + l for l in lines) + "\n", file=out)
+            print("\n".join(w for l in lines for w in wrap("  " + l)) + "\n", file=out)
     for lab, rep in reports.items():
         extra = (" (refused: every test scores 0)" if rep.refused else
                  " (does not compile: every test scores 0)" if rep.compile_error else "")
@@ -111,8 +152,11 @@ def print_table(reports, notes, out=sys.stdout):
             print(f"\n{lab}: compiler output (last lines):\n{rep.compile_error}", file=out)
 
 
-def summary(reports, notes, layers=""):
+def summary(reports, notes, layers="", seed=None):
     lines = []
+    if seed is not None:  # the one line that names the seed (a reason refers to it)
+        lines.append(f"Held-out inputs from seed {seed:#x}: tools/grade ... --seed {seed:#x} "
+                     "replays this grade.")
     for lab, rep in reports.items():
         failed = sum(1 for r in rep.results if r.status == "failed")
         state = ("refused: every test scores 0" if rep.refused else
@@ -132,24 +176,30 @@ def summary(reports, notes, layers=""):
     return "\n".join(lines)
 
 
-def results_json(reports, notes, layers="", layer_data=None):
+def results_json(reports, notes, layers="", layer_data=None, seed=None):
     """Gradescope's results.json as a dict; its JSON text is at most RESULTS_CAP bytes (each
-    test's output is already capped; if they still add up to more, each is cut further)."""
+    test's output is already capped; if they still add up to more, each is cut further). A
+    task's diagnosis goes under its first failed test, once."""
     tests = []
     for lab, rep in reports.items():
         diag = {task: "\n".join(task_lines(d)) for task, d in (rep.diagnosis or {}).items()} \
             if rep.gradable else {}
+        shown = set()
         for r in rep.results:
             out = r.output if r.status == "failed" else (r.output or "passed")
             task = re.match(r"^([A-Z]+\d+)\b", r.test.name)
-            extra = diag.get(task.group(1) if task else "", "")
+            task = task.group(1) if task else ""
+            extra = diag.get(task, "")
             if extra and r.status == "failed":
-                out = out.rstrip() + "\n\nDiagnosis of the task:\n" + extra
+                out = out.rstrip() + ("\n\nDiagnosis of the task:\n" + extra if task not in shown
+                                      else f"\n\n(The diagnosis of {task} is under its first "
+                                      "failed test.)")
+                shown.add(task)
             tests.append({"name": f"{r.test.lab}: {r.test.name}", "score": r.score,
                           "max_score": r.test.points, "status": r.status, "output": out,
                           "visibility": "visible"})
     data = {"score": sum(rep.score for rep in reports.values()),
-            "output": summary(reports, notes, layers), "output_format": "text",
+            "output": summary(reports, notes, layers, seed), "output_format": "text",
             "test_output_format": "text", "test_name_format": "text",
             "visibility": "visible", "stdout_visibility": "hidden", "tests": tests,
             "extra_data": {"defences": layer_data or {}}}

@@ -3,8 +3,10 @@ framework's report (from a pipe only the grader reads), checked for this run and
 
 Trust: decides the score; reads untrusted bytes as data only (capped, parsed defensively)."""
 import re
+import signal
 import xml.etree.ElementTree as ET
 
+from . import wording
 from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, Defect, TestResult,
                      capped, printable, short)
 from .procs import signal_name
@@ -17,71 +19,106 @@ def _text(el):
     return printable(capped("\n".join(l for l in lines if l), MESSAGE_CAP))
 
 
-def read_report(data, name, nonce, strip):
+def read_report(data, name, nonce, strip, seed=None):
     """Checks and reads Catch's XML report (the test process's standard output).
-    Returns (verdict, short reason, details).
+    Returns (verdict, reason, details, check).
 
     verdict: "passed", "failed" (the test case ran and failed) or "missing"
     (no complete, well-formed report of exactly this run: the process died or
-    exited before Catch finished, or wrote something else)."""
+    exited before Catch finished, or wrote something else).
+    reason: the first failure in a student's words (wording.py): the failed check's own
+    message first, then its context; details: every failure so, and the test's output;
+    check: the failed checks in the harness's words (file:line, expression, expansion), for
+    the TAs' tools only (tools/mutants' margins), never shown to a student."""
     if data is None:
-        return "missing", f"the test report is larger than {REPORT_CAP // (1024 * 1024)} MiB", ""
+        return "missing", f"the test report is larger than {REPORT_CAP // (1024 * 1024)} MiB", "", ""
     if not data.strip():
-        return "missing", "no test report was written", ""
+        return "missing", "no test report was written", "", ""
     head = data[:4096]
     if b"<!DOCTYPE" in data or b"<!ENTITY" in data or not head.lstrip().startswith(b"<?xml") \
             or not re.match(rb'<\?xml version="1\.0" encoding="UTF-8"\?>', head.lstrip()):
-        return "missing", "the test report is not the one the test framework writes", ""
+        return "missing", "the test report is not the one the test framework writes", "", ""
     try:
         root = ET.fromstring(data)
     except Exception:  # any parser failure (truncated, bad encoding...) is no report
-        return "missing", "the test report is incomplete", ""
+        return "missing", "the test report is incomplete", "", ""
     if root.tag != "Catch" or root.get("name") != nonce:
-        return "missing", "the test report does not belong to this run", ""
+        return "missing", "the test report does not belong to this run", "", ""
     cases = [tc for tc in root.iter("TestCase") if tc.get("name") == name]
     others = [tc for tc in root.iter("TestCase") if tc.get("name") != name]
     if len(cases) != 1 or others:
-        return "missing", f"the report has {len(cases)} runs of this test case and {len(others)} of others", ""
+        return ("missing", f"the report has {len(cases)} runs of this test case and "
+                f"{len(others)} of others", "", "")
     tc = cases[0]
     overall = tc.find("OverallResult")
     totals = root.find("OverallResults")
     case_totals = root.find("OverallResultsCases")
-    lines, infos, first = [], [], ""
+    lines, checks, infos, first = [], [], [], ""
+    inside = {id(x) for e in tc.iter("Expression") for x in e.iter("Exception")}
+
+    def words(el):
+        return wording.capture(_text(el))
+
+    def failure(message):
+        """The failed check's message, then its context (the messages in scope, outermost
+        first): what failed comes first."""
+        context = [i for i in infos if i != message]
+        return wording.student("\n".join([message] + context), seed)
     for el in tc.iter():
         loc = f"{el.get('filename', '').replace(strip, '')}:{el.get('line', '')}"
         if el.tag in ("Info", "Message", "Warning"):
-            infos.append(_text(el))
-            lines.append(_text(el))
+            infos.append(words(el))
         elif el.tag == "Expression" and el.get("success") == "false":
             orig = _text(el.find("Original")) if el.find("Original") is not None else ""
             expd = _text(el.find("Expanded")) if el.find("Expanded") is not None else ""
-            lines.append(f"{loc}: {el.get('type', 'CHECK')}( {orig} ) failed, with expansion: {expd}")
-            first = first or ("; ".join(i.replace("\n", "; ") for i in infos)
-                              or f"{el.get('type', 'CHECK')}( {orig} ) failed")
+            exc = el.find("Exception")
+            if exc is not None:  # thrown while the check was evaluated
+                message = wording.exception(_text(exc))
+            elif infos:
+                message = infos[-1]  # the innermost message in scope: the check's own words
+            else:
+                message = f"a check failed: {orig}"
+            checks.append(f"{message}\n{loc}: {el.get('type', 'CHECK')}( {orig} ) failed, with "
+                          f"expansion: {expd}" + (f" ({_text(exc)})" if exc is not None else ""))
+            text = failure(message)
+            lines.append(text)
+            first = first or text
+            infos = []
         elif el.tag == "Exception":
-            lines.append(f"{loc}: unexpected exception: {_text(el)}")
-            first = first or f"unexpected exception: {_text(el)}"
+            if id(el) in inside:
+                continue  # thrown inside a check: reported with it above
+            checks.append(f"{loc}: unexpected exception: {_text(el)}")
+            text = failure(wording.exception(_text(el)))
+            lines.append(text)
+            first = first or text
+            infos = []
         elif el.tag == "FatalErrorCondition":
-            lines.append(f"{loc}: fatal error: {_text(el)}")
+            checks.append(f"{loc}: fatal error: {_text(el)}")
+            lines.append(f"crashed: {_text(el)}")
             first = first or f"crashed: {_text(el)}"
         elif el.tag == "Failure":
-            lines.append(f"{loc}: failed: {_text(el)}")
-            first = first or _text(el)
+            checks.append(f"{loc}: failed: {_text(el)}")
+            text = failure(wording.exception(_text(el)) if "stopped answering" in _text(el)
+                           else words(el))
+            lines.append(text)
+            first = first or text
+            infos = []
         elif el.tag in ("StdOut", "StdErr"):
             t = _text(el)
             if len(t) > OUTPUT_CAP:
                 t = t[:OUTPUT_CAP] + f"\n[... {len(t) - OUTPUT_CAP} more characters not shown]"
             lines.append(f"{'std::cout' if el.tag == 'StdOut' else 'std::cerr'} during the test:\n{t}")
-    details = "\n".join(lines)
+    details = "\n\n".join(lines)
+    check = "\n".join(checks)
     if overall is None or totals is None or case_totals is None:
-        return "missing", "the test report is incomplete", details
+        return "missing", "the test report is incomplete", details, check
     ok = (overall.get("success") == "true" and totals.get("failures") == "0"
           and totals.get("expectedFailures") == "0" and case_totals.get("failures") == "0"
           and case_totals.get("successes") == "1"
           and not any(e.get("success") == "false" for e in tc.iter("Expression")))
     if ok:
-        return "passed", "", details
-    return "failed", " ".join((first or "failed").split()), details
+        return "passed", "", details, check
+    return "failed", (first or "failed").strip(), details, check
 
 
 class GraderError(Defect):
@@ -91,7 +128,7 @@ class GraderError(Defect):
 
 
 def judge(test, status, data, captured, nonce, timeout, strip, worker_status=None,
-          worker_output=""):
+          worker_output="", seed=None):
     """The TestResult of one run: `status` from the launcher ("exit"/"signal"/"timeout"/
     "idle"/"error", value), `data` the report read from the test's standard output (None: too
     big), `captured` its (capped) other output, `nonce` this run's random name. The worker's
@@ -102,7 +139,7 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
     the test or writes no complete report is the grader's own defect: GraderError, never a
     failure of the submission. What the worker does (crash, exit, garbage, silence) fails
     the test, through the test's own report."""
-    verdict, reason, details = read_report(data, test.name, nonce, strip)
+    verdict, reason, details, check = read_report(data, test.name, nonce, strip, seed)
     kind, value = status
     if kind == "error":
         raise Defect(f"the sandbox could not start a test process: {value}")
@@ -129,14 +166,22 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
                 f"the trusted test process of '{test.name}' ({test.lab}) {how}: a defect of the "
                 "grader or its tests, not of the submission; the lab is not scored")
     passed = kind == "exit" and value == 0 and verdict == "passed"
-    gone = "the lab's code stopped answering" in details
+    fn = wording.function_gone(check)
+    gone = bool(fn) or "stopped answering" in details
     if not passed and gone and worker_status:
         wkind, wvalue = worker_status
+        who = f"your {fn}" if fn else "the lab's code"
         if wkind == "signal":
-            reason = f"the lab's code crashed ({signal_name(wvalue)})"
+            try:
+                bare = signal.Signals(wvalue).name
+            except ValueError:
+                bare = f"signal {wvalue}"
+            what, worker_output = wording.crash(bare, worker_output)
+            reason = f"{who} crashed: {what}"
         elif wkind == "exit":
-            reason = (f"the lab's code ended its process with status {wvalue} in the middle of "
-                      "the test (exit(), _Exit() or quick_exit() called in student code?)")
+            reason = (f"{who} ended its process with status {wvalue} in the middle of the test "
+                      "(exit(), _Exit() or quick_exit() called in student code?)")
+        details = ""  # the test's side of it (the call that found the process gone) says no more
     # A failed assertion's details start with the same message: no need to repeat it.
     repeats = verdict == "failed" and kind == "exit" and details and not gone
     parts = [] if passed or repeats else [reason]
@@ -145,7 +190,7 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
     if captured.strip():
         parts.append("output of the test process:\n" + printable(captured.rstrip()))
     if worker_output.strip():
-        parts.append("output of the lab's code:\n" + printable(worker_output.rstrip()))
+        parts.append("output of your code:\n" + printable(worker_output.rstrip()))
     return TestResult(test, test.points if passed else 0, "passed" if passed else "failed",
-                      "" if passed else short(reason),
-                      capped("\n\n".join(parts), TEST_OUTPUT_CAP))
+                      "" if passed else reason,
+                      capped("\n\n".join(parts), TEST_OUTPUT_CAP), check)

@@ -131,4 +131,4 @@ def run_test(sandbox, binary, worker, test, timeout, strip, cwd, seed=None):
     w_output = ((w_stdout or b"").decode("utf-8", "replace") + w_stderr)[:2 * WORKER_OUTPUT_CAP]
     if stopped:
         status = stopped
-    return judge(test, status, data, captured, nonce, timeout, strip, w_status, w_output)
+    return judge(test, status, data, captured, nonce, timeout, strip, w_status, w_output, seed)

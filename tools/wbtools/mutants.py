@@ -71,7 +71,7 @@ def grade_files(grader, lab, files):
     paragraph is the reason, untruncated)."""
     rep = grader.grade({lab: files}, [lab])[lab]
     return (rep.compile_error, rep.score, rep.max_score,
-            [(r.test.name, list(r.test.tags), r.status == "passed", r.output or r.reason)
+            [(r.test.name, list(r.test.tags), r.status == "passed", failure_of(r))
              for r in rep.results])
 
 
@@ -154,11 +154,11 @@ def direct_run(grader, lab, binary, tests, again=False):
             return None
         if p.returncode < 0 or p.stderr.strip() or any(u in p.stdout for u in UNSURE):
             return None
-        plain, _, _ = read_report(p.stdout, t.name, nonce, grader.src + "/")
+        plain = read_report(p.stdout, t.name, nonce, grader.src + "/")[0]
         if plain == "missing" or (plain == "passed") != (p.returncode == 0):
             return None  # an incomplete report, or one that disagrees with the exit status
         return verdict(t, ("exit", p.returncode), p.stdout, "", nonce, grader.timeout,
-                       grader.src + "/")
+                       grader.src + "/", seed=grader.seed)
 
     t0 = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(grader.jobs) as pool:
@@ -170,8 +170,14 @@ def direct_run(grader, lab, binary, tests, again=False):
     heldout.gate(results)  # as the grader does
     score = sum(r.score for r in results)
     return ("", score, sum(t.points for t in tests),
-            [(r.test.name, list(r.test.tags), r.status == "passed", r.output or r.reason)
+            [(r.test.name, list(r.test.tags), r.status == "passed", failure_of(r))
              for r in results])
+
+
+def failure_of(r):
+    """A failed test's text as tools/mutants reads it: the student's words, then the failed
+    checks in the harness's (the margins are measured from both)."""
+    return "\n".join(x for x in ((r.output or r.reason), r.check) if x)
 
 
 # ------------------------------------------------------- the held-out checks alone

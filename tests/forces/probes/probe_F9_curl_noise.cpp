@@ -87,7 +87,7 @@ WB_PROBE("F9", "flow-cubic",
   P.in("h", p.h);
   P.out("returned", curl_noise_flow(Vec2(1, 2), p));
 }
-// The obstacles, in one output: the potential within the ramp of a disc, beyond it, between two
+// The obstacles, in one group: the potential within the ramp of a disc, beyond it, between two
 // discs, deep inside a disc wider than the ramp (s < -1), nearer to a large disc's edge than to
 // a small one's whose centre is nearer, and the flow within the ramp.
 WB_PROBE("F9", "obstacles",
@@ -103,12 +103,16 @@ WB_PROBE("F9", "obstacles",
       "near and far: the first disc alone; inside and edge: discs (-4, 1) r 4, (1.2, 1.6) r 0.3");
   P.in("x (near, far, between, inside, edge)",
        wbprobe::cols({{3, -0.5}, {4.5, -0.5}, {3, -0.5}, {-3.5, 1.5}, {0.3, 1.3}}));
-  const Vec2 u = curl_noise_flow(Vec2(3, -0.5), one);
-  P.out("(psi_c near, psi_c far, psi_c between, psi_c inside, psi_c edge, u near)",
+  // One group (a ramp mistake shows in either), two outputs (a flow mistake in u alone): the
+  // counterexample then names the one that is wrong.
+  P.group("obstacles");
+  P.out("psi_c (near, far, between, inside, edge)",
         wbprobe::vec(
             {curl_noise_potential(Vec2(3, -0.5), one), curl_noise_potential(Vec2(4.5, -0.5), one),
              curl_noise_potential(Vec2(3, -0.5), two), curl_noise_potential(Vec2(-3.5, 1.5), big),
-             curl_noise_potential(Vec2(0.3, 1.3), big), u.x(), u.y()}));
+             curl_noise_potential(Vec2(0.3, 1.3), big)}));
+  P.out("u near", curl_noise_flow(Vec2(3, -0.5), one));
+  P.group("");
 }
 WB_PROBE("F9", "flow-near", "curl_noise_flow 1.3 from a disc's edge, ramp distance 2.5") {
   P.simple();

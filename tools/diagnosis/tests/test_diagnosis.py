@@ -94,19 +94,78 @@ def test_the_counterexample_is_the_first_wrong_probe_with_expected_and_got():
 
 
 @pytest.mark.parametrize("got, words", [
-    ([2, 4], "constant factor 2"), ([1, 5], "only the y component"), ([2, 1], "swapped"),
-    ([math.nan, 2], "NaN"), ([0, 0], "zero")])
+    ([1, 5], "only the y component"), ([2, 1], "swapped"), ([math.nan, 2], "NaN"),
+    ([0, 0], "what the skeleton gives")])
 def test_what_differs_is_said(got, words):
     """Defect: a counterexample that leaves the student to spot the pattern."""
     lines = wh.counterexample(CAT["probes"][0], rec(f=got))
     assert any(words in l for l in lines), lines
 
 
+def why(expected, got, skeleton=None, inputs=(), adds=()):
+    p = probe("T/w", rec(f=expected), rec(f=skeleton if skeleton is not None else [7] * len(expected)),
+              inputs=inputs)
+    lines = wh.counterexample(p, rec(f=got), adds)
+    return " ".join(l for l in lines if l.strip().startswith("f:"))
+
+
+def test_a_constant_factor_only_across_three_differing_numbers():
+    """Defect (issue 46): "off by a constant factor 1.229" said of one number, or of two, where
+    any wrong value has a ratio: a relation that means nothing reads as a diagnosis."""
+    assert "factor" not in why([1.0], [1.229])
+    assert "factor" not in why([3.0, 4.0], [6.0, 8.0])
+    assert "constant factor 2 (in all 3 numbers" in why([1.0, 2.0, 3.0], [2.0, 4.0, 6.0])
+    assert "factor" not in why([6.34203, 1.0, 2.0], [6.34281, 1.0, 2.0])
+
+
+def test_a_sign_flip_is_called_a_sign_flip():
+    """Defect (issue 46): a plain sign flip read as "off by a constant factor -16" (its change
+    against what f held), or as a factor on one number."""
+    assert why([2.0, -3.0, 5.0], [-2.0, 3.0, -5.0]).endswith("f: the sign is flipped")
+    assert why([-0.6], [0.6]).endswith("f: the sign is flipped")
+    assert "factor" not in why([2.0, -3.0, 5.0], [-2.0, 3.0, -5.0])
+
+
+def test_nothing_computed_only_when_the_output_is_the_input_or_the_skeletons():
+    """Defect (issue 46): "zero (nothing computed?)" on values that were computed (a singular
+    matrix gives zeros too)."""
+    assert "nothing" not in why([1.0, 2.0], [0.0, 0.0])
+    assert "skeleton" in why([1.0, 2.0], [0.0, 0.0], skeleton=[0.0, 0.0])
+    assert "nothing computed" in why([1.0, 2.0], [5.0, 6.0], inputs=[("f", [5.0, 6.0])])
+
+
 def test_accumulating_outputs_say_what_was_lost_or_not_added():
     """Defect: an overwritten f or a function that adds nothing reads as a wrong formula."""
     p = probe("T/x", rec(f=[4, 6]), rec(f=[1, 2]), inputs=[("f", [1, 2])])
-    assert any("lost" in l for l in wh.counterexample(p, rec(f=[3, 4])))
-    assert any("nothing was added" in l for l in wh.counterexample(p, rec(f=[1, 2])))
+    assert any("lost: add to f" in l for l in wh.counterexample(p, rec(f=[3, 4]), adds=["f"]))
+    assert any("nothing was added" in l for l in wh.counterexample(p, rec(f=[1, 2]), adds=["f"]))
+
+
+def test_add_do_not_overwrite_only_where_the_header_says_add():
+    """Defect (issue 46): R6 prepare_contact resetting the stored totals was told "add to c.Pn,
+    do not overwrite it", where the header says prepare leaves them as they are: advice the
+    contract does not make is not given."""
+    p = probe("T/x", rec(**{"c.Pn": [0.3]}), rec(**{"c.Pn": [0.3]}), inputs=[("c.Pn", [0.3])])
+    text = "\n".join(wh.counterexample(p, rec(**{"c.Pn": [0.0]}), adds=["f"]))
+    assert "add to" not in text and "overwrite" not in text
+
+
+def test_numbers_show_the_digits_that_differ():
+    """Defect (issue 46): 1.0001 against 1.000101 printed as "1.0001" and "1.0001": the
+    student cannot see what differs."""
+    text = "\n".join(wh.counterexample(probe("T/d", rec(f=[1.0001, 2.0]), ZERO),
+                                        rec(f=[1.000101, 2.0])))
+    assert "expected f = (1.0001, 2)" in text and "got      f = (1.000101, 2)" in text
+
+
+def test_a_long_value_shows_the_entries_that_differ_whole():
+    """Defect (issue 46): expected and got cut with "..." mid-value."""
+    ev = [float(k) for k in range(200)]
+    gv = list(ev)
+    gv[150] = -1.0
+    text = "\n".join(wh.counterexample(probe("T/l", rec(f=ev), ZERO), rec(f=gv)))
+    assert "..." not in text and "[150] = 150" in text and "[150] = -1" in text
+    assert "the other 199 of 200 entries agree" in text
 
 
 def test_a_task_ignores_every_other_tasks_outputs():

@@ -105,7 +105,8 @@ struct Caller<R(A...)> {
           std::string what;
           get(in, what);
           rethrow_callback_error(s);
-          throw std::runtime_error(printable(what));
+          // Named: a student reads which of their functions threw (grader/wording.py).
+          throw std::runtime_error(std::string("your ") + name + " threw: " + printable(what));
         }
         if (kind != kResult) throw ProtocolError("an unknown message");
         (read_back<A>(in, a), ...);

@@ -76,3 +76,83 @@ def test_write_atomic_leaves_no_half_file(tmp_path, monkeypatch):
     with pytest.raises(OSError):
         results.write_atomic(str(path), "new")
     assert path.read_text() == "good" and [p.name for p in tmp_path.iterdir()] == ["results.json"]
+
+
+# ------------------------------------------------ what a student reads (issue 46)
+
+SEED = 0xa8025cd52d8e4f17
+LONG = ("C2 collide_particles: receding particles get no impulse but are separated without "
+        "moving the centre of mass")
+
+
+def half_done():
+    """A lab with a long test name, a held-out failure and a failure with a long value."""
+    tests = [common.TestCase("collisions", LONG, 3, ["[C2]", "[3pts]"]),
+             common.TestCase("collisions", "C2 held-out: random pairs", 4,
+                             ["[C2]", "[held-out]", "[4pts]"]),
+             common.TestCase("collisions", "C3 grid_pairs: pairs", 5, ["[C3]", "[5pts]"])]
+    long_value = "(" + ", ".join(f"{k}.25" for k in range(60)) + ")"
+    res = [common.TestResult(tests[0], 3, "passed", "", ""),
+           common.TestResult(tests[1], 0, "failed",
+                             "impulse along n (pair 3)\n  expected (1, 2)\n  got      (1, 1.5)\n"
+                             "  tolerance 1e-12 + 0 * |value|\n"
+                             "held-out inputs of C2 (the grade's seed, above)", "details"),
+           common.TestResult(tests[2], 0, "failed", f"pairs\n  expected {long_value}\n"
+                             f"  got      {long_value.replace('59.25', '-1')}", "details")]
+    return {"collisions": LabReport("collisions", res)}
+
+
+def table(reports, seed=SEED):
+    buf = io.StringIO()
+    results.print_table(reports, {"collisions": ["x" * 150]}, out=buf, seed=seed)
+    return buf.getvalue()
+
+
+def test_every_line_of_the_table_fits_a_terminal():
+    """Defect (issue 46): table lines past 200 characters (lab, points, status, a name of up to
+    112 characters and the reason on one line), and reasons cut with "..."."""
+    text = table(half_done())
+    assert max(len(l) for l in text.splitlines()) <= results.LINE_LIMIT
+    assert "expected #59 = 59.25 (the other 59 of 60 numbers agree)" in text  # what differs
+    assert "got      #59 = -1" in text
+    assert "moving the centre of mass" in " ".join(text.split()) and "..." not in text
+
+
+def test_the_failed_check_is_the_first_line_under_its_test():
+    """Defect (issue 46): a reason that starts elsewhere than at the check that failed."""
+    lines = table(half_done()).splitlines()
+    k = next(i for i, l in enumerate(lines) if "C2 held-out: random pairs" in l)
+    assert lines[k + 1].strip() == "impulse along n (pair 3)"
+    assert lines[k + 2].strip() == "expected (1, 2)" and lines[k + 3].strip() == "got      (1, 1.5)"
+
+
+def test_one_seed_line_never_cut():
+    """Defect (issue 46): the seed printed twice in the header, again in each held-out reason,
+    and cut mid-hex in the table (--seed 0xa8025cd52d8e...): a student who copies it replays
+    the wrong inputs."""
+    text = table(half_done())
+    assert text.count(f"{SEED:#x}") == 2 and len(text.split(f"{SEED:#x}")) == 3
+    line = next(l for l in text.splitlines() if f"{SEED:#x}" in l)
+    assert f"--seed {SEED:#x} replays this grade" in line
+    assert "the grade's seed, above" in text
+    data = results.results_json(half_done(), {}, seed=SEED)
+    assert data["output"].count(f"--seed {SEED:#x}") == 1
+    assert not any(f"{SEED:#x}" in t["output"] for t in data["tests"])
+
+
+def test_a_tasks_diagnosis_is_given_once():
+    """Defect (issue 46): the whole diagnosis block repeated under every failed test of a task
+    (7 times for E1) in results.json."""
+    class D:
+        task, title, status = "E1", "", "counterexample"
+
+        def lines(self):
+            return ["E1: 3 of 4 tests failed", "  Counterexample ..."]
+
+        def headline(self):
+            return "E1: 3 of 4 tests failed"
+    reps = lab(passed=(0,))
+    reps["euler"].diagnosis = {"E1": D()}
+    outs = [t["output"] for t in results.results_json(reps, {})["tests"]]
+    assert sum("Counterexample" in o for o in outs) == 1 and "Counterexample" in outs[1]
+    assert "under its first failed test" in outs[2]

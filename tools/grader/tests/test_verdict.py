@@ -45,10 +45,10 @@ def test_a_complete_passing_report_passes():
 def test_a_failed_assertion_gives_its_message_and_place_without_the_scratch_path():
     """Defect: a failure whose reason is not the assertion's own words (the student cannot act
     on it), or one that leaks the grader's scratch folder."""
-    verdict, reason, details = read_report(report(FAILED_EXPR, ok=False), NAME, NONCE, SRC)
+    verdict, reason, details, check = read_report(report(FAILED_EXPR, ok=False), NAME, NONCE, SRC)
     assert verdict == "failed" and reason == "explicit Euler velocity (particle 0)"
-    assert "tests/common/h.h:40: REQUIRE( near(got, expected) ) failed" in details
-    assert SRC not in details
+    assert "tests/common/h.h:40: REQUIRE( near(got, expected) ) failed" in check
+    assert SRC not in details and SRC not in check
 
 
 @pytest.mark.parametrize("data,why", [
@@ -66,7 +66,7 @@ def test_a_failed_assertion_gives_its_message_and_place_without_the_scratch_path
 def test_a_report_that_is_not_exactly_this_runs_is_missing(data, why):
     """Defect: a forged report (printed by student code, guessed nonce, another test's, a
     truncated or entity-laden one) is taken as the framework's verdict."""
-    verdict, reason, _ = read_report(data, NAME, NONCE, SRC)
+    verdict, reason, _, _ = read_report(data, NAME, NONCE, SRC)
     assert verdict == "missing" and why in reason
 
 
@@ -122,7 +122,7 @@ def test_the_workers_end_explains_but_never_passes():
     body = "<Failure>the lab's code stopped answering</Failure>"
     r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC,
               worker_status=("signal", signal.SIGSEGV))
-    assert r.score == 0 and r.reason.startswith("the lab's code crashed (SIGSEGV")
+    assert r.score == 0 and r.reason.startswith("the lab's code crashed: an invalid memory")
     r = judge(TEST, ("exit", 0), report(), "", NONCE, 60, SRC, worker_status=("signal", 11))
     assert r.score == 10
 
@@ -139,3 +139,82 @@ def test_output_is_capped_and_printable():
     r = judge(TEST, ("exit", 1), report(FAILED_EXPR, ok=False), "\x1b[2J" + "x" * 100000, NONCE,
               60, SRC)
     assert "\x1b" not in r.output and len(r.output) < 20000
+
+
+# ------------------------------------------------ what a student reads (issue 46)
+
+def info(text):
+    return f"<Info>{text}</Info>"
+
+
+def expression(orig="near(got, expected, abs_tol, rel_tol)", expanded="false", line=43,
+               inner=""):
+    return (f'<Expression success="false" type="REQUIRE" filename="{SRC}tests/common/'
+            f'test_helpers.h" line="{line}"><Original>{orig}</Original><Expanded>{expanded}'
+            f'</Expanded>{inner}</Expression>')
+
+
+HELPER = ("explicit Euler position (particle 0)\n  expected (1, 2)\n  got      (1, 1.9)\n"
+          "  tolerance 1e-12 + 0 * |value|")
+HARNESS = ("test_helpers.h", "REQUIRE", "with expansion", "Unknown expression", "pipe",
+           "Assertion", "stl_algo", ":= ")
+
+
+def test_the_failed_check_comes_first_then_its_context():
+    """Defect (issue 46): a reason that opens with its context (the R7 pendulum's "crossed 4
+    times in 8 s" before the period that failed; every held-out reason with its seed): the
+    first line a student reads must be the check that failed."""
+    body = (info("held-out inputs of E1 from seed 0x5 (replay: tools/grade ... --seed 0x5, or "
+                 "WB_HELDOUT_SEED=0x5 when running the tests)") + info("step 3, t = 0.03") +
+            info(HELPER) + expression())
+    r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC, seed=5)
+    assert r.reason.splitlines()[0] == "explicit Euler position (particle 0)"
+    assert r.reason.splitlines()[-2:] == [
+        "held-out inputs of E1 (the grade's seed, above)", "step 3, t = 0.03"]
+    assert "0x5" not in r.reason and "0x5" not in r.output
+
+
+def test_no_harness_words_reach_the_student():
+    """Defect (issue 46): every failing test carried "tests/common/test_helpers.h:43: REQUIRE(
+    near(...) ) failed, with expansion: false", and captures read "wbtest::str(x) := (1, 2)"."""
+    body = (info("k := 0") + info("wbtest::str(x) := (1, 2)") + info(HELPER) + expression())
+    r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC)
+    student = r.reason + "\n" + r.output
+    assert not [w for w in HARNESS if w in student], student
+    assert "k = 0" in student and "x = (1, 2)" in student
+    assert "test_helpers.h:43: REQUIRE( near(got, expected, abs_tol, rel_tol) )" in r.check
+
+
+CLAMP = ("/usr/include/c++/12/bits/stl_algo.h:3625: constexpr const _Tp& std::clamp(const _Tp&, "
+         "const _Tp&, const _Tp&) [with _Tp = double]: Assertion '!(__hi < __lo)' failed.")
+GONE = ("the lab's code stopped answering during solve_contact (the other side closed the pipe): "
+        "its process crashed, called exit() or hit a limit")
+
+
+def test_a_crash_says_in_one_line_what_the_code_did():
+    """Defect (issue 46): a C5 crash printed "CHECK( {Unknown expression after the reported
+    line} )", "the other side closed the pipe" and libstdc++'s std::clamp assertion."""
+    body = expression("{Unknown expression after the reported line}", "{Unknown expression "
+                      "after the reported line}", inner=f"<Exception>{GONE}</Exception>")
+    r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC,
+              worker_status=("signal", signal.SIGABRT), worker_output=CLAMP + "\nmy print\n")
+    assert r.reason == ("your solve_contact crashed: called std::clamp with hi < lo "
+                        "(clamp(v, lo, hi) needs lo <= hi)")
+    student = r.reason + "\n" + r.output
+    assert not [w for w in HARNESS if w in student], student
+    assert "my print" in r.output  # what the student's code printed stays
+    r = judge(TEST, ("exit", 1), report(f"<Failure>{GONE}</Failure>", ok=False), "", NONCE, 60,
+              SRC, worker_status=("signal", signal.SIGSEGV))
+    assert r.reason.startswith("your solve_contact crashed: an invalid memory access")
+
+
+def test_an_eigen_check_reads_as_what_the_code_did():
+    """Defect (issue 46): an index out of range reported as Eigen's file, line and check."""
+    text = ("your prepare_contact threw: Eigen: an index out of range, or sizes that do not match "
+            "(Eigen/src/Core/DenseCoeffsBase.h:408 checks index &gt;= 0 &amp;&amp; index &lt; "
+            "size())")
+    body = expression(inner=f"<Exception>{text}</Exception>")
+    r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC)
+    assert r.reason == ("your prepare_contact threw an exception: an index out of range of an "
+                        "Eigen vector or matrix (index >= 0 && index < size())")
+    assert "DenseCoeffsBase" not in r.reason + r.output
