@@ -126,6 +126,9 @@ def record(grader, lab, files, built=False):
             recs = wh.parse_lines((e.stdout or b"").decode("utf-8", "replace"))
             crash = f"did not finish within {PROBE_TIMEOUT:g} s"
         for r in recs:
+            if r.get("error"):  # the words the grader's path gives it (probes.py)
+                from grader import wording
+                r = dict(r, error=wording.probe_error(str(r["error"])))
             out[r["probe"]] = r
         done = {r["probe"] for r in recs}
         rest = [i for i in todo if i not in done]
@@ -248,21 +251,25 @@ def leave_one_out(cat):
     for name in sorted(muts):
         m = muts[name]
         key = wh.part_key(name, m)
-        status, part, _ = outcome(cat, name)
+        status, part, d = outcome(cat, name)
         if part is not None:
             res = "right" if part == key else "wrong"
+        elif status == "tests" and d.test_message.split(":\n", 1)[-1].strip():
+            res = "tests"  # no probe differs: the failed test's own message is shown
+        elif status in ("counterexample",):
+            res = status
         else:
-            res = status  # counterexample, tests (no probe differs), no probes
+            res = "silent"  # nothing a student can act on
         rows.append((name, peers[key] > 1 and bool(m.get("kind")), res, part))
     return rows
 
 
 def loo_table(repo, labs, markdown=False, verbose=False, min_right=None, max_wrong=None,
-              max_wrong_alone=None):
+              max_wrong_alone=None, max_silent=None):
     """The leave-one-out figures of every lab with a catalogue; returns the exit status."""
     head = ["lab", "mutants", "with a peer: right", "wrong", "counterexample", "alone: wrong",
-            "alone: counterexample", "probes blind"]
-    lines, totals = [], [0] * 8
+            "alone: counterexample", "probes blind", "silent"]
+    lines, totals = [], [0] * 9
     for lab in labs:
         cat = wh.load_catalogue(repo, lab)
         if cat is None:
@@ -278,21 +285,21 @@ def loo_table(repo, labs, markdown=False, verbose=False, min_right=None, max_wro
         counts = [len(rows), sum(r[2] == "right" for r in peer), sum(r[2] == "wrong" for r in peer),
                   sum(r[2] == "counterexample" for r in peer), sum(r[2] == "wrong" for r in alone),
                   sum(r[2] == "counterexample" for r in alone),
-                  sum(r[2] in ("tests", "no probes") for r in rows)]
+                  sum(r[2] == "tests" for r in rows), sum(r[2] == "silent" for r in rows)]
         lines.append((lab, counts, len(peer), len(alone)))
         for k, c in enumerate(counts):
             totals[k] += c
-        totals[7] += len(peer)
+        totals[8] += len(peer)
     if not lines:
         return 1
-    allpeer = totals[7]
+    allpeer = totals[8]
     allalone = totals[0] - allpeer
-    lines.append(("all", totals[:7], allpeer, allalone))
+    lines.append(("all", totals[:8], allpeer, allalone))
 
     def pct(a, b):
         return f"{a}/{b} ({100 * a / b:.0f}%)" if b else "0/0"
     table = [[lab, str(c[0]), pct(c[1], p), pct(c[2], p), pct(c[3], p), pct(c[4], a),
-              pct(c[5], a), str(c[6])] for lab, c, p, a in lines]
+              pct(c[5], a), str(c[6]), str(c[7])] for lab, c, p, a in lines]
     if markdown:
         print("| " + " | ".join(head) + " |")
         print("|" + "---|" * len(head))
@@ -312,13 +319,18 @@ def loo_table(repo, labs, markdown=False, verbose=False, min_right=None, max_wro
     if max_wrong is not None and wrong_pct > max_wrong:
         print(f"mutants: leave-one-out: wrong for {wrong_pct:.0f}% > --max-wrong {max_wrong:g}%")
         status = 1
+    if max_silent is not None and totals[7] > max_silent:
+        print(f"mutants: leave-one-out: {totals[7]} mutants get nothing to act on > --max-silent "
+              f"{max_silent}")
+        status = 1
     if max_wrong_alone is not None and totals[4] > max_wrong_alone:
         print(f"mutants: leave-one-out: {totals[4]} mutants alone in their part named another "
               f"part > --max-wrong-alone {max_wrong_alone}")
         status = 1
     print("\nright/wrong: the part named (a catalogued mistake matched exactly, or the part the "
           "wrong probes point at) is / is not the left-out mutant's file and '# kind:'; "
-          "counterexample: no part named, the first wrong probe shown; probes blind: every "
+          "counterexample: no part named, the first wrong probe shown; silent: none of these, "
+          "nor a failed test's message; probes blind: every "
           "probe agrees with the solution (the failed test's own message is shown).")
     return status
 
@@ -382,7 +394,11 @@ def mid_lab_variants(repo, lab, cat, variant_files):
 def mid_lab_check(repo, grader, lab, cat, variant_files, log):
     """Grades the two mid-lab submissions through the grader (sandboxed tests, the probes
     through the worker) and compares each task's diagnosis with the whole-lab one (the same
-    mistake, every other task correct: from the catalogue). Returns a list of problems."""
+    mistake, every other task correct: from the catalogue), and reads what the student reads
+    (the table: no line over 100 characters, no word of the harness). Returns a list of
+    problems."""
+    import io
+    from grader import results
     problems = []
     for files, plan in mid_lab_variants(repo, lab, cat, variant_files):
         t0 = time.monotonic()
@@ -390,6 +406,10 @@ def mid_lab_check(repo, grader, lab, cat, variant_files, log):
         if not rep.gradable:
             problems.append(f"{lab}: the mid-lab submission {plan} does not compile or was refused")
             continue
+        text = io.StringIO()
+        results.print_table({lab: rep}, {}, out=text, seed=grader.seed)
+        problems += [f"{lab} (mid-lab, what the student reads): {p}"
+                     for p in results.student_text_problems(text.getvalue())]
         for task, mutant in plan.items():
             got = rep.diagnosis.get(task)
             if mutant is None:

@@ -291,7 +291,8 @@ def part_key(name, m):
 
 
 REACH_LEVEL = "unit"   # what a part's mistakes must explain: every wrong particle, body, output
-CORE_LEVEL = "output"  # what a submission must share with every mistake of the part: outputs
+CORE_LEVEL = "unit"  # what a submission must share with every mistake of the part: units (a
+                    # particle that all of a formula's mistakes get wrong, a loop's leaves right)
 NEAR = 0.8  # another part that explains this share of the wrong units makes the naming unsure
 
 
@@ -312,6 +313,37 @@ def bad_units(probes, outputs, classes=False):
             if k != "ok":
                 bad.add((u, _KIND.get(k, "wrong")) if classes else u)
     return bad
+
+
+def unit_errors(probe, got):
+    """{unit: [got - expected, entry by entry]} of one probe's units whose values came back
+    with the expected shape (the units of units()); what a wrong value looks like."""
+    pid = probe["probe"]
+    exp, g = expand(probe.get("expected")), expand(got)
+    if exp is None or g is None:
+        return {}
+    flags = {str(o.get("name")): o for o in (probe.get("out") or []) if isinstance(o, dict)}
+    out = {}
+    for name, (rows, cols, ev) in exp.items():
+        if name not in g or g[name][:2] != (rows, cols) or len(g[name][2]) != len(ev):
+            continue
+        unit = str(flags.get(name, {}).get("group") or name)
+        per = bool(flags.get(name, {}).get("each")) and cols > 1
+        gv = g[name][2]
+        for c in range(cols if per else 1):
+            idx = range(c * rows, (c + 1) * rows) if per else range(len(ev))
+            out.setdefault((pid, unit, c), []).extend(gv[i] - ev[i] for i in idx)
+    return out
+
+
+ALIGNED = 0.999  # cosine above which two errors point the same way ("wrong alike")
+
+
+def _aligned(a, b):
+    if not a or len(a) != len(b) or not all(math.isfinite(x) for x in a + b):
+        return False
+    na, nb = math.sqrt(sum(x * x for x in a)), math.sqrt(sum(x * x for x in b))
+    return na > 0 and nb > 0 and sum(x * y for x, y in zip(a, b)) >= ALIGNED * na * nb
 
 
 def _at(units_, level):
@@ -341,13 +373,15 @@ def part_of(cat, task, outputs, exclude=()):
     B = bad_units(probes, outputs, classes=True)
     if not B:
         return None
-    parts = {}
+    parts, errs = {}, {}
     for name, m in task_mutants(cat, task, exclude).items():
         if not m.get("kind"):
             continue
         bad = bad_units(probes, m.get("probes") or {}, classes=True)
         if bad:
             parts.setdefault(part_key(name, m), []).append(bad)
+            errs.setdefault(part_key(name, m), []).append(
+                _errors(probes, m.get("probes") or {}))
 
     def reach_of(b):  # (unit seen at REACH_LEVEL[, how it is wrong])
         return {(_at({u}, REACH_LEVEL).pop(), k) if CLASSES else _at({u}, REACH_LEVEL).pop()
@@ -366,7 +400,30 @@ def part_of(cat, task, outputs, exclude=()):
             fits.append(key)
         elif len(Br & reach) >= NEAR * len(Br):
             near.append(key)
-    return fits[0] if len(fits) == 1 and not near else None
+    if len(fits) == 1 and not near:
+        return fits[0]
+    if not fits:
+        return None
+    # Several parts fit by which outputs go wrong: the one whose mistakes also go wrong the
+    # same way (each wrong value's error points as one of its mistakes' does), if only one
+    # does. Mirror-image mistakes of two stages (the trapezoid's second stage and its average:
+    # a weight on a(X) too large in one, too small in the other) go wrong in the same outputs.
+    mine = _errors(probes, outputs)
+    valued = [u for u in mine if u in {v for v, _ in B}]
+    if not valued:
+        return None
+    alike = [k for k in fits + near
+             if all(any(_aligned(mine[u], e.get(u, [])) for e in errs[k]) for u in valued)]
+    return alike[0] if len(alike) == 1 and alike[0] in fits else None
+
+
+def _errors(probes, outputs):
+    """{unit: error vector} of every probe that tells parts apart (not the simple ones)."""
+    out = {}
+    for p in probes:
+        if not p.get("simple"):
+            out.update(unit_errors(p, outputs.get(p["probe"])))
+    return out
 
 
 def exact_mistakes(cat, task, outputs, exclude=()):

@@ -107,8 +107,7 @@ def run_probes(sandbox, binary, worker, ids, cwd, timeout=PROBES_TIMEOUT):
                 if GONE in str(r.get("error", "")):
                     break  # this probe's call found the worker gone: reported below
                 if r.get("error"):  # what the code did, in a student's words (no library file)
-                    r = dict(r, error=wording.exception(str(r["error"])).removeprefix(
-                        "the test stopped on an exception: "))
+                    r = dict(r, error=wording.probe_error(str(r["error"])))
                 out[r["probe"]] = r
         rest = [i for i in todo if i not in out]
         if not rest:

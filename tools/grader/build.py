@@ -491,14 +491,8 @@ class Grader:
         keys = {lab: self._report_key(lab, overlays.get(lab, {}), (refused or {}).get(lab, ""),
                                       pristine) for lab in labs}
         cached = self._cached_reports(keys) if self.reuse_results else {}
-        if cached and not self.seed_chosen:
-            # One seed replays the whole grade: a random one gives way to the seed the reused
-            # reports were graded with (a report of another seed is graded again).
-            seeds = collections.Counter(s for s in self._reused_seeds.values() if isinstance(s, int))
-            if seeds:
-                self.seed = seeds.most_common(1)[0][0]
-            cached = {lab: rep for lab, rep in cached.items()
-                      if self._reused_seeds.get(lab) == self.seed}
+        self.seed, cached = one_seed(self.seed, self.seed_chosen, self._reused_seeds
+                                     if cached else {}, cached)
         todo = [lab for lab in labs if lab not in cached]
         keep = [lab for lab, rep in cached.items() if not rep.refused]
         fresh = self._grade(overlays, todo, refused, pristine, keep) if todo else {}
@@ -792,6 +786,17 @@ def prebuilt_inputs(pristine):
     return digest({rel: data for rel, data in pristine.items()
                    if not (rel.startswith("labs" + os.sep) and rel.endswith(".cpp"))
                    and not rel.startswith("scenes" + os.sep)})
+
+
+def one_seed(seed, chosen, reused, cached):
+    """(the grade's seed, the reports reused) such that one seed replays the whole grade: a
+    random seed gives way to the one most reused reports were graded with, and a report of
+    another seed is graded again. `reused`: {lab: the seed its report was graded with}."""
+    if cached and not chosen:
+        seeds = collections.Counter(s for s in reused.values() if isinstance(s, int))
+        if seeds:
+            seed = seeds.most_common(1)[0][0]
+    return seed, {lab: rep for lab, rep in cached.items() if reused.get(lab) == seed}
 
 
 # The reasons of tests that did not end by themselves: a report holding one is not reused.

@@ -91,6 +91,14 @@ def exception(text):
     return f"the test stopped on an exception: {library_words(text.strip())}"
 
 
+def probe_error(text):
+    """A probe's error as the catalogue keeps it and a counterexample shows it (the call is
+    shown beside it): the same words whether the probe ran through the worker ("your f
+    threw: ...") or linked directly."""
+    m = _THREW.match(text.strip())
+    return library_words((m.group(2) if m else text).strip())
+
+
 def function_gone(text):
     """The lab function that was running when the lab's process went away, or ""."""
     g = _GONE.search(text or "")

@@ -902,6 +902,9 @@ def main(argv):
     p.add_argument("--max-wrong-alone", type=int, metavar="N",
                    help="with --leave-one-out: exit 1 if more than N mutants alone in their part "
                         "get another part named")
+    p.add_argument("--max-silent", type=int, metavar="N",
+                   help="with --leave-one-out: exit 1 if more than N mutants get nothing to act "
+                        "on (no part, no counterexample, no failed test's message)")
     p.add_argument("--mid-lab", action="store_true",
                    help="grade, through the grader, two submissions per lab with every other task "
                         "at its skeleton and one catalogued mistake in each of the others: each "
@@ -943,7 +946,7 @@ def main(argv):
     labs = args.lab or [l for l in known if os.path.isdir(os.path.join(repo, "tests", "mutants", l))]
     if args.leave_one_out:
         return diag.loo_table(repo, labs, args.markdown, args.verbose, args.min_right,
-                              args.max_wrong, args.max_wrong_alone)
+                              args.max_wrong, args.max_wrong_alone, args.max_silent)
     if args.mid_lab:
         return mid_lab(repo, labs, args)
     if args.fresh:

@@ -14,7 +14,12 @@ void run(wbprobe::Probe& P, const wb::VecX& m, const wb::Vec2& g, wb::Mat2X f) {
   P.call("add_uniform_gravity");
   P.in("m", m), P.in("g", g), P.in("f", f);
   add_uniform_gravity(m, g, f);
-  P.out("f", f);
+  // Particle by particle: a loop that misses one leaves the others right, where a formula
+  // mistake gets every one wrong.
+  if (f.cols() > 1)
+    P.out_each("f", f);
+  else
+    P.out("f", f);
 }
 }  // namespace
 

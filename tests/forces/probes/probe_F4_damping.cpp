@@ -13,7 +13,12 @@ void run(wbprobe::Probe& P, const wb::Mat2X& v, double b, wb::Mat2X f) {
   P.call("add_damping");
   P.in("v", v), P.in("b", b), P.in("f", f);
   add_damping(v, b, f);
-  P.out("f", f);
+  // Particle by particle: a loop that misses one leaves the others right, where a formula
+  // mistake gets every one wrong.
+  if (f.cols() > 1)
+    P.out_each("f", f);
+  else
+    P.out("f", f);
 }
 }  // namespace
 

@@ -83,6 +83,29 @@ WB_PROBE("F6", "no-terms", "no terms at all, f holding old forces: f must come o
   accumulate_forces(terms, x, v, m, f);
   P.out("f", f);
 }
+// The loop over the terms: three terms, each its own force, f coming in zero and of the right
+// size (clearing it is then silent: only a term left out, or added twice, shows).
+struct ConstantTerm : wb::Force {
+  void add(const Mat2X& x, const Mat2X&, const VecX&, Mat2X& f) const override {
+    check_size(x, f);
+    f.colwise() += Vec2(0.5, 0.25);
+  }
+  std::string type() const override { return "probe-constant"; }
+};
+WB_PROBE("F6", "three-terms", "three terms (masses, positions and velocities, a constant), f zero") {
+  Terms terms;
+  terms.push_back(std::make_unique<MassTerm>());
+  terms.push_back(std::make_unique<StateTerm>());
+  terms.push_back(std::make_unique<ConstantTerm>());
+  const Mat2X x = cols({{0.5, -1}, {2, 0.25}}), v = cols({{1, 0}, {0, -2}});
+  const VecX m = vec({1, 2});
+  Mat2X f = Mat2X::Zero(2, 2);
+  P.note("forces = {f_i += m_i (1, -2); f_i += -2 x_i - 0.5 v_i; f_i += (0.5, 0.25)}");
+  P.call("accumulate_forces");
+  P.in("x", x), P.in("v", v), P.in("m", m), P.in("f", f);
+  accumulate_forces(terms, x, v, m, f);
+  P.out("f", f);
+}
 // Clearing f: old forces in an f of the wrong size.
 WB_PROBE("F6", "two-terms",
          "two terms (masses, positions and velocities), f holding old forces for two particles") {

@@ -6,14 +6,15 @@
 // namespace of its own.
 namespace probe_M2_trapezoid {
 
-// Details only: no probe of the trapezoid tells its parts apart. X' = (X_a + X_b) / 2, so a
-// mistake in the second stage and one in the average change the same outputs in the same
-// situations (the new position or velocity with a wrong weight on a(X) or a(X_a)), and an
-// extra evaluation looks the same whether its result is used in the average or not: a part
-// named from which outputs are wrong was wrong for 2 of the 9 catalogued mistakes with the
-// generic step probes, and for every probe set tried without naming a wrong part on mistakes
-// written apart from the catalogue. A failing M2 gets the counterexample of the simplest
-// wrong probe.
+// The step probes are details; the stages probe (midpoint_probes.h) tells the two parts
+// apart: the first stage and its evaluations, the second stage and the average.
 MIDPOINT_STEP_DETAILS("M2", trapezoid_step, "trapezoid_step")
+
+// The stages (midpoint_probes.h): a(X) and a at the second state free of each other.
+WB_PROBE("M2", "stages",
+         "three moving particles, a = A_i at the start state and G_i at any other, h = 0.25: x, "
+         "v and the evaluations") {
+  wbprobe::stages(P, &trapezoid_step, "trapezoid_step", true);
+}
 
 }  // namespace probe_M2_trapezoid

@@ -303,3 +303,90 @@ def test_prebuilt_binaries_only_for_their_toolchain_and_files(tmp_path):
     (build / "wb-toolchain.txt").write_text("clang 16\n")
     g.decide_prebuilt(pristine)
     assert g._prebuilt == {}
+
+
+def test_wrong_on_names_the_outputs_that_differ():
+    """Defect (issue 46): F9's "Right on: curl_noise_potential 1.3 from a disc's edge" beside
+    "Wrong on: curl_noise_potential 1.3 and 2.8 ..." where only the flow of that probe was
+    wrong: a probe of several outputs says which of them are wrong."""
+    cat = json.loads(json.dumps(CAT))
+    cat["probes"].append(probe("T/two", {"out": {"psi": [1, 1, [1.0]], "u": [2, 1, [1.0, 2.0]]}},
+                               ZERO, title="psi and u near the disc"))
+    outs = {"T/simple": rec(f=[1, 2]), "T/a": rec(f=[3, 4]), "T/b": rec(f=[5, 6]),
+            "T/two": {"out": {"psi": [1, 1, [1.0]], "u": [2, 1, [9.0, 2.0]]}}}
+    text = "\n".join(wh.diagnose(cat, "T", outs, TESTS_T).lines())
+    assert "Wrong on: psi and u near the disc (its u only)" in text
+
+
+def test_every_diagnosis_line_fits_a_terminal_and_nothing_is_cut():
+    """Defect (issue 46): diagnosis lines of 260 characters (a call with many inputs, the lists
+    of probes), cut at 400."""
+    cat = json.loads(json.dumps(CAT))
+    cat["probes"][1]["in"] = [{"name": f"input{k}", "shape": [3, 1], "v": [k + 0.5, -k, 2.25]}
+                              for k in range(20)]
+    d = wh.diagnose(cat, "T", {"T/simple": rec(f=[1, 2]), "T/a": rec(f=[7, 4]),
+                               "T/b": rec(f=[5, 6])}, TESTS_T)
+    lines = d.lines()
+    assert max(len(l) for l in lines) <= wh.LINE_WIDTH
+    assert "input19 = (19.5, -19, 2.25)" in " ".join(" ".join(lines).split())
+
+
+def test_a_probe_the_failed_test_outruns_is_no_contradiction():
+    """Defect (issue 46): "Every probe agrees with the solution" above a failing task reads as
+    a contradiction: the probes are said not to show the mistake, the test to show it."""
+    outs = {"T/simple": rec(f=[1, 2]), "T/a": rec(f=[3, 4]), "T/b": rec(f=[5, 6])}
+    text = "\n".join(wh.diagnose(CAT, "T", outs, TESTS_T).lines())
+    assert "agrees with the solution" not in text and "do not show this mistake" in text
+
+
+def loop_cat():
+    """Task L: a formula part (two mistakes that get every particle wrong) and a loop part (a
+    mistake that misses the last particle); the outputs particle by particle."""
+    exp = {"out": {"f": [2, 3, [1, 2, 3, 4, 5, 6]]}}
+    zero = {"out": {"f": [2, 3, [0] * 6]}}
+    p = probe("L/three", exp, zero)
+    p["out"] = [{"name": "f", "each": True}]
+
+    def f(vs):
+        return {"L/three": {"out": {"f": [2, 3, vs]}}}
+    return {"version": wh.CATALOGUE_VERSION, "lab": "lab", "tests": ["L one"],
+            "tasks": {"L": {"title": "loop", "files": ["l.cpp"], "uses": []}}, "probes": [p],
+            "mutants": {"l.sign": {"task": "L", "kind": "formula", "hint": "sign",
+                                   "probes": f([-1, -2, -3, -4, -5, -6])},
+                        "l.half": {"task": "L", "kind": "formula", "hint": "half",
+                                   "probes": f([0.5, 1, 1.5, 2, 2.5, 3])},
+                        "l.skip-last": {"task": "L", "kind": "particle loop", "hint": "last",
+                                        "probes": f([1, 2, 3, 4, 0, 0])}}}
+
+
+def test_a_loop_that_misses_a_particle_is_not_read_as_the_formula():
+    """Defect (issue 46): a loop that skips the first particle (F4) read as "the drag formula",
+    since no part was the loop's: every mistake of a formula gets every particle wrong, so a
+    submission that leaves some particles right is not the formula's."""
+    cat = loop_cat()
+    first = {"L/three": {"out": {"f": [2, 3, [0, 0, 3, 4, 5, 6]]}}}
+    assert wh.part_of(cat, "L", first) != ("l", "formula")
+    third = {"L/three": {"out": {"f": [2, 3, [2, 4, 6, 8, 10, 12]]}}}
+    assert wh.part_of(cat, "L", third) == ("l", "formula")
+
+
+def test_mirror_image_stages_are_told_apart_by_how_they_go_wrong():
+    """Defect (issue 46): the trapezoid's second stage and its average change the same outputs
+    (a weight on a(X) too large in one, too small in the other), so no part was named for M2:
+    where two parts fit by which outputs go wrong, the one whose mistakes err the same way is
+    named."""
+    exp = {"out": {"x": [2, 1, [1.0, 1.0]], "v": [2, 1, [2.0, 2.0]]}}
+    p = probe("M/s", exp, {"out": {"x": [2, 1, [0, 0]], "v": [2, 1, [0, 0]]}})
+
+    def o(dx, dv):
+        return {"M/s": {"out": {"x": [2, 1, [1.0 + dx[0], 1.0 + dx[1]]],
+                                "v": [2, 1, [2.0 + dv[0], 2.0 + dv[1]]]}}}
+    cat = {"version": wh.CATALOGUE_VERSION, "lab": "lab", "tests": [], "probes": [p],
+           "tasks": {"M": {"title": "step", "files": ["m.cpp"], "uses": []}},
+           "mutants": {"m.stage-a": {"task": "M", "kind": "second stage", "probes": o((1, 2), (0, 0))},
+                       "m.stage-b": {"task": "M", "kind": "second stage", "probes": o((0, 0), (3, 1))},
+                       "m.avg-a": {"task": "M", "kind": "average", "probes": o((-1, -2), (0, 0))},
+                       "m.avg-b": {"task": "M", "kind": "average", "probes": o((0, 0), (-3, -1))}}}
+    assert wh.part_of(cat, "M", o((0.5, 1), (0, 0))) == ("m", "second stage")
+    assert wh.part_of(cat, "M", o((0, 0), (-6, -2))) == ("m", "average")
+    assert wh.part_of(cat, "M", o((0, 0), (1, -1))) is None  # neither way: no part named

@@ -156,3 +156,15 @@ def test_a_tasks_diagnosis_is_given_once():
     outs = [t["output"] for t in results.results_json(reps, {})["tests"]]
     assert sum("Counterexample" in o for o in outs) == 1 and "Counterexample" in outs[1]
     assert "under its first failed test" in outs[2]
+
+
+def test_a_regrade_keeps_one_seed():
+    """Defect (issue 46): an unchanged re-grade printed a new random seed, then the reused
+    report's: two seeds, one of which does not replay what the student reads."""
+    from grader.build import one_seed
+    seed, cached = one_seed(7, False, {"euler": 5, "forces": 5, "rigid": 9},
+                            {"euler": "E", "forces": "F", "rigid": "R"})
+    assert seed == 5 and cached == {"euler": "E", "forces": "F"}  # rigid is graded again with 5
+    assert one_seed(7, True, {"euler": 7, "forces": 5}, {"euler": "E", "forces": "F"}) == \
+        (7, {"euler": "E"})
+    assert one_seed(7, False, {}, {}) == (7, {})
