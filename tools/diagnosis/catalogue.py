@@ -264,6 +264,20 @@ def leave_one_out(cat):
     return rows
 
 
+def print_table(head, table, markdown=False):
+    """A table of figures: Markdown, or columns padded to their widest cell."""
+    if markdown:
+        print("| " + " | ".join(head) + " |")
+        print("|" + "---|" * len(head))
+        for l in table:
+            print("| " + " | ".join(l) + " |")
+        return
+    w = [max(len(h), *(len(l[k]) for l in table)) for k, h in enumerate(head)]
+    print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
+    for l in table:
+        print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+
+
 def loo_table(repo, labs, markdown=False, verbose=False, min_right=None, max_wrong=None,
               max_wrong_alone=None, max_silent=None):
     """The leave-one-out figures of every lab with a catalogue; returns the exit status."""
@@ -300,16 +314,7 @@ def loo_table(repo, labs, markdown=False, verbose=False, min_right=None, max_wro
         return f"{a}/{b} ({100 * a / b:.0f}%)" if b else "0/0"
     table = [[lab, str(c[0]), pct(c[1], p), pct(c[2], p), pct(c[3], p), pct(c[4], a),
               pct(c[5], a), str(c[6]), str(c[7])] for lab, c, p, a in lines]
-    if markdown:
-        print("| " + " | ".join(head) + " |")
-        print("|" + "---|" * len(head))
-        for l in table:
-            print("| " + " | ".join(l) + " |")
-    else:
-        w = [max(len(h), *(len(l[k]) for l in table)) for k, h in enumerate(head)]
-        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
-        for l in table:
-            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+    print_table(head, table, markdown)
     status = 0
     right_pct = 100 * totals[1] / allpeer if allpeer else 0
     wrong_pct = 100 * totals[2] / allpeer if allpeer else 0
@@ -494,16 +499,7 @@ def fresh_table(rows, labs, markdown=False, verbose=False):
         table.append([lab, str(n)] + [f"{sum(r[3] == v for r in rs)} ({100 * sum(r[3] == v for r in rs) / n:.0f}%)"
                                       if n else "0" for v in FRESH])
     print()
-    if markdown:
-        print("| " + " | ".join(head) + " |")
-        print("|" + "---|" * len(head))
-        for l in table:
-            print("| " + " | ".join(l) + " |")
-    else:
-        w = [max(len(h), *(len(l[k]) for l in table)) for k, h in enumerate(head)]
-        print("  ".join(h.ljust(w[k]) for k, h in enumerate(head)))
-        for l in table:
-            print("  ".join(c.ljust(w[k]) for k, c in enumerate(l)))
+    print_table(head, table, markdown)
     text = sum(1 for r in rows if r[6])
     print(f"\n{text} of {len(rows)} students' texts have a line over 100 characters or a word "
           "of the harness")

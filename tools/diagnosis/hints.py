@@ -492,10 +492,10 @@ class Diagnosis:
                        "mistakes exactly.")
         out += ["  " + l for l in self.counterexample]
         if self.right and self.wrong:
-            out.append("  Right on: " + "; ".join(self.right[:MAX_LIST]) +
-                       (" ..." if len(self.right) > MAX_LIST else ""))
-            out.append("  Wrong on: " + "; ".join(self.wrong[:MAX_LIST]) +
-                       (" ..." if len(self.wrong) > MAX_LIST else ""))
+            for what, titles in (("Right", self.right), ("Wrong", self.wrong)):
+                more = len(titles) - MAX_LIST
+                out.append(f"  {what} on: " + "; ".join(titles[:MAX_LIST]) +
+                           (f"; and {more} more" if more > 0 else ""))
         if self.status == "tests":
             out.append("  The probes (fixed example inputs) do not show this mistake; the first "
                        "failed test does:")

@@ -8,7 +8,7 @@ import xml.etree.ElementTree as ET
 
 from . import wording
 from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, Defect, TestResult,
-                     capped, printable, short)
+                     capped, printable)
 from .procs import signal_name
 
 # -------------------------------------------------------------- the XML report

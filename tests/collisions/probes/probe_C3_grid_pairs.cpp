@@ -1,4 +1,4 @@
-// Diagnosis probes of C3 (tests/common/wb_probe.h): the pairs found, sorted (i < j, ascending):
+// Diagnosis probes of C3 (tests/common/wb_probe.h): the pairs found, sorted (ascending):
 // a pair across a cell narrower than a diameter, neighbours across a cell's side and across its
 // corner, discs that just touch, one large disc among small ones, a list that comes in holding
 // old pairs.
@@ -21,8 +21,8 @@ void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& radius,
   P.in("x", x), P.in("radius", radius);
   if (!pairs.empty()) P.in("pairs", pairs);
   grid_pairs(x, radius, pairs);
-  for (auto& p : pairs)
-    if (p.first > p.second) std::swap(p.first, p.second);
+  // The list in order (any order is right), each pair as it came: (i, j) with i < j is the
+  // header's, and a pair the other way round shows.
   std::sort(pairs.begin(), pairs.end());
   P.out("pairs", pairs);
 }

@@ -152,6 +152,19 @@ WB_PROBE("R6", "solve-friction",
   c.p = Vec3(b.x.x(), 0, b.x.z());
   solve(P, b, prepared(b, 0, c), 0.2);
 }
+// The same point sliding fast along a diagonal of the plane, nothing stored: the friction ends
+// on its bound, the disc of radius mu Pn, against the sliding; the normal velocity after the
+// normal step is 0 (no target), so a sliding that keeps a normal part is right here and a bound
+// taken on each component (a square, not the disc) is not.
+WB_PROBE("R6", "solve-friction-diagonal",
+         "solve_contact: the point right below the centre sliding at (2, 0, -1.5) m/s, "
+         "approaching at 0.1 m/s, Pn = 0.5 stored, mu = 0.2") {
+  rigid::Body b = falling();
+  b.v = Vec3(2.0, -0.1, -1.5), b.omega.setZero();
+  Contact c = corner(0.5, Vec3::Zero());
+  c.p = Vec3(b.x.x(), 0, b.x.z());
+  solve(P, b, prepared(b, 0, c), 0.2);
+}
 // The same point sliding slowly: the friction stops the sliding within its bound. A detail: a
 // wrong mass along the sliding and a bound applied when it should not be both show here alone.
 WB_PROBE("R6", "solve-sticking",
