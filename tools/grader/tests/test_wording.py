@@ -36,3 +36,14 @@ def test_captures_and_library_checks_read_in_plain_words():
     assert wording.probe_error("your f threw: Eigen: an index out of range, or sizes that do not "
                                "match (Eigen/src/Core/Block.h:120 checks startRow >= 0)") == \
         "Eigen matrices or vectors whose sizes do not match (startRow >= 0)"
+
+
+def test_long_lines_of_numbers_take_no_time():
+    """Defect: a pattern with two ways to match a string of digits takes exponential time on a
+    line of many long numbers that does not end as the pattern wants (values from student
+    code: a hostile submission could stall the grader's formatting)."""
+    import time
+    row = "v = " + " ".join(["12345678901234567"] * 60) + ", e = 0.5x"
+    t0 = time.monotonic()
+    wording.student(f"{row}\n{row}\n  expected {row}\n  got      {row}")
+    assert time.monotonic() - t0 < 1.0
