@@ -167,7 +167,7 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
                 "grader or its tests, not of the submission; the lab is not scored")
     passed = kind == "exit" and value == 0 and verdict == "passed"
     fn = wording.function_gone(check)
-    gone = bool(fn) or "stopped answering" in details
+    gone = fn is not None
     if not passed and gone and worker_status:
         wkind, wvalue = worker_status
         who = f"your {fn}" if fn else "the lab's code"

@@ -75,7 +75,7 @@ def library_words(text):
 
 # "the lab's code stopped answering during solve_contact (the other side closed the pipe): its
 # process crashed, called exit() or hit a limit" (tools/grader/cpp/client.cpp)
-_GONE = re.compile(r"the lab's code stopped answering during (\w+)(?: \([^()]*\))?(?:: [^\n]*)?")
+_GONE = re.compile(r"the lab's code stopped answering(?: during (\w+))?(?: \([^()]*\))?(?:: [^\n]*)?")
 # "your prepare_contact threw: ..." (tools/grader/cpp/client.h)
 _THREW = re.compile(r"^your (\w+) threw: (.*)$", re.S)
 
@@ -87,7 +87,8 @@ def exception(text):
         return f"your {m.group(1)} threw an exception: {library_words(m.group(2).strip())}"
     g = _GONE.search(text)
     if g:
-        return f"your {g.group(1)} stopped answering (its process crashed, ended or hit a limit)"
+        return (f"your {g.group(1)}" if g.group(1) else "the lab's code") + \
+            " stopped answering (its process crashed, ended or hit a limit)"
     return f"the test stopped on an exception: {library_words(text.strip())}"
 
 
@@ -100,9 +101,14 @@ def probe_error(text):
 
 
 def function_gone(text):
-    """The lab function that was running when the lab's process went away, or ""."""
-    g = _GONE.search(text or "")
-    return g.group(1) if g else ""
+    """None when the lab's process did not go away during the test, else the lab function that
+    was running ("" when not named). Never read from what the lab's code threw: its words are
+    the student's."""
+    for line in (text or "").splitlines():
+        g = _GONE.search(line)
+        if g and not re.search(r"\bthrew\b", line[:g.start()]):
+            return g.group(1) or ""
+    return None
 
 
 # ----------------------------------------------------------------- crashes

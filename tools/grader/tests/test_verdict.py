@@ -218,3 +218,13 @@ def test_an_eigen_check_reads_as_what_the_code_did():
     assert r.reason == ("your prepare_contact threw an exception: an index out of range of an "
                         "Eigen vector or matrix (index >= 0 && index < size())")
     assert "DenseCoeffsBase" not in r.reason + r.output
+
+
+def test_a_thrown_message_cannot_pass_for_a_crash():
+    """Defect: the words of the lab's own exception ("the lab's code stopped answering during
+    ...") taken for the grader's, so that a student's message decides what the reason says."""
+    text = f"your solve_contact threw: {GONE}"
+    body = expression(inner=f"<Exception>{text}</Exception>")
+    r = judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC,
+              worker_status=("exit", 0))
+    assert r.reason.startswith("your solve_contact threw an exception: ")
