@@ -83,7 +83,6 @@ class PairClock:
         self.roots = list(roots)
         self.cpu = 0.0  # s of CPU time, every process of the test
         self._waited = {}  # pid: s spent waiting for a core (last seen)
-        self.has_waits = False  # whether the kernel reports waiting times
 
     @property
     def waited(self):
@@ -108,8 +107,6 @@ class PairClock:
             total += st[1] + st[2]
             sched = _schedstat(pid)
             if sched is not None:
-                if sched[1] > 0:
-                    self.has_waits = True
                 self._waited[pid] = max(self._waited.get(pid, 0.0), sched[1])
             todo += _children(pid)
         self.cpu = max(self.cpu, total)

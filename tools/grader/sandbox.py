@@ -199,8 +199,8 @@ class Sandbox:
         rlimit_cpu = TEST_CPU if cpu is None else math.ceil(cpu) + 1
         if self.launcher is None:  # no launcher: the limits through prlimit, if present
             wrapped = (["prlimit", f"--fsize={REPORT_FSIZE}", f"--as={TEST_ADDRESS_SPACE}",
-                        f"--cpu={rlimit_cpu}:{rlimit_cpu + 1}", "--core=0", "--"] if shutil.which("prlimit")
-                       else [])
+                        f"--cpu={rlimit_cpu}:{rlimit_cpu + 1}", "--core=0", "--"]
+                       if shutil.which("prlimit") else [])
             if not wrapped and "rlimits" in self.layers:
                 self.layers.remove("rlimits")
                 self.missing["rlimits"] = "prlimit is not installed"
