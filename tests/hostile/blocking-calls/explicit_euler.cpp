@@ -36,7 +36,7 @@ std::size_t mapped_size = 0;
 
 // Each candidate: one call that may block without the CPU; returns the call's result.
 long membarrier_global() { return syscall(SYS_membarrier, MEMBARRIER_CMD_GLOBAL, 0, 0); }
-long call_sync() { sync(); return 0; }
+long call_sync() { return syscall(SYS_sync); }
 long call_syncfs() { return syncfs(self_fd); }
 long call_fsync() { return fsync(self_fd); }
 long call_fdatasync() { return fdatasync(self_fd); }

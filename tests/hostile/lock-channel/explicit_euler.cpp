@@ -38,10 +38,12 @@ const char* heard_through() {
   while (cpu_seconds() < until) {
     for (int k = 0; k < 3; ++k) {
       if (mine[k] < 0 || probe[k] < 0) continue;
-      // Another process's record lock (F_GETLK never reports the caller's own).
+      // Another process's record lock (F_GETLK never reports the caller's own record locks;
+      // it does report its open file description locks, as l_pid -1).
       struct flock q{};
       q.l_type = F_WRLCK, q.l_whence = SEEK_SET, q.l_start = 0, q.l_len = 0;
-      if (fcntl(probe[k], F_GETLK, &q) == 0 && q.l_type != F_UNLCK) return "fcntl F_GETLK";
+      if (fcntl(probe[k], F_GETLK, &q) == 0 && q.l_type != F_UNLCK && q.l_pid != -1)
+        return "fcntl F_GETLK";
       // An OFD lock on another byte than this worker's own.
       struct flock o{};
       o.l_type = F_WRLCK, o.l_whence = SEEK_SET, o.l_start = 0, o.l_len = 0, o.l_pid = 0;
