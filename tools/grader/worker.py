@@ -17,6 +17,7 @@ from .procs import _kill_tree
 from .stubs import generate
 from .verdict import judge
 
+WATCH_GAP = 1.0  # s: a longer gap between two readings of a test's clock is not watched time
 WORKER_DIR = "grader-worker"  # in the scratch copy: tools/grader/cpp/ and the generated stubs
 CPP_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cpp")
 
@@ -77,9 +78,13 @@ def watch(main, worker, limit):
       `share` the part of it the pair ran or waited for a core (judge: a busy machine, or a
       wait this design does not know of).
     Each reading is the kernel's count, not the wall clock: a test that computes is never
-    idle however busy the machine, and its CPU limit is the same on any machine load."""
+    idle however busy the machine, and its CPU limit is the same on any machine load. The
+    wall-clock time the rules see is only what the grader watched: a gap of more than
+    WATCH_GAP s between two of its readings (the grader itself starved of CPU, or the whole
+    machine paused) starts the idle window again and does not count towards the safety net."""
     clock = PairClock([main.proc.pid, worker.proc.pid])
-    start = time.monotonic()
+    start = last = time.monotonic()
+    watched = 0.0  # s of wall-clock time watched, gaps left out
     stopped, history = None, collections.deque()  # (time, s wanted) over the last IDLE_LIMIT s
     waiter = _ExitWaiter(main.proc.pid)  # opened before the first poll: the pid is not reaped
     try:
@@ -89,6 +94,10 @@ def watch(main, worker, limit):
             if cpu >= limit:
                 stopped = ("timeout", limit)
                 break
+            if now - last > WATCH_GAP:
+                history.clear()
+            watched += min(now - last, WATCH_GAP)
+            last = now
             history.append((now, wanted))
             while len(history) > 1 and history[1][0] <= now - IDLE_LIMIT:
                 history.popleft()
@@ -96,8 +105,8 @@ def watch(main, worker, limit):
             if now - t_old >= IDLE_LIMIT and wanted - wanted_old < IDLE_SHARE * (now - t_old):
                 stopped = ("idle", IDLE_LIMIT)
                 break
-            if now - start >= wall_limit(limit):
-                stopped = ("wall", (now - start, wanted / (now - start)))
+            if watched >= wall_limit(limit):
+                stopped = ("wall", (now - start, min(1.0, wanted / watched)))
                 break
             waiter.wait(0.05 if now - start < 0.5 else 0.25)
     finally:

@@ -3,6 +3,7 @@ watch that stops a test on it (worker.watch): guards against verdicts that chang
 machine's load (issue 42: a correct submission computing 5 s per test scored 95, 98, 100, 79
 and 100 in five gradings on a busy machine)."""
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -121,3 +122,27 @@ def test_the_limit_is_cpu_time_of_the_pair():
     finally:
         _reap(main, wk)
     assert stopped == ("timeout", 0.6) and 0.6 <= clock.cpu < 3
+
+
+def test_a_pause_of_the_whole_machine_is_not_idling(monkeypatch):
+    """Defect: when the grader itself got no CPU for seconds (or the machine was paused), its
+    next reading saw a long window without progress and stopped a test that was computing."""
+    monkeypatch.setattr(worker, "IDLE_LIMIT", 0.6)
+    main, wk = _pair(BUSY.format(s=1.0))
+    calls = []
+    real_wait = worker._ExitWaiter.wait
+
+    def paused(self, seconds):
+        calls.append(seconds)
+        if len(calls) == 3:  # the machine pauses: the test and the grader stop together,
+            os.kill(main.proc.pid, signal.SIGSTOP)  # and go on together
+            time.sleep(1.5)
+            os.kill(main.proc.pid, signal.SIGCONT)
+            return
+        real_wait(self, seconds)
+    monkeypatch.setattr(worker._ExitWaiter, "wait", paused)
+    try:
+        stopped, clock = worker.watch(main, wk, 30)
+    finally:
+        _reap(main, wk)
+    assert stopped is None and clock.cpu >= 0.9
