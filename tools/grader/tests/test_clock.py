@@ -33,11 +33,11 @@ def test_a_process_that_ended_still_counts():
     """Defect: the CPU time of a test's processes that ended between two readings vanished
     from the sum of the live ones, and a test that had computed for seconds read as idle."""
     root = _start("import subprocess, sys\n"
-                  f"subprocess.run([sys.executable, '-c', {BUSY.format(s=0.4)!r}])\n")
+                  f"subprocess.run([sys.executable, '-c', {BUSY.format(s=0.3)!r}])\n")
     try:
         _wait_unreaped(root)  # the child ended and was reaped by the root, which ended too
         cpu, _ = PairClock([root.pid]).sample()
-        assert cpu >= 0.35
+        assert cpu >= 0.28
     finally:
         root.wait()
 
@@ -70,7 +70,7 @@ def test_waiting_for_a_core_is_not_idling():
         time.sleep(0.2)
         cpu_a, wanted_a = clock.sample()
         t0 = time.monotonic()
-        time.sleep(1.5)
+        time.sleep(1.0)
         cpu_b, wanted_b = clock.sample()
         wall = time.monotonic() - t0
     finally:
@@ -106,12 +106,12 @@ def test_a_blocked_pair_is_stopped_as_idle(monkeypatch):
 def test_a_computing_pair_ends_by_itself(monkeypatch):
     """Defect: a test that computes for longer than the idle window is stopped as idle."""
     monkeypatch.setattr(worker, "IDLE_LIMIT", 0.3)
-    main, wk = _pair(BUSY.format(s=1.0))
+    main, wk = _pair(BUSY.format(s=0.6))
     try:
         stopped, clock = worker.watch(main, wk, 30)
     finally:
         _reap(main, wk)
-    assert stopped is None and clock.cpu >= 0.9
+    assert stopped is None and clock.cpu >= 0.55
 
 
 def test_the_limit_is_cpu_time_of_the_pair():
@@ -128,7 +128,7 @@ def test_a_pause_of_the_whole_machine_is_not_idling(monkeypatch):
     """Defect: when the grader itself got no CPU for seconds (or the machine was paused), its
     next reading saw a long window without progress and stopped a test that was computing."""
     monkeypatch.setattr(worker, "IDLE_LIMIT", 0.6)
-    main, wk = _pair(BUSY.format(s=1.0))
+    main, wk = _pair(BUSY.format(s=0.5))
     calls = []
     real_wait = worker._ExitWaiter.wait
 
@@ -136,7 +136,7 @@ def test_a_pause_of_the_whole_machine_is_not_idling(monkeypatch):
         calls.append(seconds)
         if len(calls) == 3:  # the machine pauses: the test and the grader stop together,
             os.kill(main.proc.pid, signal.SIGSTOP)  # and go on together
-            time.sleep(1.5)
+            time.sleep(1.2)
             os.kill(main.proc.pid, signal.SIGCONT)
             return
         real_wait(self, seconds)
@@ -145,4 +145,4 @@ def test_a_pause_of_the_whole_machine_is_not_idling(monkeypatch):
         stopped, clock = worker.watch(main, wk, 30)
     finally:
         _reap(main, wk)
-    assert stopped is None and clock.cpu >= 0.9
+    assert stopped is None and clock.cpu >= 0.45
