@@ -12,9 +12,9 @@ import re
 import time
 
 from grader import wording
-from grader.common import IDLE_LIMIT, WORKER_OUTPUT_CAP, log
-from grader.procs import _kill_tree, signal_name
-from grader.worker import _cpu_ticks, _ExitWaiter
+from grader.common import WORKER_OUTPUT_CAP, log
+from grader.procs import signal_name
+from grader.worker import watch
 
 from . import hints as wh
 
@@ -49,29 +49,7 @@ def _pair(sandbox, binary, worker, ids, cwd, timeout):
     finally:
         os.close(to_probe_r)
         os.close(to_worker_w)
-    start = time.monotonic()
-    deadline, stopped = start + timeout, None
-    last_ticks, last_change = -1, start
-    pids = [pp.proc.pid, wk.proc.pid]
-    waiter = _ExitWaiter(pp.proc.pid)
-    try:
-        while pp.proc.poll() is None:
-            now = time.monotonic()
-            if now >= deadline:
-                stopped = ("timeout", timeout)
-                break
-            ticks = _cpu_ticks(pids)
-            if ticks != last_ticks:
-                last_ticks, last_change = ticks, now
-            elif now - last_change >= IDLE_LIMIT:
-                stopped = ("idle", IDLE_LIMIT)
-                break
-            waiter.wait(min(0.05 if now - start < 0.5 else 0.25, max(0.0, deadline - now)))
-    finally:
-        waiter.close()
-    if stopped:
-        _kill_tree(pp.proc.pid)
-        _kill_tree(wk.proc.pid)
+    stopped, _ = watch(pp, wk, timeout)
     status, data, _ = pp.finish(0 if stopped else 5)
     w_status, _, _ = wk.finish(0 if stopped else 2)
     records = wh.parse_lines((data or b"").decode("utf-8", "replace"))
@@ -80,10 +58,11 @@ def _pair(sandbox, binary, worker, ids, cwd, timeout):
 
 def _why(status, w_status):
     """Why a probe got no answer, in a student's words."""
-    if status and status[0] in ("timeout", "idle"):
-        return (f"the function did not return within {status[1]:g} s (an infinite loop?)"
-                if status[0] == "timeout" else
-                f"the function stopped using the CPU for {status[1]:g} s (sleeping or waiting?)")
+    if status and status[0] in ("timeout", "idle", "wall"):
+        return (f"the function did not return within {status[1]:g} s of CPU time (an infinite "
+                "loop?)" if status[0] == "timeout" else
+                "the function was blocked, neither computing nor waiting for a core (sleeping "
+                "or waiting?)")
     if w_status and w_status[0] == "signal":
         return f"the function crashed ({signal_name(w_status[1])})"
     if w_status and w_status[0] == "exit":

@@ -557,7 +557,7 @@ class Grader:
     def _save_reports(self, graded):
         stored = self._load_reports()
         for lab, (key, rep) in graded.items():
-            if not any(unsettled(r.reason) for r in rep.results):
+            if all(r.settled for r in rep.results):
                 stored[lab] = {"key": key, "report": report_to_json(rep), "seed": self.seed}
             else:
                 stored.pop(lab, None)
@@ -642,27 +642,26 @@ class Grader:
                 os.replace(probers[lab] + ".tmp", probers[lab])
         stamps = {lab: (file_stamp(path), file_stamp(workers[lab])) for lab, path in runnable.items()}
         t0 = time.monotonic()
-        # Time budgets (docs/grading.md): each lab's tests together, and the whole submission.
+        # CPU time budgets (docs/grading.md, "Time"): each lab's tests together, and all the
+        # submission's tests; a test's own limit is the least of --timeout and what is left.
         budget_lock = threading.Lock()
         used = {lab: 0.0 for lab in labs}
-        submission_end = self.started + self.submission_budget
+        submission_end = self.started + self.submission_budget  # wall clock: the probes only
 
         def one(lab, t):
             if (file_stamp(runnable[lab]), file_stamp(workers[lab])) != stamps[lab]:
                 raise Defect(f"the test binary or the worker of {lab} changed while grading")
             with budget_lock:
                 left, why = time_left(self.lab_budget, used[lab], self.submission_budget,
-                                      submission_end, time.monotonic())
+                                      sum(used.values()))
             if why:
-                return TestResult(t, 0, "failed", why, why + ": earlier tests took that long "
-                                  "(timeouts, or a slow or sleeping lab)")
-            began = time.monotonic()
-            try:
-                return run_test(self.sandbox, runnable[lab], workers[lab], t,
-                                min(self.timeout, left), self.src + "/", self.cwd, self.seed)
-            finally:
-                with budget_lock:
-                    used[lab] += time.monotonic() - began
+                return TestResult(t, 0, "failed", why, why + ": earlier tests used that much "
+                                  "CPU time (time-outs, or a slow lab)", settled=False)
+            result = run_test(self.sandbox, runnable[lab], workers[lab], t,
+                              min(self.timeout, left), self.src + "/", self.cwd, self.seed)
+            with budget_lock:
+                used[lab] += result.cpu
+            return result
 
         with concurrent.futures.ThreadPoolExecutor(self.jobs) as pool:
             futures = {(lab, t.name): pool.submit(one, lab, t) for lab, t in jobs}
@@ -729,16 +728,16 @@ def _diagnose_one(grader, lab, results, overlay, prober, worker, end):
     return diagnose_lab(grader.repo, lab, results, overlay, run, grader.say)
 
 
-def time_left(lab_budget, used, submission_budget, submission_end, now):
-    """(seconds the next test of a lab may run, why it may not run): the least of what is
-    left of the lab's budget (lab_budget less the `used` seconds its tests took so far) and
-    of the submission's (until submission_end, on the clock of `now`); why is "" while both
-    are left, else the reason a test is not run, naming the budget used up."""
-    left = min(lab_budget - used, submission_end - now)
+def time_left(lab_budget, lab_used, submission_budget, submission_used):
+    """(s of CPU time the next test of a lab may use, why it may not run): the least of what
+    is left of the lab's budget (lab_budget less the `lab_used` s of CPU its tests used so far)
+    and of the submission's (submission_budget less what all its tests used); why is "" while
+    both are left, else the reason a test is not run, naming the budget used up."""
+    left = min(lab_budget - lab_used, submission_budget - submission_used)
     if left > 0:
         return left, ""
-    which = "the lab's" if lab_budget - used <= 0 else "the submission's"
-    return left, (f"not run: {which} time budget ({lab_budget:g} s for a lab, "
+    which = "the lab's" if lab_budget - lab_used <= 0 else "the submission's"
+    return left, (f"not run: {which} CPU time budget ({lab_budget:g} s for a lab, "
                   f"{submission_budget:g} s for a submission) is used up")
 
 
@@ -797,15 +796,6 @@ def one_seed(seed, chosen, reused, cached):
         if seeds:
             seed = seeds.most_common(1)[0][0]
     return seed, {lab: rep for lab, rep in cached.items() if reused.get(lab) == seed}
-
-
-# The reasons of tests that did not end by themselves: a report holding one is not reused.
-UNSETTLED = re.compile(r"^(?:timed out|stopped after|not run:|the lab's code crashed|"
-                       r"your \w+ crashed)")
-
-
-def unsettled(reason):
-    return bool(UNSETTLED.match(reason or ""))
 
 
 def report_to_json(rep):

@@ -44,15 +44,16 @@ def parse_args(argv):
                    help="grade only this lab (repeatable); required for one lab's folder if ambiguous")
     p.add_argument("--results", metavar="FILE", help="write Gradescope's results.json here")
     p.add_argument("--timeout", type=float, default=60.0, metavar="S",
-                   help="time limit of each test case in seconds (default 60)")
+                   help="CPU time limit of each test case (its two processes together), seconds "
+                        "(default 60)")
     p.add_argument("--build-timeout", type=float, default=common.BUILD_TIMEOUT, metavar="S",
                    help=f"time limit of building one lab in seconds (default {common.BUILD_TIMEOUT})")
     p.add_argument("--lab-budget", type=float, default=common.LAB_BUDGET, metavar="S",
-                   help="wall-clock time all of one lab's tests may take together, seconds "
+                   help="CPU time all of one lab's tests may use together, seconds "
                         f"(default {common.LAB_BUDGET}); tests not started by then score 0")
     p.add_argument("--budget", type=float, default=common.SUBMISSION_BUDGET, metavar="S",
-                   help="wall-clock time a whole submission may take, its builds included (not the "
-                        "one-time pristine build of the test list), seconds "
+                   help="CPU time all of a submission's tests may use together, and wall-clock time "
+                        "for its builds (not the one-time pristine build of the test list), seconds "
                         f"(default {common.SUBMISSION_BUDGET}); tests not started by then score 0")
     p.add_argument("--build-dir", metavar="DIR", default=os.environ.get("WB_GRADE_BUILD_DIR") or None,
                    help="keep the scratch copy and build here to reuse across runs (default: "

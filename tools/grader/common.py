@@ -16,19 +16,29 @@ LIST_TIMEOUT = 60  # s, each listing of the pristine test binary
 REPORT_FSIZE = 64 * 1024 * 1024  # largest file a test process may write (RLIMIT_FSIZE)
 REPORT_CAP = 8 * 1024 * 1024  # bytes of report read from a test process (more: no report)
 TEST_ADDRESS_SPACE = 4 * 1024 * 1024 * 1024  # RLIMIT_AS of a test process
-TEST_CPU = 300  # s, RLIMIT_CPU of a test process (the wall-clock limit is --timeout)
-IDLE_LIMIT = 5  # s: a test whose processes used less than IDLE_SHARE of one core over the last
-IDLE_SHARE = 0.01  # IDLE_LIMIT s (wall clock) is stopped as idle (sleeping, waiting, a timed wait)
+TEST_CPU = 300  # s, RLIMIT_CPU of a process that has no limit of its own (the probes)
+IDLE_LIMIT = 5  # s: a test whose processes, over the last IDLE_LIMIT s of wall-clock time, ran or
+IDLE_SHARE = 0.01  # waited for a core less than IDLE_SHARE of it is blocked: stopped (worker.py)
+# The wall-clock safety net (wall_limit): a test still running after WALL_FACTOR times its CPU
+# time limit plus WALL_SLACK s is stopped; if it ran or waited for a core WALL_BUSY_SHARE of
+# that time the machine is to blame and the lab is not scored (verdict.py), else it failed.
+WALL_FACTOR, WALL_SLACK, WALL_BUSY_SHARE = 10, 300, 0.5
 WORKER_OUTPUT_CAP = 8 * 1024  # bytes of the worker's own output kept (each stream)
 MESSAGE_CAP = 2 * 1024  # characters of one message of a test's report kept
 TEST_OUTPUT_CAP = 16 * 1024  # characters of one test's details kept (table -v, results.json)
 RESULTS_CAP = 8 * 1024 * 1024  # bytes: results.json is never larger
-LAB_BUDGET = 600  # s of wall-clock time for one lab's test processes together
-SUBMISSION_BUDGET = 1800  # s of wall-clock time for a whole submission's tests
+LAB_BUDGET = 600  # s of CPU time for one lab's test processes together
+SUBMISSION_BUDGET = 1800  # s: CPU time of all a submission's tests, wall clock of its builds
 REASON_WIDTH = 100  # characters of the short reason in the table
 CACHE_VERSION = 2
 FORBIDDEN_NAME_CHARS = set(';,[]*~"\\')
 POINTS_TAG = re.compile(r"^\[(\d+)pts\]$", re.IGNORECASE)
+
+
+def wall_limit(cpu_limit):
+    """The wall-clock time after which a test with this CPU time limit is stopped (a safety net:
+    the CPU limit and the idle rule end every test long before on any sane machine)."""
+    return WALL_FACTOR * cpu_limit + WALL_SLACK
 
 
 class BadInput(Exception):
@@ -59,6 +69,8 @@ class TestResult:
     reason: str  # the first failure in a student's words: the check's message, then its context
     output: str  # the details (failure text, captured output, compile error)
     check: str = ""  # the failed checks in the harness's words (file:line, expansion): TAs' tools
+    settled: bool = True  # False: a limit decided it (time, idle, a crash): never reused as is
+    cpu: float = 0.0  # s of CPU time its processes used (the budgets count it)
 
 
 @dataclass

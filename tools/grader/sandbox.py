@@ -3,6 +3,7 @@ sandbox.c): seccomp, namespaces, another user, limits, as this machine allows.
 
 Trust: this is the wall around student code."""
 import hashlib
+import math
 import os
 import re
 import secrets
@@ -26,13 +27,14 @@ BUILD_CPU = 900  # s, RLIMIT_CPU of each build process
 # range, to find what a test user left behind).
 TEST_UID_RANGE = (1 << 20, 1 << 30)
 LAYER_TEXT = {
-    "seccomp": "seccomp filter: no processes, threads, exec, signals to others, sockets, "
-               "sleeping or timed waits; files read-only",
+    "seccomp": "seccomp allow list: the calls a test needs, none that waits for anything but its "
+               "own pipes (no sleeping, locks, processes, threads, exec, signals to others, "
+               "sockets); files read-only",
     "namespaces": "own PID, mount, network and IPC namespaces: everything the test started ends "
                   "with it",
     "proc": "its own /proc: no other process is visible (their command lines, environments)",
-    "view": "the worker's file system holds its binary and libraries only (no sources, build "
-            "tree, tests or solutions)",
+    "view": "the worker's file system holds its own copies of its binary and libraries only "
+            "(no sources, build tree, tests or solutions, no /proc, no file another test sees)",
     "user": "unprivileged user, a random one for each process (cannot write the grader's files "
             "or signal it)",
     "rlimits": "limits: memory (address space), file size, CPU time, no core files",
@@ -143,8 +145,10 @@ class Sandbox:
         return self._libraries[key]
 
     def _view_flags(self, binary):
+        """The view of a process running `binary`: the launcher copies the binary itself to
+        /<its name> and these libraries to their own paths."""
         return ["--view-root", self.view_root] + [
-            x for f in [binary] + self.libraries(binary) for x in ("--view", f)]
+            x for f in self.libraries(binary) for x in ("--view", f)]
 
     def flags(self, uid, view=None):
         """The launcher's flags of the active layers; `view`: the binary whose file system view
@@ -185,15 +189,18 @@ class Sandbox:
                                       "--"] + cmd
 
     def start(self, cmd, cwd, pass_fds=(), env=(), stdout_cap=REPORT_CAP + 1,
-              stderr_cap=OUTPUT_CAP, wrapped=None, keep_tail=False, view=False):
+              stderr_cap=OUTPUT_CAP, wrapped=None, keep_tail=False, view=False, cpu=None):
         """Starts one process in the sandbox (its standard output and error captured, capped,
         read in linear time); `pass_fds` are inherited, `env` lists "NAME=VALUE"s added to
         its clean environment (at most 4); `view`: the process sees only its binary and
-        libraries (the worker). Returns a Running; Running.finish() waits for it."""
+        libraries (the worker); `cpu`: its CPU time limit, s (the kernel's RLIMIT_CPU: SIGXCPU
+        a second after it, SIGKILL a second later; TEST_CPU if None). Returns a Running;
+        Running.finish() waits for it."""
+        rlimit_cpu = TEST_CPU if cpu is None else math.ceil(cpu) + 1
         if self.launcher is None:  # no launcher: the limits through prlimit, if present
             wrapped = (["prlimit", f"--fsize={REPORT_FSIZE}", f"--as={TEST_ADDRESS_SPACE}",
-                        f"--cpu={TEST_CPU}", "--core=0", "--"] if shutil.which("prlimit")
-                       else [])
+                        f"--cpu={rlimit_cpu}:{rlimit_cpu + 1}", "--core=0", "--"]
+                       if shutil.which("prlimit") else [])
             if not wrapped and "rlimits" in self.layers:
                 self.layers.remove("rlimits")
                 self.missing["rlimits"] = "prlimit is not installed"
@@ -214,7 +221,7 @@ class Sandbox:
                 full = [self.launcher, "--status-fd", str(status_w)] + \
                     self.flags(uid, cmd[0] if view else None) + [
                     "--as", str(TEST_ADDRESS_SPACE), "--fsize", str(REPORT_FSIZE), "--cpu",
-                    str(TEST_CPU), "--cwd", cwd] + [x for e in env for x in ("--env", e)] + \
+                    str(rlimit_cpu), "--cwd", cwd] + [x for e in env for x in ("--env", e)] + \
                     ["--"] + cmd
             try:
                 proc = _start(full, subprocess.PIPE, subprocess.PIPE, cwd=cwd,

@@ -7,8 +7,8 @@ import signal
 import xml.etree.ElementTree as ET
 
 from . import wording
-from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, Defect, TestResult,
-                     capped, printable)
+from .common import (MESSAGE_CAP, OUTPUT_CAP, REPORT_CAP, TEST_OUTPUT_CAP, WALL_BUSY_SHARE,
+                     Defect, TestResult, capped, printable)
 from .procs import signal_name
 
 # -------------------------------------------------------------- the XML report
@@ -128,11 +128,15 @@ class GraderError(Defect):
 
 
 def judge(test, status, data, captured, nonce, timeout, strip, worker_status=None,
-          worker_output="", seed=None):
-    """The TestResult of one run: `status` from the launcher ("exit"/"signal"/"timeout"/
-    "idle"/"error", value), `data` the report read from the test's standard output (None: too
-    big), `captured` its (capped) other output, `nonce` this run's random name. The worker's
-    status and output only explain a failure; they never make a test pass.
+          worker_output="", seed=None, cpu=0.0):
+    """The TestResult of one run: `status` from the launcher ("exit"/"signal"/"error", value)
+    or from the grader's watch (worker.py: "timeout" after `timeout` s of CPU time, "idle",
+    "wall"), `data` the report read from the test's standard output (None: too big),
+    `captured` its (capped) other output, `nonce` this run's random name, `cpu` the s of CPU
+    time the test's processes used. The worker's status and output only explain a failure;
+    they never make a test pass. A verdict that a limit decided (a time limit, the idle rule,
+    a crash of the worker, which may be its memory limit) is not `settled`: it is never
+    reused without running the test again (build.py).
 
     Blame: no byte of student code runs in the test process, and every value it reads from
     the worker is checked before use, so a test process that crashes, ends in the middle of
@@ -146,10 +150,19 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
     if kind == "exit" and worker_status and worker_status[0] == "error":
         raise Defect(f"the sandbox could not start a worker process: {worker_status[1]}")
     if kind == "timeout":
-        reason = f"timed out after {timeout:g} s (an infinite loop?)"
+        reason = f"timed out: used its {timeout:g} s of CPU time (an infinite loop?)"
     elif kind == "idle":
-        reason = (f"stopped: its processes used almost no CPU for {value:g} s (sleeping or "
-                  "waiting in the lab's code?)")
+        reason = (f"stopped: its processes were blocked for {value:g} s, neither computing nor "
+                  "waiting for a core (sleeping or waiting in the lab's code?)")
+    elif kind == "wall":
+        seconds, share = value
+        if share >= WALL_BUSY_SHARE:  # it was computing, or waiting for a core: the machine
+            raise GraderError(
+                f"'{test.name}' ({test.lab}) was still computing after {seconds:.0f} s of "
+                f"wall-clock time ({cpu:.1f} s of CPU): the machine is too busy to grade it in "
+                "time; the lab is not scored (grade it again)")
+        reason = (f"stopped after {seconds:.0f} s of wall-clock time, blocked for "
+                  f"{100 * (1 - share):.0f} % of it (sleeping or waiting in the lab's code?)")
     elif data is None:  # the report is over its cap: the tests print values the worker chose
         reason = (f"the test's report is larger than {REPORT_CAP // (1024 * 1024)} MiB: the lab's "
                   "code returned values too large to report (a huge matrix?)")
@@ -166,6 +179,7 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
                 f"the trusted test process of '{test.name}' ({test.lab}) {how}: a defect of the "
                 "grader or its tests, not of the submission; the lab is not scored")
     passed = kind == "exit" and value == 0 and verdict == "passed"
+    settled = kind == "exit" and not (worker_status and worker_status[0] == "signal")
     fn = wording.function_gone(check)
     gone = fn is not None
     if not passed and gone and worker_status:
@@ -193,4 +207,4 @@ def judge(test, status, data, captured, nonce, timeout, strip, worker_status=Non
         parts.append("output of your code:\n" + printable(worker_output.rstrip()))
     return TestResult(test, test.points if passed else 0, "passed" if passed else "failed",
                       "" if passed else reason,
-                      capped("\n\n".join(parts), TEST_OUTPUT_CAP), check)
+                      capped("\n\n".join(parts), TEST_OUTPUT_CAP), check, settled, cpu)

@@ -213,6 +213,9 @@ class Run:
                    WB_GRADE_ARGS=" ".join([GRADE_ARGS, case.get("grade_args", "")]
                                           + (["--no-screen"] if no_screen else [])))
         problems = []
+        # "load": busy processes on every core meanwhile (a verdict must not depend on it).
+        load = [subprocess.Popen([sys.executable, "-c", "while True: pass"],
+                                 stdin=subprocess.DEVNULL) for _ in range(case.get("load", 0))]
         try:
             started = time.monotonic()
             r = subprocess.run(["bash", os.path.join(self.ag, "source", "run_autograder")],
@@ -228,6 +231,10 @@ class Run:
         except subprocess.TimeoutExpired:
             problems.append(f"run_autograder did not finish in {CASE_TIMEOUT} s")
             out = ""
+        finally:
+            for p in load:
+                p.kill()
+                p.wait()
         score, reasons = None, []
         try:
             with open(results, encoding="utf-8") as f:
@@ -240,11 +247,15 @@ class Run:
                     case.get("extra_files"):
                 problems.append("a file name printed a fake line into the table")
             score = data["score"]
+            if score < case.get("min_score", 0):
+                problems.append(f"scored {score}, less than the {case['min_score']} this honest "
+                                "submission must get")
             if self.token in text or self.token in out:
                 problems.append("a planted secret (another student's file, the grader's "
                                 "environment, a file beside the build) appears in the results "
                                 "or the log")
             for word in case.get("forbidden_in_results", []):
+                word = word.replace("{scratch}", self.scratch)
                 if word in text:
                     problems.append(f"the results show '{word}': the lab's code saw what it "
                                     "must not (another process, the tests, the build)")

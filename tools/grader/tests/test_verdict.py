@@ -88,14 +88,35 @@ def test_a_pass_needs_exit_status_zero():
 
 
 @pytest.mark.parametrize("status,words", [
-    (("timeout", 60), "timed out after 60 s"),
-    (("idle", 10), "used almost no CPU for 10 s"),
+    (("timeout", 60), "used its 60 s of CPU time"),
+    (("idle", 10), "blocked for 10 s"),
+    (("wall", (900, 0.01)), "stopped after 900 s of wall-clock time, blocked for 99 %"),
 ])
 def test_how_the_process_ended_is_the_reason(status, words):
     """Defect: a time-out or a sleeping test reported as a bare 'failed', which tells the
     student nothing to act on."""
     r = judge(TEST, status, b"", "", NONCE, 60, SRC)
     assert r.score == 0 and words in r.reason
+
+
+@pytest.mark.parametrize("status", [("timeout", 60), ("idle", 5), ("wall", (900, 0.01))])
+def test_a_verdict_a_limit_decided_is_never_settled(status):
+    """Defect: a verdict that a time limit decided was kept and reused by the next grade of
+    the same files (build.py looked for "stopped after" while the reason said "stopped: its
+    processes..."), so a slow machine's verdict stuck."""
+    assert not judge(TEST, status, b"", "", NONCE, 60, SRC).settled
+    body = "<Failure>the lab's code stopped answering</Failure>"
+    assert not judge(TEST, ("exit", 1), report(body, ok=False), "", NONCE, 60, SRC,
+                     worker_status=("signal", 24)).settled
+    assert judge(TEST, ("exit", 0), report(), "", NONCE, 60, SRC).settled
+
+
+def test_a_test_still_computing_on_a_busy_machine_is_not_failed():
+    """Defect: a test that kept computing (or waiting for a core) past the wall-clock safety
+    net failed, a verdict of the machine's load: the lab is not scored instead."""
+    with pytest.raises(GraderError) as e:
+        judge(TEST, ("wall", (900, 0.97)), b"", "", NONCE, 60, SRC, cpu=40.0)
+    assert "too busy" in str(e.value) and "not scored" in str(e.value)
 
 
 def test_a_crash_of_the_trusted_side_is_the_graders_defect():
