@@ -246,7 +246,9 @@ function(wb_lab_probes lab side suffix)
     return()
   endif()
   if(NOT TARGET ${lab}_probes_obj)
-    add_library(${lab}_probes_obj OBJECT ${probe_sources}
+    # EXCLUDE_FROM_ALL: only the probe executables use these objects, and they are built only
+    # when asked for; an ordinary build (a student's first) compiled them for nothing.
+    add_library(${lab}_probes_obj OBJECT EXCLUDE_FROM_ALL ${probe_sources}
                                          ${CMAKE_SOURCE_DIR}/tests/common/wb_probe_main.cpp)
     target_include_directories(${lab}_probes_obj PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
                                                          ${CMAKE_SOURCE_DIR}/tests/${lab}/probes
