@@ -47,6 +47,8 @@ STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "wbplot", "w
 STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md"}
 INSTRUCTOR_BLOCK = re.compile(r"<!--\s*instructor\s*-->.*?<!--\s*/instructor\s*-->\n?", re.S)
 CLAIM_MARKER = re.compile(r" ?<!--\s*(?:not-a-)?claim:.*?-->", re.S)  # claim markers
+# The delimiters of the points lists (tools/pattern points): the lists ship, not the markers.
+POINTS_MARKER = re.compile(r"^<!-- (?:points [A-Z][0-9]+:[^\n]*|/points) -->\n", re.M)
 REPORT_FIGURE = re.compile(r"\.\./build/report/([A-Za-z0-9_-]+)/([^)\s`'\"]+)")
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 PATH_REF = re.compile(r"`((?:tools|build/bin|scenes|labs|docs|handouts|tests|framework)/"
@@ -196,7 +198,7 @@ def plot_commands(lab):
 def pack_handout(text, report_dir):
     """The handout as shipped: instructor blocks dropped, report figures copied
     to handouts/figures/<lab>/. Returns (text, [(source, dest relative to handouts/)])."""
-    text = CLAIM_MARKER.sub("", INSTRUCTOR_BLOCK.sub("", text))
+    text = POINTS_MARKER.sub("", CLAIM_MARKER.sub("", INSTRUCTOR_BLOCK.sub("", text)))
     figures = []
 
     def swap(m):

@@ -208,6 +208,9 @@ def test_handouts_lose_instructor_blocks_and_claim_markers_and_keep_figures():
     assert "secret" not in out and "claim" not in out
     assert "](figures/euler/orbit.png)" in out
     assert figures == [("/r/euler/orbit.png", "figures/euler/orbit.png")]
+    listed = ("<!-- points E1: written by tools/pattern points --write -->\nTests:\n\n- `E1 x` (3)\n"
+              "<!-- /points -->\n")
+    assert pack.pack_handout(listed, "/r")[0] == "Tests:\n\n- `E1 x` (3)\n"  # the list, no markers
 
 
 def test_shared_docs_drop_only_sections_of_labs_not_packed():
