@@ -384,7 +384,7 @@ function(wb_add_lab lab side)
     # link generated stubs that call the lab's functions in a separate, sandboxed worker
     # process (<lab>[-solution]-worker), so that no student code runs in the test process.
     wb_lab_worker(${lab} ${side} "${suffix}")
-    target_link_libraries(${tests} PRIVATE ${lab}_client Catch2::Catch2WithMain)
+    target_link_libraries(${tests} PRIVATE ${lab}_client ${WB_CATCH_MAIN})
     if(WB_DIRECT_TESTS)
       # tools/mutants only: the same tests linked straight with the lab's code, for our own
       # mutants (trusted code), built only when asked for. Never used to grade a submission.
@@ -397,10 +397,10 @@ function(wb_add_lab lab side)
       if(use_glue)
         target_link_libraries(${tests}-direct PRIVATE ${link_items} wb_run)
       endif()
-      target_link_libraries(${tests}-direct PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+      target_link_libraries(${tests}-direct PRIVATE ${lab}_${side} ${WB_CATCH_MAIN})
     endif()
   else()
-    target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+    target_link_libraries(${tests} PRIVATE ${lab}_${side} ${WB_CATCH_MAIN})
   endif()
   wb_lab_probes(${lab} ${side} "${suffix}")
   catch_discover_tests(${tests}
