@@ -16,15 +16,13 @@ clang and libc++). This stage proves, on every CI run, that the same files build
 
 Exit status: 0 all passed, 1 a step failed (each says which), 2 clang or libc++ missing."""
 import argparse
-import json
 import os
-import shlex
 import shutil
 import subprocess
 import sys
 import time
 
-from . import answers
+from . import answers, pack
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FLAGS = "-stdlib=libc++"
@@ -78,33 +76,13 @@ class Steps:
 
 def compiled_only_compile(build):
     """Problems compiling each compiled-only replacement with the command clang compiled the
-    real file with (compile_commands.json of `build`)."""
-    with open(os.path.join(build, "compile_commands.json"), encoding="utf-8") as f:
-        entries = json.load(f)
+    real file with (tools/pack's own check, on this build's compile_commands.json)."""
     problems = []
     for rel in answers.COMPILED_ONLY:
-        real = os.path.join(ROOT, rel)
-        entry = next((e for e in entries if os.path.realpath(e["file"]) == os.path.realpath(real)),
-                     None)
-        if entry is None:
-            problems.append(f"{rel}: the clang build does not compile it")
-            continue
-        args = entry.get("arguments") or shlex.split(entry["command"])
-        args = [os.path.join(answers.FALLBACKS, rel) if a == entry["file"] else a for a in args]
-        if "-o" in args:
-            args[args.index("-o") + 1] = os.devnull
-        args = [a for a in args if a not in ("-MD", "-MMD")]
-        while "-MF" in args:
-            i = args.index("-MF")
-            del args[i:i + 2]
-        while "-MT" in args:
-            i = args.index("-MT")
-            del args[i:i + 2]
-        p = subprocess.run(args, cwd=entry["directory"], stdout=subprocess.PIPE,
-                           stderr=subprocess.STDOUT)
-        if p.returncode != 0:
-            problems.append(f"tools/pack.d/compiled-only/{rel} does not compile with clang:\n"
-                            + p.stdout.decode("utf-8", "replace")[-2000:])
+        try:
+            pack.check_compiles(build, os.path.join(ROOT, rel), os.path.join(answers.FALLBACKS, rel))
+        except pack.PackError as e:
+            problems.append(f"tools/pack.d/compiled-only/{rel}, with clang: {e}")
     return problems
 
 
