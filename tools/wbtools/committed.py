@@ -70,10 +70,12 @@ def uncommitted(root, pathspecs=()):
 
 
 def changed_between(root, commit, pathspecs):
-    """True when some path of pathspecs differs between `commit` and HEAD (or commit is not
-    a commit of this repository)."""
-    p = _git(root, "diff", "--quiet", commit, "HEAD", "--", *pathspecs, check=False)
-    return p.returncode != 0
+    """The paths of pathspecs that differ between `commit` and HEAD (sorted), ["?"] when
+    commit is not a commit of this repository; [] when none differ."""
+    p = _git(root, "diff", "--name-only", commit, "HEAD", "--", *pathspecs, check=False)
+    if p.returncode != 0:
+        return ["?"]
+    return sorted(line for line in p.stdout.decode("utf-8", "replace").splitlines() if line)
 
 
 def source_stamp(root, pathspecs=REPORT_INPUTS):
@@ -94,6 +96,11 @@ def current_for_head(root, stamp, pathspecs=REPORT_INPUTS):
         files = stamp["uncommitted"]
         return (f"it was drawn with uncommitted edits ({', '.join(files[:3])}"
                 + (f" and {len(files) - 3} more" if len(files) > 3 else "") + ")")
-    if changed_between(root, stamp["commit"], pathspecs):
-        return f"its inputs changed since commit {stamp['commit'][:10]}, which it was drawn from"
+    changed = changed_between(root, stamp["commit"], pathspecs)
+    if changed == ["?"]:
+        return f"it was drawn from commit {stamp['commit'][:10]}, which this repository lacks"
+    if changed:
+        return (f"its inputs changed since commit {stamp['commit'][:10]}, which it was drawn from "
+                f"({', '.join(changed[:3])}" + (f" and {len(changed) - 3} more" if len(changed) > 3
+                                                else "") + ")")
     return ""
