@@ -22,8 +22,14 @@ class NotCommitted(Exception):
     """No git checkout, or no commit: one line."""
 
 
+def _git_cmd(root):
+    # safe.directory: the checkout is the one this tool belongs to, owned by whoever cloned it
+    # (git refuses a repository of another owner, e.g. under sudo, unless told it is safe).
+    return ["git", "-c", f"safe.directory={os.path.abspath(root)}", "-C", root]
+
+
 def _git(root, *args, check=True):
-    p = subprocess.run(["git", "-C", root] + list(args), stdout=subprocess.PIPE,
+    p = subprocess.run(_git_cmd(root) + list(args), stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE)
     if check and p.returncode != 0:
         raise NotCommitted(f"git {' '.join(args)}: "
@@ -45,7 +51,7 @@ def export_head(root, dest):
     os.makedirs(dest, exist_ok=True)
     tar = os.path.join(dest, ".head.tar")
     with open(tar, "wb") as f:
-        p = subprocess.run(["git", "-C", root, "archive", "--format=tar", "HEAD"], stdout=f,
+        p = subprocess.run(_git_cmd(root) + ["archive", "--format=tar", "HEAD"], stdout=f,
                            stderr=subprocess.PIPE)
     if p.returncode != 0:
         os.remove(tar)

@@ -872,7 +872,10 @@ def current_figures(labs, report_dir, root=ROOT):
     for lab, why in stale.items():
         print(f"tools/pack:   {lab}: the report's figures are not current for HEAD: {why}",
               flush=True)
-    edited = committed.uncommitted(root, committed.REPORT_INPUTS)
+    try:
+        edited = committed.uncommitted(root, committed.REPORT_INPUTS)
+    except committed.NotCommitted as e:
+        raise PackError(f"the figures must be drawn from the committed tree, and {e}")
     if edited:
         raise PackError(
             "the report must be drawn again for HEAD, but the work tree has uncommitted edits "
