@@ -246,7 +246,9 @@ function(wb_lab_probes lab side suffix)
     return()
   endif()
   if(NOT TARGET ${lab}_probes_obj)
-    add_library(${lab}_probes_obj OBJECT ${probe_sources}
+    # EXCLUDE_FROM_ALL: only the probe executables use these objects, and they are built only
+    # when asked for; an ordinary build (a student's first) compiled them for nothing.
+    add_library(${lab}_probes_obj OBJECT EXCLUDE_FROM_ALL ${probe_sources}
                                          ${CMAKE_SOURCE_DIR}/tests/common/wb_probe_main.cpp)
     target_include_directories(${lab}_probes_obj PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
                                                          ${CMAKE_SOURCE_DIR}/tests/${lab}/probes
@@ -382,7 +384,7 @@ function(wb_add_lab lab side)
     # link generated stubs that call the lab's functions in a separate, sandboxed worker
     # process (<lab>[-solution]-worker), so that no student code runs in the test process.
     wb_lab_worker(${lab} ${side} "${suffix}")
-    target_link_libraries(${tests} PRIVATE ${lab}_client Catch2::Catch2WithMain)
+    target_link_libraries(${tests} PRIVATE ${lab}_client ${WB_CATCH_MAIN})
     if(WB_DIRECT_TESTS)
       # tools/mutants only: the same tests linked straight with the lab's code, for our own
       # mutants (trusted code), built only when asked for. Never used to grade a submission.
@@ -395,10 +397,10 @@ function(wb_add_lab lab side)
       if(use_glue)
         target_link_libraries(${tests}-direct PRIVATE ${link_items} wb_run)
       endif()
-      target_link_libraries(${tests}-direct PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+      target_link_libraries(${tests}-direct PRIVATE ${lab}_${side} ${WB_CATCH_MAIN})
     endif()
   else()
-    target_link_libraries(${tests} PRIVATE ${lab}_${side} Catch2::Catch2WithMain)
+    target_link_libraries(${tests} PRIVATE ${lab}_${side} ${WB_CATCH_MAIN})
   endif()
   wb_lab_probes(${lab} ${side} "${suffix}")
   catch_discover_tests(${tests}

@@ -63,6 +63,9 @@
 namespace wbprobe {
 
 struct Value {
+  Value() = default;
+  Value(std::string n, long r, long c, std::vector<double> d, bool whole)
+      : name(std::move(n)), rows(r), cols(c), data(std::move(d)), integer(whole) {}
   std::string name;
   long rows = 1, cols = 1;   // a scalar is 1 x 1
   std::vector<double> data;  // column-major

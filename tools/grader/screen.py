@@ -88,6 +88,9 @@ SCREEN_TIMEOUT = 60  # s, preprocessing one student file
 SCREEN_OUTPUT_CAP = 64 * 1024 * 1024  # bytes of preprocessed text (a macro bomb is refused)
 
 _DENIED = {w: why for why, words in DENIED_IDENTIFIERS.items() for w in words.split()}
+# The compiler's pseudo-files of a preprocessed text's prelude (GCC's and clang's spellings).
+PRELUDE = ('"<built-in>"', '"<command-line>"', '"<command line>"')
+
 class Refused(Exception):
     """A student file that breaks a screening rule (the message names line and rule)."""
 
@@ -337,6 +340,7 @@ class Screen:
         leaves the student file other than by entering an #include (flag 1), or comes back
         to a file other than the one that included (flag 2), is a #line in disguise."""
         stack, line, segments, seg, started = [], 0, [], None, False
+        content = False  # a line of the student file itself seen yet
         quoted = '"' + path + '"'
         for raw in text.split("\n"):
             m = re.match(r'^# (\d+) ("(?:\\.|[^"\\])*")((?: \d)*)\s*$', raw)
@@ -344,7 +348,9 @@ class Screen:
                 target, flags = m.group(2), m.group(3).split()
                 current = stack[-1] if stack else None
                 if "1" in flags:
-                    if current == quoted:
+                    # clang's prelude enters <built-in> from the file (flag 1) before its first
+                    # line; nothing a file can write enters a pseudo-file.
+                    if current == quoted and not (target in PRELUDE and not content):
                         self._direct_include(name, line - 1, target[1:-1])
                     stack.append(target)
                 elif "2" in flags:
@@ -367,6 +373,7 @@ class Screen:
                 line, seg = int(m.group(1)), None
                 continue
             if stack and stack[-1] == quoted:
+                content = True
                 if raw.lstrip().startswith("#"):
                     raise Refused(f"{name}:{line}: #pragma is not allowed in student code")
                 if seg is None:

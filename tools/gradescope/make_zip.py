@@ -8,34 +8,23 @@ tests/common/ and tests/<LAB>/ (the grader grades the labs whose tests it
 has: its probes too), tools/grade and tools/grader/, the diagnosis tools/diagnosis/ with
 the lab's catalogue tests/mutants/<LAB>/signatures.json, tools/setup and the sandbox launcher's source. Never
 solutions/, tests/mutants/, other labs' tests or a build folder. Files are
-the checkout's tracked files (git ls-files) as they are in the work tree.
+those of the commit HEAD (git archive), never the work tree: an instructor's
+uncommitted try of an exercise or a test must not ship (issue 44).
 """
 import argparse
 import os
-import subprocess
 import sys
+import tempfile
 import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from wbtools import committed  # noqa: E402
 ENTRIES = ["CMakeLists.txt", "CMakePresets.json", "cmake", "framework", "labs", "scenes",
            "tests/common", "tools/grade", "tools/grader", "tools/setup", "tools/diagnosis",
            "tools/gradescope/sandbox.c"]
 AT_ROOT = ["tools/gradescope/setup.sh", "tools/gradescope/run_autograder"]
 DATE = (2020, 1, 1, 0, 0, 0)  # fixed: the same tree gives the same zip
-
-
-def tracked(root):
-    """Tracked files of the checkout (relative paths), or every file if not a git checkout."""
-    try:
-        out = subprocess.run(["git", "-C", root, "ls-files", "-z"], check=True,
-                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL).stdout
-        return sorted(p for p in out.decode().split("\0") if p)
-    except (OSError, subprocess.CalledProcessError):
-        files = []
-        for d, dirs, names in os.walk(root):
-            dirs[:] = [x for x in dirs if not x.startswith((".", "build"))]
-            files += [os.path.relpath(os.path.join(d, n), root) for n in names]
-        return sorted(files)
 
 
 def labs_with_tests(root):
@@ -65,10 +54,23 @@ def add(z, path, arcname):
 
 
 def build(lab, out, root=ROOT):
+    """Writes the zip of `lab` from the commit HEAD of the checkout `root`; returns the number
+    of files. ValueError (one line): an unknown lab, or no commit to make it from."""
+    with tempfile.TemporaryDirectory(prefix="wb-zip-") as tmp:
+        try:
+            head = committed.export_head(root, os.path.join(tmp, "head"))
+        except committed.NotCommitted as e:
+            raise ValueError(f"the zip is made from the committed tree (HEAD), and {e}")
+        return _build(lab, out, head)
+
+
+def _build(lab, out, root):
     labs = labs_with_tests(root)
     if lab not in labs:
         raise ValueError(f"unknown lab '{lab}' (labs with tests: {', '.join(labs)})")
-    files = [p for p in tracked(root) if wanted(p, lab) and os.path.isfile(os.path.join(root, p))
+    every = sorted(os.path.relpath(os.path.join(d, n), root).replace(os.sep, "/")
+                   for d, _, names in os.walk(root) for n in names)  # HEAD's files, exported
+    files = [p for p in every if wanted(p, lab) and os.path.isfile(os.path.join(root, p))
              and not os.path.islink(os.path.join(root, p))]
     tmp = out + ".tmp"
     with zipfile.ZipFile(tmp, "w") as z:
@@ -95,7 +97,11 @@ def main(argv):
     except ValueError as e:
         print(f"tools/pack: error: --gradescope: {e}", file=sys.stderr)
         return 2
-    print(f"tools/pack: wrote {out} ({n} files; setup.sh and run_autograder at the root)")
+    edited = committed.uncommitted(ROOT)
+    print(f"tools/pack: wrote {out} ({n} files of HEAD {committed.head(ROOT)[:10]}; setup.sh and "
+          "run_autograder at the root)" + (f"; not in it, uncommitted: {', '.join(edited[:6])}"
+                                           + (f" and {len(edited) - 6} more" if len(edited) > 6
+                                              else "") if edited else ""))
     return 0
 
 

@@ -96,7 +96,7 @@ def tool_code(entry, root=ROOT):
         text = f.read()
     first = text.split("\n", 1)[0]
     if "python" in first:
-        m = re.search(r"^from ([\w.]+) import (?:run|main)\b", text, re.M)
+        m = re.search(r"^from ([\w.]+) import (?:run|main|entry)\b", text, re.M)
         parts = m.group(1).split(".") if m else []
         mod = os.path.join(root, "tools", *parts) + ".py"
         if not m or not os.path.isfile(mod):

@@ -27,9 +27,13 @@ import tarfile
 import tempfile
 import time
 
-from . import answers
+from . import answers, committed
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# Where the pack's files are read from: the tree of HEAD, exported (main() sets it; issue 44:
+# never the work tree, whose uncommitted edits, an instructor's try of an exercise included,
+# would ship). The tools' code itself runs from ROOT.
+SRC = ROOT
 
 # Shipped (filtered per lab where they hold per-lab folders or files).
 SHIPPED = ["CMakeLists.txt", "CMakePresets.json", ".clang-format", ".gitignore", "cmake",
@@ -43,10 +47,18 @@ STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "diagnosis",
 STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md"}
 INSTRUCTOR_BLOCK = re.compile(r"<!--\s*instructor\s*-->.*?<!--\s*/instructor\s*-->\n?", re.S)
 CLAIM_MARKER = re.compile(r" ?<!--\s*(?:not-a-)?claim:.*?-->", re.S)  # claim markers
+# The delimiters of the points lists (tools/pattern points): the lists ship, not the markers.
+POINTS_MARKER = re.compile(r"^<!-- (?:points [A-Z][0-9]+:[^\n]*|/points) -->\n", re.M)
 REPORT_FIGURE = re.compile(r"\.\./build/report/([A-Za-z0-9_-]+)/([^)\s`'\"]+)")
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 PATH_REF = re.compile(r"`((?:tools|build/bin|scenes|labs|docs|handouts|tests|framework)/"
                       r"[A-Za-z0-9_./<>-]*)")
+
+
+def shown(path):
+    """A path as printed: relative to the repository when inside it."""
+    rel = os.path.relpath(path, ROOT)
+    return path if rel.startswith("..") else rel
 
 
 class PackError(Exception):
@@ -55,7 +67,7 @@ class PackError(Exception):
 
 def known_labs():
     """{lab: [deps]} from the wb_lab(...) lines of CMakeLists.txt, in teaching order."""
-    with open(os.path.join(ROOT, "CMakeLists.txt"), encoding="utf-8") as f:
+    with open(os.path.join(SRC, "CMakeLists.txt"), encoding="utf-8") as f:
         text = f.read()
     labs = {}
     for m in re.finditer(r"^\s*wb_lab\(\s*([A-Za-z0-9_-]+)([^)]*)\)", text, re.M):
@@ -64,7 +76,7 @@ def known_labs():
         # DEPS ends at the next keyword (TESTS_USE_GLUE, ...): lab names are lower case.
         labs[m.group(1)] = [d for d in deps[:next((i for i, d in enumerate(deps)
                                                    if d.isupper()), len(deps))]]
-    return {lab: deps for lab, deps in labs.items() if os.path.isdir(os.path.join(ROOT, "labs", lab))}
+    return {lab: deps for lab, deps in labs.items() if os.path.isdir(os.path.join(SRC, "labs", lab))}
 
 
 def with_deps(wanted, labs):
@@ -116,7 +128,7 @@ def shipped(rel, labs, labs_all):
 def lab_rows():
     """{lab: (topic, tasks)} from the instructor README's lab table."""
     rows = {}
-    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+    with open(os.path.join(SRC, "README.md"), encoding="utf-8") as f:
         for line in f:
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             if len(cells) >= 3 and re.fullmatch(r"`[A-Za-z0-9_-]+`", cells[0]):
@@ -125,7 +137,7 @@ def lab_rows():
 
 
 def first_scene(lab):
-    d = os.path.join(ROOT, "scenes", lab)
+    d = os.path.join(SRC, "scenes", lab)
     names = sorted(f for f in os.listdir(d) if f.endswith(".json")) if os.path.isdir(d) else []
     if not names:
         raise PackError(f"scenes/{lab}/ has no scene: the pack README needs one")
@@ -134,7 +146,7 @@ def first_scene(lab):
 
 def first_task(lab):
     """The first TODO(<task>) tag of the lab's files."""
-    d = os.path.join(ROOT, "labs", lab)
+    d = os.path.join(SRC, "labs", lab)
     for name in sorted(os.listdir(d)):
         if name.endswith(".h"):
             with open(os.path.join(d, name), encoding="utf-8") as f:
@@ -154,7 +166,7 @@ def make_readme(labs, order, featured=None):
             topic, tasks = rows.get(lab, ("", ""))
             table.append(f"| `{lab}` | {topic} | {tasks} | [handouts/{lab}.md](handouts/{lab}.md) |")
     first = featured or next(lab for lab in order if lab in labs)
-    with open(os.path.join(ROOT, "tools", "pack.d", "README.md"), encoding="utf-8") as f:
+    with open(os.path.join(SRC, "tools", "pack.d", "README.md"), encoding="utf-8") as f:
         text = f.read()
     return (text.replace("{labs_table}", "\n".join(table))
             .replace("{plot_commands}", plot_commands(first))
@@ -174,7 +186,7 @@ def plot_commands(lab):
     sys.path.insert(0, os.path.join(ROOT, "tools"))
     import importlib
     plots = importlib.import_module("wbplot.labs").GENERIC_PLOTS
-    plugin = os.path.join(ROOT, "tools", "wbplot", "labs", f"{lab}.py")
+    plugin = os.path.join(ROOT, "tools", "wbplot", "labs", f"{lab}.py")  # imported from ROOT
     if os.path.exists(plugin):
         plots = getattr(importlib.import_module(f"wbplot.labs.{lab}"), "PACK_PLOTS", plots)
     plots = list(plots) + [VIEW_COMMAND]
@@ -186,7 +198,7 @@ def plot_commands(lab):
 def pack_handout(text, report_dir):
     """The handout as shipped: instructor blocks dropped, report figures copied
     to handouts/figures/<lab>/. Returns (text, [(source, dest relative to handouts/)])."""
-    text = CLAIM_MARKER.sub("", INSTRUCTOR_BLOCK.sub("", text))
+    text = POINTS_MARKER.sub("", CLAIM_MARKER.sub("", INSTRUCTOR_BLOCK.sub("", text)))
     figures = []
 
     def swap(m):
@@ -220,14 +232,14 @@ def drop_other_labs(text, labs, labs_all):
 def copy_tree(dest, labs, labs_all, order, report_dir, featured=None):
     figures = []
     for top in SHIPPED:
-        src = os.path.join(ROOT, top)
+        src = os.path.join(SRC, top)
         if not os.path.exists(src):
             continue
         if os.path.isfile(src):
             shutil.copy2(src, os.path.join(dest, top))
             continue
         for dirpath, dirnames, filenames in os.walk(src):
-            rel_dir = os.path.relpath(dirpath, ROOT)
+            rel_dir = os.path.relpath(dirpath, SRC)
             dirnames[:] = sorted(d for d in dirnames
                                  if shipped(os.path.join(rel_dir, d), labs, labs_all))
             for name in sorted(filenames):
@@ -236,18 +248,18 @@ def copy_tree(dest, labs, labs_all, order, report_dir, featured=None):
                     continue
                 os.makedirs(os.path.join(dest, rel_dir), exist_ok=True)
                 if rel_dir == "handouts" and name.endswith(".md"):
-                    with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
+                    with open(os.path.join(SRC, rel), encoding="utf-8") as f:
                         text, figs = pack_handout(f.read(), report_dir)
                     with open(os.path.join(dest, rel), "w", encoding="utf-8") as f:
                         f.write(text)
                     figures += figs
                 elif rel_dir == "docs" and name.endswith(".md"):
-                    with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
+                    with open(os.path.join(SRC, rel), encoding="utf-8") as f:
                         text = drop_other_labs(INSTRUCTOR_BLOCK.sub("", f.read()), labs, labs_all)
                     with open(os.path.join(dest, rel), "w", encoding="utf-8") as f:
                         f.write(text)
                 else:
-                    shutil.copy2(os.path.join(ROOT, rel), os.path.join(dest, rel))
+                    shutil.copy2(os.path.join(SRC, rel), os.path.join(dest, rel))
     with open(os.path.join(dest, "README.md"), "w", encoding="utf-8") as f:
         f.write(make_readme(labs, order, featured))
     return figures
@@ -284,11 +296,61 @@ def cmake_string(text):
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("$", "\\$") + '"'
 
 
-def build_prebuilt(stage, tmp):
-    """Compiles the staged pack's framework, glue and drivers' main.cpp once, with
-    the pack's own preset, into stage/prebuilt/ with prebuilt/manifest.cmake
-    (cmake/prebuilt.cmake says when a build uses them)."""
-    build = os.path.join(tmp, "prebuilt-build")
+def sync_tree(src, dest, skip=()):
+    """Makes dest hold exactly src's files (top-level names in skip left alone), rewriting only
+    those whose bytes differ: an unchanged file keeps its time, so that a build of dest
+    recompiles only what changed."""
+    wanted = set()
+    for dirpath, dirnames, filenames in os.walk(src):
+        rel_dir = os.path.relpath(dirpath, src)
+        if rel_dir == ".":
+            dirnames[:] = [d for d in dirnames if d not in skip]
+        for name in filenames:
+            rel = os.path.normpath(os.path.join(rel_dir, name))
+            wanted.add(rel)
+            a, b = os.path.join(src, rel), os.path.join(dest, rel)
+            if os.path.islink(a):
+                if not (os.path.islink(b) and os.readlink(b) == os.readlink(a)):
+                    if os.path.lexists(b):
+                        os.remove(b)
+                    os.makedirs(os.path.dirname(b), exist_ok=True)
+                    os.symlink(os.readlink(a), b)
+                continue
+            try:
+                same = not os.path.islink(b) and os.path.getsize(a) == os.path.getsize(b)
+                if same:
+                    with open(a, "rb") as fa, open(b, "rb") as fb:
+                        same = fa.read() == fb.read()
+            except OSError:
+                same = False
+            if not same:
+                os.makedirs(os.path.dirname(b), exist_ok=True)
+                if os.path.lexists(b):
+                    os.remove(b)
+                shutil.copyfile(a, b)
+            if os.stat(a).st_mode & 0o777 != os.stat(b).st_mode & 0o777:
+                os.chmod(b, os.stat(a).st_mode & 0o777)
+    for dirpath, dirnames, filenames in os.walk(dest, topdown=False):
+        rel_dir = os.path.relpath(dirpath, dest)
+        if rel_dir.split(os.sep)[0] in skip:
+            continue
+        for name in filenames:
+            rel = os.path.normpath(os.path.join(rel_dir, name))
+            if rel not in wanted:
+                os.remove(os.path.join(dest, rel))
+        if rel_dir != "." and not os.listdir(dirpath):
+            os.rmdir(dirpath)
+
+
+def build_prebuilt(stage, cache):
+    """Compiles the staged pack's framework, glue and drivers' main.cpp with the pack's own
+    preset, into stage/prebuilt/ with prebuilt/manifest.cmake (cmake/prebuilt.cmake says when
+    a build uses them). The build is kept in `cache` (<build-dir>/pack/): a copy of the staged
+    sources in cache/src (only changed files rewritten) and its build in cache/build, so that
+    a second pack recompiles only what changed since the last."""
+    src, build = os.path.join(cache, "src"), os.path.join(cache, "build")
+    os.makedirs(src, exist_ok=True)
+    sync_tree(stage, src, skip=("build", "prebuilt"))
     configure = ["cmake", "--preset", "default", "-B", build, "-DWB_TESTS=OFF",
                  "-DWB_PREBUILT=OFF", "-DWB_PREBUILT_EXPORT=ON"]
     t0 = time.monotonic()
@@ -300,11 +362,13 @@ def build_prebuilt(stage, tmp):
             parts = [(kind, target, path) for kind, target, path in
                      (p for p in lines if p[0] in ("lib", "obj"))]
             cmd = ["cmake", "--build", build, "--target"] + [t for _, t, _ in parts]
-        p = subprocess.run(cmd, cwd=stage, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        p = subprocess.run(cmd, cwd=src, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
         if p.returncode != 0:
             tail = p.stdout.decode("utf-8", "replace").strip().splitlines()[-20:]
             raise PackError(f"the prebuilt framework does not build: {' '.join(cmd)}\n"
                             + "\n".join(tail))
+    compiled = sum(1 for line in p.stdout.decode("utf-8", "replace").splitlines()
+                   if "Building CXX object" in line)
     # Compiled only (wbtools/answers.py): the provided code that does a packed task's job is
     # in prebuilt/ (just compiled from the real source), and its source in the pack is the
     # replacement that calls the student's own function.
@@ -312,8 +376,9 @@ def build_prebuilt(stage, tmp):
               if os.path.isdir(os.path.join(stage, "labs", l))]
     for rel, lab in answers.COMPILED_ONLY.items():
         if lab in packed and os.path.isfile(os.path.join(stage, rel)):
-            shutil.copyfile(os.path.join(answers.FALLBACKS, rel), os.path.join(stage, rel))
-            check_compiles(build, os.path.join(stage, rel))
+            shutil.copyfile(os.path.join(SRC, "tools", "pack.d", "compiled-only", rel),
+                            os.path.join(stage, rel))
+            check_compiles(build, os.path.join(src, rel), os.path.join(stage, rel))
     check_no_answers(stage, packed)
     out = os.path.join(stage, "prebuilt")
     os.makedirs(out)
@@ -333,8 +398,9 @@ def build_prebuilt(stage, tmp):
                 f"set(WB_PREBUILT_KEY {cmake_string(key)})\n"
                 "set(WB_PREBUILT_PARTS\n" + "\n".join(rows) + ")\n"
                 "set(WB_PREBUILT_SOURCES\n" + "\n".join(sources) + ")\n")
-    print(f"tools/pack: compiled the prebuilt framework ({len(parts)} parts) in "
-          f"{time.monotonic() - t0:.1f} s", flush=True)
+    print(f"tools/pack:   the framework's {len(parts)} prebuilt parts ready in "
+          f"{time.monotonic() - t0:.1f} s ({compiled} file(s) compiled, the rest up to date in "
+          f"{shown(build)})", flush=True)
 
 
 GRADER_PREBUILT = r"""
@@ -347,9 +413,19 @@ from grader.worker import worker_files
 labs = known_labs(stage)
 pristine = pristine_files(stage)
 pristine.update(worker_files(stage, labs))
-g = Grader(stage, build)
+g = Grader(stage, build, verbose=False)
 try:
-    g.test_lists(labs, pristine)
+    g.test_lists(labs, pristine)  # builds what its cached list does not vouch for
+    # A list still current from an earlier pack names binaries of these very files (the key is
+    # every pristine file's digest); one missing is built again.
+    missing = [lab for lab in labs if not all(os.path.isfile(p) for p in (g.binary(lab), g.probes(lab)) if p)]
+    if missing:
+        g.sync(pristine)
+        g.configure(labs)
+        for lab in missing:
+            ok, text = g.build_lab(lab, pristine=True)
+            if not ok:
+                sys.exit(f"the pristine skeleton of lab {lab} does not build:\n{text}")
     out = os.path.join(stage, PREBUILT_GRADER)
     os.makedirs(out)
     names = {}
@@ -375,33 +451,36 @@ finally:
 """
 
 
-def build_prebuilt_grader(stage, tmp):
+def build_prebuilt_grader(stage, cache):
     """Compiles the staged pack's pristine test and probe binaries of every lab with the
     grader's own machinery (the stubs of the worker linked in: no student code), into
     stage/prebuilt/grader/ with a manifest: a student's first `tools/grade` then compiles only
-    the worker and the student's files (tools/grader/build.py, "prebuilt parts")."""
+    the worker and the student's files (tools/grader/build.py, "prebuilt parts"). The grader's
+    scratch build is kept in `cache` (<build-dir>/pack/grader): it rewrites only the files that
+    changed, so that a second pack recompiles only what they touch."""
     t0 = time.monotonic()
-    p = subprocess.run([sys.executable, "-c", GRADER_PREBUILT, stage,
-                        os.path.join(tmp, "grader-prebuilt")], stdout=subprocess.PIPE,
+    p = subprocess.run([sys.executable, "-c", GRADER_PREBUILT, stage, cache],
+                       stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, env=dict(os.environ, PYTHONDONTWRITEBYTECODE="1"))
     if p.returncode != 0:
         tail = p.stdout.decode("utf-8", "replace").strip().splitlines()[-20:]
         raise PackError("the prebuilt grader binaries do not build:\n" + "\n".join(tail))
-    print(f"tools/pack: compiled the grader's prebuilt tests and probes in "
-          f"{time.monotonic() - t0:.1f} s", flush=True)
+    print(f"tools/pack:   the grader's tests and probes of every packed lab, ready in "
+          f"{time.monotonic() - t0:.1f} s ({shown(cache)}: only what changed is compiled)",
+          flush=True)
 
 
-def check_compiles(build, path):
+def check_compiles(build, built, path):
     """PackError unless `path` (a replacement of a compiled-only file) compiles with the command
-    the prebuilt build compiled the real file with: a build that cannot use prebuilt/
-    compiles it, and no other check would."""
+    the prebuilt build compiled the real file (`built`, its copy there) with: a build that
+    cannot use prebuilt/ compiles it, and no other check would."""
     import shlex
     with open(os.path.join(build, "compile_commands.json"), encoding="utf-8") as f:
         entries = json.load(f)
-    entry = next((e for e in entries if os.path.realpath(e["file"]) == os.path.realpath(path)),
+    entry = next((e for e in entries if os.path.realpath(e["file"]) == os.path.realpath(built)),
                  None)
     if entry is None:
-        raise PackError(f"{path}: the prebuilt build does not compile it")
+        raise PackError(f"{built}: the prebuilt build does not compile it")
     args = entry.get("arguments") or shlex.split(entry["command"])
     kept, skip = [], False
     for a in args:  # no dependency file: -MD, -MMD, and -MT/-MF/-MQ with their argument
@@ -411,7 +490,7 @@ def check_compiles(build, path):
             skip = True
         elif a not in ("-MD", "-MMD"):
             kept.append(a)
-    args = kept
+    args = [path if a in (entry["file"], built) else a for a in kept]
     if "-o" in args:
         args[args.index("-o") + 1] = os.devnull
     p = subprocess.run(args, cwd=entry["directory"], stdout=subprocess.PIPE,
@@ -431,7 +510,8 @@ def check_no_answers(stage, labs):
                 path = os.path.join(dirpath, n)
                 with open(path, encoding="utf-8", errors="replace") as f:
                     shipped[os.path.relpath(path, stage).replace(os.sep, "/")] = f.read()
-    bad = [(rel, sol, share) for rel, sol, share, why in answers.overlaps(shipped, labs) if not why]
+    bad = [(rel, sol, share) for rel, sol, share, why in answers.overlaps(shipped, labs, SRC)
+           if not why]
     if bad:
         raise PackError("the pack would ship a task's answer: " + "; ".join(
             f"{rel} holds {100 * share:.0f} % of solutions/{sol}" for rel, sol, share in bad) +
@@ -606,20 +686,23 @@ def compiled_from(build, targets):
     return files
 
 
-def lab_closure(full, lab, tmp):
+def lab_closure(full, lab, cache):
     """The pack files lab's executable and tests are compiled from, relative to the
-    all-labs pack `full` (its build, and the build that compiled its prebuilt parts)."""
+    all-labs pack `full` (its build, and the build that compiled its prebuilt parts, in
+    cache/build from the copy of the pack's sources in cache/src)."""
     files = compiled_from(os.path.join(full, "build"), [lab, f"{lab}-tests"])
-    prebuilt_build = os.path.join(tmp, "prebuilt-build")
+    prebuilt_src, prebuilt_build = os.path.join(cache, "src"), os.path.join(cache, "build")
     manifest = os.path.join(full, "prebuilt", "manifest.cmake")
+    out = set()
     if os.path.isfile(manifest) and os.path.isdir(prebuilt_build):
         with open(manifest, encoding="utf-8") as f:
             # "  obj rigid_main rigid_main.o)": the last part's line ends the set(...)
             parts = re.findall(r"^\s+(?:lib|obj) (\S+) ([^\s)]+)\)?$", f.read(), re.M)
         used = [t for t, name in parts if os.path.join(full, "prebuilt", name) in files]
-        if used:
-            files |= compiled_from(prebuilt_build, used)
-    out = set()
+        for f in compiled_from(prebuilt_build, used) if used else ():
+            rel = os.path.relpath(f, prebuilt_src)
+            if not rel.startswith("..") and rel.split(os.sep)[0] not in ("build", "prebuilt"):
+                out.add(rel)
     for f in files:
         rel = os.path.relpath(f, full)
         if rel.startswith("..") or rel.split(os.sep)[0] in ("build", "prebuilt"):
@@ -684,7 +767,7 @@ def each_lab_commands(labs_deps, order):
     return out
 
 
-def verify_each_lab(full, tmp, labs_deps, order, report_dir, grade_dir, closure=None):
+def verify_each_lab(full, tmp, cache, labs_deps, order, report_dir, grade_dir, closure=None):
     """Each lab's pack (the lab and the labs it depends on) alone: its links and named
     paths resolve in it, it configures on its own, it holds every file its executable
     and tests are compiled from (closure(lab), relative paths; by default read from the
@@ -698,7 +781,7 @@ def verify_each_lab(full, tmp, labs_deps, order, report_dir, grade_dir, closure=
 
     def closure_of(lab):
         if lab not in closures:
-            closures[lab] = closure(lab) if closure else lab_closure(full, lab, tmp)
+            closures[lab] = closure(lab) if closure else lab_closure(full, lab, cache)
         return closures[lab]
     problems, lab_cmds = [], dict(each_lab_commands(labs_deps, order))
     for lab in order:
@@ -744,13 +827,93 @@ def write_lab_commands(path, labs_deps, order):
     os.replace(path + ".part", path)
 
 
+def report_not_current(report_dir, labs, root=ROOT):
+    """{lab: why} for the packed labs whose figures in report_dir are not what HEAD would
+    draw (tools/report records the commit it drew from in <report>/<lab>/section.json)."""
+    out = {}
+    for lab in sorted(labs):
+        path = os.path.join(report_dir, lab, "section.json")
+        try:
+            with open(path, encoding="utf-8") as f:
+                section = json.load(f)
+        except (OSError, ValueError):
+            out[lab] = "it was never drawn"
+            continue
+        if not isinstance(section, dict):
+            out[lab] = f"{shown(path)} is not a report section"
+        elif section.get("failures"):
+            out[lab] = f"its last drawing failed ({len(section['failures'])} failure(s))"
+        else:
+            why = committed.current_for_head(root, section.get("source"))
+            if why:
+                out[lab] = why
+    return out
+
+
 def run_report(labs, report_dir):
-    """Draws the figures the handouts need with tools/report (solutions)."""
+    """Draws the figures the handouts need with tools/report (solutions), from the work tree,
+    which the caller made sure holds HEAD's report inputs."""
     build_dir = os.path.dirname(report_dir)
     cmd = [os.path.join(ROOT, "tools", "report"), "--no-setup", "--labs", ",".join(sorted(labs)),
            "--build-dir", build_dir]
-    print("+", " ".join(cmd), flush=True)
+    print("tools/pack: +", " ".join(shown(c) for c in cmd), flush=True)
     subprocess.run(cmd, cwd=ROOT)
+
+
+def current_figures(labs, report_dir, root=ROOT):
+    """Makes sure the packed labs' figures in report_dir are what HEAD draws: reused when
+    tools/report drew them from HEAD's inputs, drawn again (tools/report) when the work tree's
+    report inputs are HEAD's, a PackError (one line naming the edited files) otherwise."""
+    stale = report_not_current(report_dir, labs, root)
+    if not stale:
+        print(f"tools/pack:   the report in {shown(report_dir)} is current for HEAD: its figures "
+              "are reused", flush=True)
+        return
+    for lab, why in stale.items():
+        print(f"tools/pack:   {lab}: the report's figures are not current for HEAD: {why}",
+              flush=True)
+    try:
+        edited = committed.uncommitted(root, committed.REPORT_INPUTS)
+    except committed.NotCommitted as e:
+        raise PackError(f"the figures must be drawn from the committed tree, and {e}")
+    if edited:
+        raise PackError(
+            "the report must be drawn again for HEAD, but the work tree has uncommitted edits "
+            f"to what it draws from: {', '.join(edited[:6])}"
+            + (f" and {len(edited) - 6} more" if len(edited) > 6 else "")
+            + "; commit or stash them (the pack is made from what was committed)")
+    print(f"tools/pack:   drawing them again: tools/report --labs {','.join(sorted(stale))} "
+          "(builds the solutions and runs every scene: minutes)", flush=True)
+    run_report(sorted(stale), report_dir)
+
+
+def stage_committed(root, tmp, wanted, report_dir):
+    """Stages the pack of the labs `wanted` (all when empty, with the labs they depend on) in
+    tmp/sim-workbook from the tree of HEAD of the checkout `root` (exported to tmp/head, which
+    SRC then names), whatever its work tree holds, and says which uncommitted files it left
+    out. Returns (commit, stage, {lab: deps}, packed labs, [(figure, its path in handouts/)])."""
+    global SRC
+    try:
+        commit = committed.head(root)
+        SRC = committed.export_head(root, os.path.join(tmp, "head"))
+        edited = committed.uncommitted(root)
+    except committed.NotCommitted as e:
+        raise PackError(f"the pack is made from the committed tree (HEAD), and {e}")
+    print(f"tools/pack: [1/5] the committed tree, HEAD {commit[:10]}"
+          + (f"; not packed, uncommitted: {', '.join(edited[:6])}"
+             + (f" and {len(edited) - 6} more" if len(edited) > 6 else "") if edited else
+             " (the work tree holds no uncommitted edit)"), flush=True)
+    labs_deps = known_labs()
+    order = list(labs_deps)
+    for lab in wanted:
+        if lab not in labs_deps:
+            raise PackError(f"--lab: got '{lab}', expected one of: {', '.join(order)}")
+    labs = with_deps(wanted or order, labs_deps)
+    stage = os.path.join(tmp, "sim-workbook")
+    os.makedirs(stage)
+    featured = next((l for l in order if l in wanted), None)  # the README's examples
+    figures = copy_tree(stage, labs, set(labs_deps), order, report_dir, featured)
+    return commit, stage, labs_deps, labs, figures
 
 
 def write_tar(stage, out, tmp):
@@ -839,12 +1002,6 @@ def main():
     if args.lab_commands and not os.path.isdir(os.path.dirname(os.path.abspath(args.lab_commands))):
         raise PackError(f"--lab-commands: folder "
                         f"'{os.path.dirname(os.path.abspath(args.lab_commands))}' does not exist")
-    labs_deps = known_labs()
-    order = list(labs_deps)
-    for lab in args.lab:
-        if lab not in labs_deps:
-            raise PackError(f"--lab: got '{lab}', expected one of: {', '.join(order)}")
-    labs = with_deps(args.lab or order, labs_deps)
     out = os.path.abspath(args.out)
     is_tar = out.endswith(".tar.gz")
     if not is_tar and os.path.exists(out) and (not os.path.isdir(out) or os.listdir(out)):
@@ -853,27 +1010,40 @@ def main():
     parent = os.path.dirname(out)
     if not os.path.isdir(parent):
         raise PackError(f"--out: folder '{parent}' does not exist")
-    report_dir = os.path.join(os.path.abspath(os.path.join(ROOT, args.build_dir)), "report")
+    build_dir = os.path.abspath(os.path.join(ROOT, args.build_dir))
+    report_dir = os.path.join(build_dir, "report")
+    cache = os.path.join(build_dir, "pack")  # the prebuilt parts' builds, kept between packs
+    t_start = time.monotonic()
 
     with tempfile.TemporaryDirectory(dir=parent, prefix=".pack-") as tmp:
-        stage = os.path.join(tmp, "sim-workbook")
-        os.makedirs(stage)
-        featured = next((l for l in order if l in args.lab), None)  # the README's examples
-        figures = copy_tree(stage, labs, set(labs_deps), order, report_dir, featured)
+        # 1. What was committed: the pack is made from HEAD's tree, whatever the work tree holds.
+        commit, stage, labs_deps, labs, figures = stage_committed(ROOT, tmp, args.lab, report_dir)
+        order = list(labs_deps)
+        # 2. The handouts' figures: the report's, when it is current for HEAD.
+        print(f"tools/pack: [2/5] the handouts' figures ({len(figures)}) from "
+              f"{shown(report_dir)}", flush=True)
+        current_figures(labs, report_dir)
         missing = copy_figures(stage, figures)
         if missing:
-            print(f"tools/pack: {len(missing)} handout figure(s) not drawn yet: running "
+            print(f"tools/pack:   {len(missing)} handout figure(s) not drawn yet: running "
                   "tools/report", flush=True)
             run_report(labs, report_dir)
             missing = copy_figures(stage, figures)
         if missing:
             raise PackError(f"{len(missing)} handout figure(s) missing after tools/report, e.g. "
-                            f"{os.path.relpath(missing[0], ROOT)}: see the report's failures")
+                            f"{shown(missing[0])}: see the report's failures")
         repo_build = os.path.dirname(report_dir)
         if args.no_build and args.each_lab:  # before the prebuilt parts' minute of compiling
             check_repo_build(repo_build, order)
-        build_prebuilt(stage, tmp)
-        build_prebuilt_grader(stage, tmp)
+        # 3-4. The parts a student never edits, compiled once here (kept in <build-dir>/pack).
+        print(f"tools/pack: [3/5] the prebuilt framework (cmake/prebuilt.cmake), built in "
+              f"{shown(os.path.join(cache, 'build'))}", flush=True)
+        build_prebuilt(stage, cache)
+        print(f"tools/pack: [4/5] the grader's prebuilt tests and probes, built in "
+              f"{shown(os.path.join(cache, 'grader'))}", flush=True)
+        build_prebuilt_grader(stage, os.path.join(cache, "grader"))
+        print("tools/pack: [5/5] " + ("verifying and writing" if args.verify else "writing")
+              + f" {args.out}", flush=True)
         if args.lab_commands:
             write_lab_commands(os.path.abspath(args.lab_commands), labs_deps, order)
         if args.draft:
@@ -884,8 +1054,8 @@ def main():
                               build=not args.no_build)
             if args.each_lab and not any(p.startswith("the pack does not build") for p in problems):
                 closure = (lambda lab: repo_lab_closure(repo_build, lab)) if args.no_build else None
-                problems += verify_each_lab(stage, tmp, labs_deps, order, report_dir, grade_dir,
-                                            closure)
+                problems += verify_each_lab(stage, tmp, cache, labs_deps, order, report_dir,
+                                            grade_dir, closure)
             clean_pack(stage)
             if problems:
                 for p in problems:
@@ -909,7 +1079,8 @@ def main():
             if os.path.exists(out):
                 os.rmdir(out)
             os.replace(stage, out)
-    print(f"tools/pack: wrote {args.out} (labs: {', '.join(l for l in order if l in labs)})")
+    print(f"tools/pack: wrote {args.out} (labs: {', '.join(l for l in order if l in labs)}; "
+          f"HEAD {commit[:10]}) in {time.monotonic() - t_start:.0f} s")
     return 0
 
 

@@ -31,6 +31,11 @@ tests/<lab>/), so a new lab is checked without anyone remembering it:
             (<task> a TODO(<task>) of labs/<lab>/, <what> lower-case words joined by _),
             every test case in it carries the tag [<task>], and every task has such a file:
             the tests of task F5 are in tests/forces/test_F5_*.cpp
+  points    every handout lists, task by task, every graded test with its points and the
+            held-out ones marked, with what the held-out gate means for the task's points, in
+            a block (<!-- points F5: ... --> ... <!-- /points -->) that is exactly what the
+            tests' [Npts] tags give: a point changed on one side only fails here (--write
+            writes the blocks from the tags)
   docrefs   what every Markdown file of the repository quotes from the code exists there:
             the flags of a tool's or a lab's command, the arguments of a task function or
             a tool's Python function, the paths (tools/wbtools/docrefs.py says how)
@@ -46,6 +51,7 @@ import os
 import re
 import subprocess
 import sys
+import textwrap
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -56,7 +62,7 @@ from wbplot import recipes  # noqa: E402
 from wbplot.common import summary_line  # noqa: E402
 
 STAGES = ["stubs", "periods", "claims", "asserts", "nanfree", "answers", "reportdoc", "stubfigs",
-          "testnames", "docrefs", "imports"]
+          "testnames", "points", "docrefs", "imports"]
 RUN_TIMEOUT = 300  # seconds for one skeleton run or sweep
 # The smallest error a skeleton's sweep may show for an integrator, relative to the scene
 # size: a stub that does nothing is off by O(1) of the motion, rounding by 1e-16; a whole
@@ -625,6 +631,143 @@ def stage_testnames(build, out, verbose):
 
 
 # ----------------------------------------------------------------------------
+# points: one source for the points, the tests' [Npts] tags; every handout lists them
+
+POINTS_OPEN = re.compile(r"^<!-- points ([A-Z][0-9]+):[^\n]*-->\n", re.M)
+POINTS_CLOSE = "<!-- /points -->\n"
+
+
+def lab_test_list(lab, read_file=None):
+    """{task: [(name, points, held_out)]} of a lab's graded tests, in file order (the files of
+    a task sorted by name), read from tests/<lab>/test_<task>_*.cpp."""
+    d = os.path.join(ROOT, "tests", lab)
+    read_file = read_file or (lambda n: open(os.path.join(d, n), encoding="utf-8").read())
+    out = {}
+    for name in sorted(n for n in os.listdir(d) if TEST_FILE.match(n)):
+        task = TEST_FILE.match(name).group(1)
+        for case, tags in test_cases(read_file(name))[0]:
+            pts = sum(int(n) for n in POINTS_TAG.findall(tags))
+            out.setdefault(task, []).append((case, pts, "[held-out]" in tags))
+    return out
+
+
+def points_block(lab, task, tests):
+    """The handout's list of one task's graded tests and their points, as tools/pattern points
+    --write writes it between <!-- points TASK: ... --> and <!-- /points -->."""
+    total = sum(p for _, p, _ in tests)
+    held = sum(p for _, p, h in tests if h)
+    n_held = sum(1 for _, _, h in tests if h)
+    lines = [f"<!-- points {task}: written by tools/pattern points --write from the tests' "
+             "[Npts] tags; change the tags, not this list -->",
+             f"Tests, `build/bin/{lab}-tests \"[{task}]\"`, {total} points:", ""]
+    for name, pts, held_out in tests:
+        lines.append(f"- `{name}` ({pts}{', held-out' if held_out else ''})")
+    if n_held:
+        it = "the held-out test passes" if n_held == 1 else "every held-out test passes"
+        lines += [""] + textwrap.wrap(
+            f"The other {total - held} points count only when {it} ({held} "
+            f"point{'s' if held != 1 else ''} of its own, on inputs drawn when you are graded): "
+            "a public test passed alone scores 0.", width=76)
+    return "\n".join(lines) + "\n" + POINTS_CLOSE
+
+
+def points_blocks(text):
+    """{task: (start, end)} of the points blocks of a handout's text (end past the close)."""
+    out = {}
+    for m in POINTS_OPEN.finditer(text):
+        end = text.find(POINTS_CLOSE, m.end())
+        out[m.group(1)] = (m.start(), len(text) if end < 0 else end + len(POINTS_CLOSE))
+    return out
+
+
+def task_section_end(text, task):
+    """Where a new points block goes in a handout: the end of the task's "## <task> ..."
+    section (before the anchor and blank lines that open the next), or None."""
+    m = re.search(rf"^##\s+{task}\b.*$", text, re.M)
+    if not m:
+        return None
+    nxt = re.search(r"^##\s", text[m.end():], re.M)
+    end = m.end() + nxt.start() if nxt else len(text)
+    body = text[:end]
+    while True:  # step back over blank lines and the next section's <a id="..."></a>
+        stripped = body.rstrip("\n")
+        last = stripped[stripped.rfind("\n") + 1:]
+        if re.fullmatch(r'<a id="[^"]*"></a>', last.strip()):
+            body = stripped[:stripped.rfind("\n") + 1]
+            continue
+        return len(stripped) + 1 if stripped != body else len(body)
+
+
+def points_write(lab, text, tests):
+    """The handout's text with every task's points block written (replaced, or added at the
+    end of the task's section)."""
+    for task in sorted(tests, key=lambda t: (t[0], int(t[1:]))):
+        block = points_block(lab, task, tests[task])
+        blocks = points_blocks(text)
+        if task in blocks:
+            a, b = blocks[task]
+            text = text[:a] + block + text[b:]
+            continue
+        at = task_section_end(text, task)
+        if at is None:
+            continue  # the testnames stage says the heading is missing
+        text = text[:at].rstrip("\n") + "\n\n" + block + "\n" + text[at:].lstrip("\n")
+    return text
+
+
+def points_list_findings(lab, text, tests):
+    """The findings of one handout's points blocks against its lab's tests."""
+    where = f"handouts/{lab}.md"
+    findings = []
+    blocks = points_blocks(text)
+    for task in sorted(tests, key=lambda t: (t[0], int(t[1:]))):
+        want = points_block(lab, task, tests[task])
+        if task not in blocks:
+            findings.append(f"{where}: task {task} has no list of its tests and their points "
+                            "(<!-- points ... --> block): run tools/pattern points --write")
+            continue
+        a, b = blocks[task]
+        got = text[a:b]
+        if got != want:
+            g, w = got.split("\n"), want.split("\n")
+            diff = [k for k in range(max(len(g), len(w)))
+                    if k >= len(g) or k >= len(w) or g[k] != w[k]]
+            for k in diff[:3]:
+                findings.append(f"{where}: {task}'s list says {g[k] if k < len(g) else '(nothing)'!r}"
+                                f" where the tests' tags in tests/{lab}/ give "
+                                f"{w[k] if k < len(w) else '(nothing)'!r}: change the [Npts] tag "
+                                "or run tools/pattern points --write, so that both agree")
+    for task in blocks:
+        if task not in tests:
+            findings.append(f"{where}: a points block for {task}, which has no graded test")
+    return findings
+
+
+WRITE_POINTS = False  # tools/pattern points --write
+
+
+def stage_points(build, out, verbose):
+    findings = []
+    for lab in labs():
+        handout = os.path.join(ROOT, "handouts", f"{lab}.md")
+        if not os.path.isdir(os.path.join(ROOT, "tests", lab)) or not os.path.isfile(handout):
+            continue  # testnames says so
+        tests = lab_test_list(lab)
+        with open(handout, encoding="utf-8") as f:
+            text = f.read()
+        if WRITE_POINTS:
+            new = points_write(lab, text, tests)
+            if new != text:
+                with open(handout + ".tmp", "w", encoding="utf-8") as f:
+                    f.write(new)
+                os.replace(handout + ".tmp", handout)
+                print(f"pattern: points: wrote the lists of handouts/{lab}.md")
+            text = new
+        findings += points_list_findings(lab, text, tests)
+    return findings
+
+
+# ----------------------------------------------------------------------------
 # answers: the student pack holds no task's answer (tools/wbtools/answers.py)
 
 def stage_answers(build, out, verbose):
@@ -742,6 +885,9 @@ def main():
     ap.add_argument("--build-dir", default="build",
                     help="executables in DIR/bin, the report in DIR/report (default build)")
     ap.add_argument("-v", "--verbose", action="store_true", help="print what passed too")
+    ap.add_argument("--write", action="store_true",
+                    help="with the points stage: write every handout's lists of tests and "
+                         "points from the tests' tags first (then check them)")
     try:
         args = ap.parse_args()
     except SystemExit as e:
@@ -752,6 +898,11 @@ def main():
         print(f"tools/pattern: error: stage '{bad[0]}': expected some of {', '.join(STAGES)}",
               file=sys.stderr)
         return 2
+    if args.write and "points" not in stages:
+        print("tools/pattern: error: --write: goes with the points stage", file=sys.stderr)
+        return 2
+    global WRITE_POINTS
+    WRITE_POINTS = args.write
     build = os.path.join(ROOT, args.build_dir)
     out = os.path.join(build, "pattern")
     total = 0

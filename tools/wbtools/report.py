@@ -20,6 +20,7 @@ from wbplot import recipes  # noqa: E402
 from wbplot.claims import strip_markers  # noqa: E402
 from wbplot.recipes import fmt_dt, length_scale, offers, oscillator  # noqa: E402
 from wbview.report import view_of_run  # noqa: E402
+from wbtools import committed  # noqa: E402
 
 TARGETS = "1e-2,1e-4,1e-6"  # target errors (m) of the cheapest-method tables
 
@@ -43,6 +44,7 @@ class Report:
         self.commands = []   # (lab, command line) in the order run
         self.labs = []       # LabSection
         self.facts = {}      # figure path -> what it shows (wbplot/figfacts.py)
+        self.source = {}     # the commit drawn from (committed.source_stamp), set by main()
 
     def fail(self, msg):
         self.failures.append(msg)
@@ -67,6 +69,9 @@ def save_section(report, sec, failures):
         return os.path.relpath(p, report.out_dir)
     d = {"lab": sec.lab, "status": sec.status, "integrators": sec.integrators,
          "failures": failures, "generated": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+         # The commit the figures were drawn from (tools/pack reuses them only when they are
+         # what HEAD would draw: wbtools/committed.py).
+         "source": report.source,
          "scenes": [{"stem": sc.stem, "name": sc.name, "description": sc.description,
                      "runs": sc.runs, "tables": sc.tables,
                      "figures": [(r(f), c, [rel(x) if os.path.isabs(x) else x for x in a])
@@ -821,6 +826,8 @@ def main():
         labs = [lab for lab in labs if lab in wanted]
     start = time.monotonic()
     build_dir = os.path.abspath(os.path.join(ROOT, args.build_dir))
+    # Taken before the build: the commit and the uncommitted edits the figures are drawn from.
+    source = committed.source_stamp(ROOT)
 
     setup = os.path.join(ROOT, "tools", "setup")
     if not args.no_setup and os.path.exists(setup):
@@ -849,6 +856,7 @@ def main():
         return 2
 
     report = Report(os.path.join(build_dir, "report"))
+    report.source = source
     os.makedirs(report.out_dir, exist_ok=True)
     for lab in lab_order():
         if lab not in labs:

@@ -152,3 +152,18 @@ def test_check_runs_the_preprocessor_on_a_macro_hidden_call(tmp_path):
     assert "token pasting" in str(e.value)
     with pytest.raises(Refused):
         lab_screen().check("explicit_euler.cpp", b"int a;\0")
+
+
+def test_clangs_prelude_is_not_an_include_of_the_student_file(tmp_path):
+    """Defect (issue 44): with clang (macOS's compiler; tools/clang-check) every submission was
+    refused, "an #include resolved to <built-in>": clang's -E enters <built-in> from the file
+    (flag 1) before its first line, where GCC switches to it without a flag."""
+    path = str(tmp_path / "f.cpp")
+    text = (f'# 1 "{path}"\n# 1 "<built-in>" 1\n# 1 "<built-in>" 3\n# 404 "<built-in>" 3\n'
+            f'# 1 "<command line>" 1\n# 1 "<built-in>" 2\n# 1 "{HEADER}" 1\nint helper();\n'
+            f'# 2 "<built-in>" 2\n# 1 "{path}" 2\nint f() {{ return 1; }}\n')
+    lab_screen()._tokens("f.cpp", path, text)
+    with pytest.raises(Refused) as e:  # after the file's first line, it is an include again
+        lab_screen()._tokens("f.cpp", path, text + '# 1 "<built-in>" 1\nint g;\n# 3 "' + path
+                             + '" 2\n')
+    assert "<built-in>" in str(e.value)

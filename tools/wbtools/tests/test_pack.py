@@ -4,7 +4,9 @@ what --verify reads. A pack that drops a file its tools need fails only after a 
 (68 minutes, the first time: a path filter matched "build" and dropped tools/grader/build.py);
 a pack that ships an answer cannot be taken back."""
 import ast
+import json
 import os
+import subprocess
 import sys
 
 import pytest
@@ -161,7 +163,7 @@ def test_known_labs_reads_deps_up_to_the_next_keyword(tmp_path, monkeypatch):
         "forces)\nwb_lab(ghost)\n")
     for lab in ("forces", "implicit", "euler"):
         (tmp_path / "labs" / lab).mkdir(parents=True)
-    monkeypatch.setattr(pack, "ROOT", str(tmp_path))
+    monkeypatch.setattr(pack, "SRC", str(tmp_path))
     assert pack.known_labs() == {"forces": [], "implicit": ["forces", "euler"],
                                  "euler": ["forces"]}
 
@@ -206,6 +208,9 @@ def test_handouts_lose_instructor_blocks_and_claim_markers_and_keep_figures():
     assert "secret" not in out and "claim" not in out
     assert "](figures/euler/orbit.png)" in out
     assert figures == [("/r/euler/orbit.png", "figures/euler/orbit.png")]
+    listed = ("<!-- points E1: written by tools/pattern points --write -->\nTests:\n\n- `E1 x` (3)\n"
+              "<!-- /points -->\n")
+    assert pack.pack_handout(listed, "/r")[0] == "Tests:\n\n- `E1 x` (3)\n"  # the list, no markers
 
 
 def test_shared_docs_drop_only_sections_of_labs_not_packed():
@@ -230,3 +235,59 @@ def test_check_references_reports_what_does_not_resolve(tmp_path):
     assert any("docs/gone.md" in p for p in problems)
     assert any("`tools/report`" in p for p in problems)
     assert any("`build/bin/rigid`" in p for p in problems)
+
+
+def _clone(tmp_path):
+    """A clone of this checkout's HEAD (objects shared: fast), as an instructor's checkout."""
+    clone = tmp_path / "clone"
+    subprocess.run(["git", "clone", "--quiet", "--shared", ROOT, str(clone)], check=True)
+    for k, v in (("user.name", "t"), ("user.email", "t@t")):
+        subprocess.run(["git", "-C", str(clone), "config", k, v], check=True)
+    return clone
+
+
+def test_the_pack_is_made_from_head_never_the_work_tree(tmp_path, monkeypatch, capsys):
+    """Defect (issue 44): an instructor tried an exercise in labs/ (F5 written, a file added)
+    and tools/pack shipped those files to every student, with no warning."""
+    monkeypatch.setattr(pack, "SRC", pack.SRC)  # restored after the test
+    clone = _clone(tmp_path)
+    spring = clone / "labs" / "forces" / "spring.cpp"
+    skeleton = spring.read_text()
+    spring.write_text(skeleton + "\n// an instructor's try: the F5 answer\n")
+    (clone / "labs" / "forces" / "scratch.cpp").write_text("// not committed\n")
+    (tmp_path / "t").mkdir()
+    _, stage, _, labs, _ = pack.stage_committed(str(clone), str(tmp_path / "t"), ["forces"],
+                                                str(clone / "build" / "report"))
+    assert labs == {"forces"}
+    assert open(os.path.join(stage, "labs", "forces", "spring.cpp")).read() == skeleton
+    assert not os.path.exists(os.path.join(stage, "labs", "forces", "scratch.cpp"))
+    said = capsys.readouterr().out
+    assert "labs/forces/spring.cpp" in said and "labs/forces/scratch.cpp" in said
+
+
+def test_figures_are_reused_only_when_drawn_from_heads_inputs(tmp_path, capsys):
+    """Defect (issue 44): tools/pack ran the whole tools/report (six minutes) every time, and
+    would have drawn uncommitted edits of a solution into the handouts' figures."""
+    clone = _clone(tmp_path)
+    report = clone / "build" / "report"
+    (report / "forces").mkdir(parents=True)
+    head = subprocess.run(["git", "-C", str(clone), "rev-parse", "HEAD"], check=True,
+                          stdout=subprocess.PIPE).stdout.decode().strip()
+    section = {"lab": "forces", "failures": [], "source": {"commit": head, "uncommitted": []}}
+    (report / "forces" / "section.json").write_text(json.dumps(section))
+    pack.current_figures({"forces"}, str(report), str(clone))  # current: nothing to draw
+    assert "current for HEAD" in capsys.readouterr().out
+    # A commit that changes a solution: the figures are no longer HEAD's.
+    sol = clone / "solutions" / "forces" / "spring.cpp"
+    sol.write_text(sol.read_text() + "\n")
+    subprocess.run(["git", "-C", str(clone), "commit", "--quiet", "-am", "t"], check=True)
+    assert "changed since commit" in pack.report_not_current(str(report), {"forces"},
+                                                             str(clone))["forces"]
+    # ... and with an uncommitted edit to what the report draws from, it cannot draw them.
+    sol.write_text(sol.read_text() + "// uncommitted\n")
+    with pytest.raises(pack.PackError, match="solutions/forces/spring.cpp"):
+        pack.current_figures({"forces"}, str(report), str(clone))
+    # A drawing made with uncommitted edits is never current.
+    section["source"]["uncommitted"] = ["solutions/forces/spring.cpp"]
+    (report / "forces" / "section.json").write_text(json.dumps(section))
+    assert "uncommitted" in pack.report_not_current(str(report), {"forces"}, str(clone))["forces"]

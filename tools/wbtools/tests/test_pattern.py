@@ -166,3 +166,33 @@ def test_points_that_do_not_add_up_or_disagree_with_the_handout_are_found():
     assert any("'## F2' says 40 points" in f and "carry 42" in f for f in merged)
     missing = pattern.points_findings("forces", {"F1": 60, "F2": 40}, "## F1 Gravity (60 points)")
     assert missing == ["handouts/forces.md: no heading '## F2 ... (40 points)'"]
+
+
+def test_points_lists_are_the_tests_tags_held_out_included():
+    """Defect (issue 44): the handouts' points disagreed with the grader's (17 of 44 forces tests;
+    F5's list added up to 16 of its 15), the held-out tests were not listed at all, and three
+    labs had no list: students quote the handout to their TA."""
+    tests = {"F1": [("F1 gravity: m g", 3, False), ("F1 held-out: random masses", 2, True)],
+             "F2": [("F2 pairs: G m m / r^2", 5, False)]}
+    text = ("## F1 Gravity (5 points)\n\nProse.\n\n<a id=\"f2\"></a>\n## F2 Pairs (5 points)\n\n"
+            "Prose.\n\n## Questions\n")
+    written = pattern.points_write("forces", text, tests)
+    assert pattern.points_list_findings("forces", written, tests) == []
+    assert written.index("<!-- points F1") < written.index('<a id="f2">')
+    assert written.index("<!-- points F2") < written.index("## Questions")
+    assert "- `F1 held-out: random masses` (2, held-out)" in written
+    assert "The other 3 points count only when the held-out test passes" in written
+    assert "count only when" not in written[written.index("<!-- points F2"):]  # no held-out
+    assert pattern.points_write("forces", written, tests) == written  # stable
+    # One number changed in the handout, or in a tag: both fail, naming the line.
+    edited = written.replace("m g` (3)", "m g` (4)")
+    found = pattern.points_list_findings("forces", edited, tests)
+    assert len(found) == 1 and "(4)" in found[0] and "(3)" in found[0]
+    retagged = dict(tests, F1=[("F1 gravity: m g", 4, False), tests["F1"][1]])
+    assert pattern.points_list_findings("forces", written, retagged)
+    assert pattern.points_list_findings("forces", text, tests)  # no lists at all
+
+
+def test_every_handout_lists_its_tests_points():
+    """The repository's handouts agree with their tests' tags (tools/pattern points)."""
+    assert pattern.stage_points(None, None, False) == []

@@ -15,6 +15,7 @@ namespace wb {
 bool have_cholmod() { return false; }
 
 struct FastBackwardEuler::Impl {
+  explicit Impl(const SpringNetwork& n) : net(n) {}
   const SpringNetwork& net;
   std::string solver = "yours";
   std::string reason =
@@ -25,7 +26,7 @@ struct FastBackwardEuler::Impl {
 };
 
 FastBackwardEuler::FastBackwardEuler(const SpringNetwork& net, const FastSolverOptions&)
-    : impl_(new Impl{net}) {}  // (Impl holds a workspace, which does not copy)
+    : impl_(new Impl(net)) {}  // (Impl holds a workspace, which does not copy)
 FastBackwardEuler::~FastBackwardEuler() = default;
 
 NewtonReport FastBackwardEuler::step(const Mat2X& f_ext, double h, const NewtonOptions& opt,
