@@ -10,7 +10,7 @@ namespace wb {
 //   k1x + 2 k2x + 2 k3x + k4x = 6 v + h (a0 + a1 + a2).
 // Each stage's point and the final combination are then one pass each over
 // the arrays they read (the update moves 512 bytes per particle, where
-// running sums of the slopes moved 736; docs/benchmarks.md).
+// running sums of the slopes moved 736; bench/results/HISTORY.md).
 namespace {
 
 // Particles per block when the dynamics is per-particle: a block's arrays

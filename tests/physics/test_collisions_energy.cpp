@@ -6,7 +6,7 @@
 // energy: every collision is elastic and the overlap correction moves positions only.
 // Bound: 1e-6 of the energy over 500 steps (issue 34's), far above the rounding of
 // ~10^4 impulses (~1e-13) and far below what the solver did before the impacts were
-// resolved one at a time (+0.9 %, docs/benchmarks.md).
+// resolved one at a time (+0.9 %, bench/results/HISTORY.md).
 #include <cmath>
 #include <string>
 
