@@ -92,7 +92,8 @@ struct ConstantTerm : wb::Force {
   }
   std::string type() const override { return "probe-constant"; }
 };
-WB_PROBE("F6", "three-terms", "three terms (masses, positions and velocities, a constant), f zero") {
+WB_PROBE("F6", "three-terms",
+         "three terms (masses, positions and velocities, a constant), f zero") {
   Terms terms;
   terms.push_back(std::make_unique<MassTerm>());
   terms.push_back(std::make_unique<StateTerm>());

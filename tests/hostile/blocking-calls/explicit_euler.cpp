@@ -53,10 +53,13 @@ struct Candidate {
   const char* name;
   long (*call)();
 };
-const Candidate candidates[] = {
-    {"membarrier(MEMBARRIER_CMD_GLOBAL)", membarrier_global}, {"sync", call_sync},
-    {"syncfs", call_syncfs}, {"fsync", call_fsync}, {"fdatasync", call_fdatasync},
-    {"msync(MS_SYNC)", call_msync}, {"madvise(MADV_PAGEOUT)", pageout_and_touch}};
+const Candidate candidates[] = {{"membarrier(MEMBARRIER_CMD_GLOBAL)", membarrier_global},
+                                {"sync", call_sync},
+                                {"syncfs", call_syncfs},
+                                {"fsync", call_fsync},
+                                {"fdatasync", call_fdatasync},
+                                {"msync(MS_SYNC)", call_msync},
+                                {"madvise(MADV_PAGEOUT)", pageout_and_touch}};
 
 void say(const std::string& line) {
   if (write(2, line.data(), line.size()) < 0) {
@@ -66,7 +69,7 @@ void say(const std::string& line) {
 // The candidate that slept (wall-clock time well above its CPU time), or nullptr.
 const Candidate* find_sleep() {
   self_fd = open(program_invocation_name, O_RDONLY | O_CLOEXEC);
-  struct stat st{};
+  struct stat st {};
   if (self_fd >= 0 && fstat(self_fd, &st) == 0 && st.st_size >= 4096) {
     mapped_size = std::size_t(st.st_size) / 4096 * 4096;  // whole pages of the file only
     void* p = mmap(nullptr, mapped_size, PROT_READ, MAP_SHARED, self_fd, 0);
@@ -78,7 +81,8 @@ const Candidate* find_sleep() {
     errno = 0;
     long r = 0;
     for (int k = 0; k < 5 && r == 0; ++k) r = c.call();
-    const double wall = clock_s(CLOCK_MONOTONIC) - w0, cpu = clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    const double wall = clock_s(CLOCK_MONOTONIC) - w0,
+                 cpu = clock_s(CLOCK_PROCESS_CPUTIME_ID) - c0;
     const bool slept = r == 0 && wall - cpu > 0.002;
     say(std::string("blocking-calls: ") + c.name + (r == 0 ? " returned" : " refused: ") +
         (r == 0 ? "" : std::strerror(errno)) + (slept ? " (SLEPT without the CPU)" : "") + "\n");

@@ -40,12 +40,12 @@ const char* heard_through() {
       if (mine[k] < 0 || probe[k] < 0) continue;
       // Another process's record lock (F_GETLK never reports the caller's own record locks;
       // it does report its open file description locks, as l_pid -1).
-      struct flock q{};
+      struct flock q {};
       q.l_type = F_WRLCK, q.l_whence = SEEK_SET, q.l_start = 0, q.l_len = 0;
       if (fcntl(probe[k], F_GETLK, &q) == 0 && q.l_type != F_UNLCK && q.l_pid != -1)
         return "fcntl F_GETLK";
       // An OFD lock on another byte than this worker's own.
-      struct flock o{};
+      struct flock o {};
       o.l_type = F_WRLCK, o.l_whence = SEEK_SET, o.l_start = 0, o.l_len = 0, o.l_pid = 0;
       if (fcntl(probe[k], F_OFD_GETLK, &o) == 0 && o.l_type != F_UNLCK && o.l_start != byte)
         return "fcntl F_OFD_GETLK";
@@ -54,7 +54,7 @@ const char* heard_through() {
       if (flock(probe[k], LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) return "flock";
       flock(probe[k], LOCK_UN);
       // Advertise: a record lock and an OFD lock on its byte, a shared flock.
-      struct flock r{};
+      struct flock r {};
       r.l_type = F_RDLCK, r.l_whence = SEEK_SET, r.l_start = byte, r.l_len = 1;
       fcntl(mine[k], F_SETLK, &r);
       r.l_pid = 0;

@@ -22,7 +22,6 @@ WB_PROBE("M1", "launch",
                 wbprobe::cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}}), 0.25, wbprobe::kBoth, 0.0);
 }
 
-
 // The stages (midpoint_probes.h): a(X) and a at the second state free of each other.
 WB_PROBE("M1", "stages",
          "three moving particles, a = A_i at the start state and G_i at any other, h = 0.25: x, "

@@ -33,7 +33,8 @@ WB_PROBE("R3", "off-centre", "a force at a point off the centre") {
 }
 // The body at the origin, holding a force and a torque: an arm measured from the origin is
 // right here, and what was held must still be kept.
-WB_PROBE("R3", "origin", "a force off the centre of a body at the origin holding a force and torque") {
+WB_PROBE("R3", "origin",
+         "a force off the centre of a body at the origin holding a force and torque") {
   rigid::Body b = rbprobe::body();
   b.x.setZero();
   force(P, b, Vec3(1.5, -0.5, 2), Vec3(0.25, 0.5, -0.75));
