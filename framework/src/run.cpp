@@ -70,23 +70,19 @@ void append_stats_row(std::string& buf, long step, double t, const Energy& e, co
 
 std::int64_t parse_whole(const std::string& flag, const std::string& text, std::int64_t min,
                          std::int64_t max) {
-  // Decimal digits only: no sign, no base prefix (010 is ten), no exponent,
-  // no silent clamping of a value that does not fit.
+  // The scene files' reader and rule (wb::read_number, docs/scenes.md "Whole numbers"):
+  // JSON's grammar (no sign but "-", no base prefix, so 010 is refused as JSON refuses
+  // it), exactly a whole number (1e3 and 5.0 are; 0.5 is not), no silent clamping.
   const std::string expected =
       "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
-  // At most 19 significant digits (< 10^19 < 2^64): the value fits a uint64.
-  const std::size_t first = std::min(text.find_first_not_of('0'), text.size());
-  bool digits = !text.empty() && text.size() - first <= 19;
-  std::uint64_t value = 0;
-  for (std::size_t i = first; digits && i < text.size(); ++i) {
-    const char c = text[i];
-    digits = c >= '0' && c <= '9';
-    value = value * 10 + std::uint64_t(c - '0');
+  const NumberText t = read_number(text);
+  std::int64_t v = 0;
+  if (!whole_in(t, min, max, v)) {
+    throw InputError(flag + ": got \"" + text + "\", expected " + expected +
+                     (t.valid ? "" : " (written as in JSON: digits, no blanks, no \"+\", no "
+                                     "leading zeros, no hex)"));
   }
-  if (!digits || max < 0 || value > std::uint64_t(max) || std::int64_t(value) < min) {
-    throw InputError(flag + ": got \"" + text + "\", expected " + expected + " (decimal digits)");
-  }
-  return std::int64_t(value);
+  return v;
 }
 
 void check_initial_state(const Scene& scene, const World& world) {

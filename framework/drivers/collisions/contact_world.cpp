@@ -14,6 +14,7 @@
 #include "contact_solver.h"
 #include "friction_impulse.h"
 #include "grid_pairs.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -391,6 +392,7 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   // the largest radius.
   contacts_.clear();
   pairs_.next_step();
+  const budget::PhaseScope phase(budget::kPairs);
   if (any_radius_ && x.cols() >= 2) {
     if (timing) t0 = Clock::now();
     const double margin =
@@ -422,6 +424,7 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   }
 
   // Response: a fixed number of passes over the contacts, then the planes.
+  budget::g_phase = budget::kContacts;
   if (timing) t0 = Clock::now();
   if (settings_.solver == Solver::kAccumulated) {
     accumulated(h, x, v);

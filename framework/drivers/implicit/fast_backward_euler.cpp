@@ -12,6 +12,7 @@
 #endif
 
 #include "spring_derivatives.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -557,6 +558,7 @@ struct FastBackwardEuler::Impl {
   bool solve(const Eigen::VectorXd& start, double abs_tol) {
     bool ok = false;
     if (!direct) {
+      const budget::PhaseScope phase(budget::kCg);
       ok = solve_cg(start, abs_tol);
 #ifdef WB_HAVE_CHOLMOD
     } else if (solver == "cholmod") {

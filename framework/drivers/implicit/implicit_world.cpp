@@ -8,6 +8,7 @@
 
 #include "backward_euler_spring.h"
 #include "implicit_trapezoid.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -399,6 +400,7 @@ FastBackwardEuler& ImplicitDynamics::fast() const {
 }
 
 void ImplicitDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+  const budget::PhaseScope phase(budget::kForces);
   a.setZero();
   for (const auto& term : forces_) {
     if (external_only_ && (term->type() == "spring" || term->type() == "damping")) continue;
@@ -612,6 +614,8 @@ void newton_adapter(const char* name, bool trapezoid, bool one_iteration, const 
   d.external_forces(x, v, s.a0);
   NewtonOptions opt = d.options();
   opt.one_iteration = one_iteration;
+  // The lab's step (the student's I3-I5): its solves are CG's iterations or LDLT's.
+  const budget::PhaseScope phase(opt.solver == NewtonOptions::kCG ? budget::kCg : budget::kNewton);
   const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v, ws)
                                    : backward_euler_step(d.network(), s.a0, h, opt, x, v, ws);
   d.record(name, r);
@@ -622,6 +626,7 @@ void fast_adapter(const char* name, bool one_iteration, const Dynamics& dyn, dou
   d.external_forces(x, v, s.a0);
   NewtonOptions opt = d.options();
   opt.one_iteration = one_iteration;
+  const budget::PhaseScope phase(budget::kNewton);  // its CG iterations say so themselves
   d.record(name, d.fast().step(s.a0, h, opt, x, v));
 }
 }  // namespace

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "rigid_world.h"
+#include "wb/budget.h"
 #include "wb/lab.h"
 #include "wb/run.h"
 
@@ -270,7 +271,10 @@ class RigidScene : public wb::LabScene {
     };
     h.steps = [this](std::size_t i, double dt, long n) {
       const Integrator& integ = info_.integrators.at(i);
-      for (long k = 0; k < n; ++k) step(scene_, integ, dt, bodies_);
+      for (long k = 0; k < n; ++k) {
+        step(scene_, integ, dt, bodies_);
+        wb::budget::step_done();
+      }
       steps_ += n;
     };
     h.finite = [this] { return finite(bodies_); };

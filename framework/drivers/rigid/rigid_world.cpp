@@ -11,6 +11,7 @@
 #include "hinge.h"
 #include "integrate_position.h"
 #include "plane_contact.h"
+#include "wb/budget.h"
 #include "wb/run.h"
 #include "world_inertia.h"
 
@@ -501,7 +502,9 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
 
 double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies,
             StepState& state) {
+  namespace budget = wb::budget;
   // Accumulate forces.
+  budget::g_phase = budget::kForces;
   for (Body& b : bodies) {
     b.f.setZero();
     b.tau.setZero();
@@ -512,12 +515,14 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
     apply_force(b, pf.F, b.x + b.q.toRotationMatrix() * pf.point_body);
   }
   // Integrate velocities.
+  budget::g_phase = budget::kStep;
   for (Body& b : bodies) {
     const Vec3 v0 = b.v, w0 = b.omega;
     integ.velocity(b, h);
     state.velocity_changed = state.velocity_changed || b.v != v0 || b.omega != w0;
   }
   // Constraint impulses: hinges, then contacts.
+  budget::g_phase = budget::kHinges;
   for (const Hinge& hg : scene.hinges) {
     if (hg.revolute) {
       apply_revolute(bodies[hg.body], hg.r_body, hg.anchor, hg.axis_body, hg.axis, h, hg.beta);
@@ -525,6 +530,7 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
       apply_hinge(bodies[hg.body], hg.r_body, hg.anchor, h, hg.beta);
     }
   }
+  budget::g_phase = budget::kContacts;
   const std::size_t np = scene.planes.size();
   std::vector<Vec3> vp(bodies.size(), Vec3::Zero()), wp(bodies.size(), Vec3::Zero());
   if (scene.solver == Solver::kAccumulated) state.contacts.resize(bodies.size() * np);
@@ -569,6 +575,7 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
   // that turns omega with the body. Its angular velocity in the body frame is kept, and so
   // is its kinetic energy: turning the body under an unchanged world omega would change
   // (1/2) omega . R I R^T omega (a box pushed out of the floor at t = 0 lost 2 % of it).
+  budget::g_phase = budget::kStep;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     Body& b = bodies[i];
     integrate_position(b, h);

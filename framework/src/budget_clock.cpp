@@ -1,0 +1,111 @@
+// The budget's platform layer (budget_platform.h): POSIX clocks, /proc's resident
+// size and an ITIMER_PROF ticker; std::clock() and no ticker elsewhere.
+#include "budget_platform.h"
+
+#include <ctime>
+
+#if defined(__unix__) && !defined(__EMSCRIPTEN__)
+#define WB_BUDGET_POSIX 1
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#else
+#include <cstdio>
+#include <cstdlib>
+#endif
+
+namespace wb::budget::platform {
+
+#if WB_BUDGET_POSIX
+
+namespace {
+
+void (*g_tick)() = nullptr;
+long g_page = 4096;  // set before the ticker starts: the handler calls no sysconf
+
+extern "C" void on_tick(int) {
+  const int saved = errno;  // the interrupted code may be reading errno
+  if (g_tick) g_tick();
+  errno = saved;
+}
+
+}  // namespace
+
+double cpu_seconds() {
+  timespec ts{};
+  if (::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0) return 0.0;
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double resident_bytes() {
+  // /proc/self/statm: "size resident shared ..." in pages (Linux). Elsewhere the
+  // open fails and the memory is not watched.
+  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0.0;
+  char buf[128];
+  const ssize_t n = ::read(fd, buf, sizeof buf - 1);
+  ::close(fd);
+  if (n <= 0) return 0.0;
+  std::size_t i = 0;
+  while (i < std::size_t(n) && buf[i] != ' ') ++i;  // skip "size"
+  ++i;
+  double pages = 0;
+  for (; i < std::size_t(n) && buf[i] >= '0' && buf[i] <= '9'; ++i) {
+    pages = 10 * pages + (buf[i] - '0');
+  }
+  return pages * double(g_page);
+}
+
+bool start_ticker(double period, void (*tick)()) {
+  g_tick = tick;
+  const long page = ::sysconf(_SC_PAGESIZE);
+  if (page > 0) g_page = page;
+  struct sigaction sa {};
+  sa.sa_handler = on_tick;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  if (::sigaction(SIGPROF, &sa, nullptr) != 0) return false;
+  itimerval it{};
+  it.it_interval.tv_sec = time_t(period);
+  it.it_interval.tv_usec = suseconds_t((period - double(time_t(period))) * 1e6);
+  it.it_value = it.it_interval;
+  return ::setitimer(ITIMER_PROF, &it, nullptr) == 0;
+}
+
+void write_stderr(const char* s, std::size_t n) {
+  while (n > 0) {
+    const ssize_t w = ::write(2, s, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return;
+    s += w;
+    n -= std::size_t(w);
+  }
+}
+
+void exit_now(int status) { ::_exit(status); }
+
+#else  // no POSIX: the step loops poll std::clock(); memory is not watched
+
+double cpu_seconds() {
+  const std::clock_t c = std::clock();
+  return c == std::clock_t(-1) ? 0.0 : double(c) / CLOCKS_PER_SEC;
+}
+
+double resident_bytes() { return 0.0; }
+
+bool start_ticker(double, void (*)()) { return false; }
+
+void write_stderr(const char* s, std::size_t n) {
+  std::fwrite(s, 1, n, stderr);
+  std::fflush(stderr);
+}
+
+void exit_now(int status) { std::_Exit(status); }
+
+#endif
+
+}  // namespace wb::budget::platform

@@ -1,0 +1,22 @@
+// The budget's view of the platform (wb/budget.h): the one place that asks the
+// operating system for CPU time, resident memory and a CPU-time ticker. POSIX has
+// them all (framework/src/budget_clock.cpp); elsewhere (WebAssembly) the CPU time is
+// std::clock(), there is no ticker, and the step loops poll instead.
+#pragma once
+#include <cstddef>
+
+namespace wb::budget::platform {
+
+// CPU seconds the process has used since it started (all threads). Async-signal-safe.
+double cpu_seconds();
+// Resident memory now (B); 0 when the platform cannot say. Async-signal-safe.
+double resident_bytes();
+// Calls `tick` every `period` seconds of the process's CPU time, from a signal
+// handler. False when there is no such ticker here.
+bool start_ticker(double period, void (*tick)());
+// Writes to stderr, async-signal-safe; then ends the process with `status` at once
+// (no destructors, no atexit: the caller removed what must be removed).
+void write_stderr(const char* s, std::size_t n);
+[[noreturn]] void exit_now(int status);
+
+}  // namespace wb::budget::platform
