@@ -1,7 +1,7 @@
-// The measured budget (wb/budget.h): phases sampled by a CPU-time ticker, the limits
-// checked at every tick, and the line that stops a run. Everything the ticker calls
-// is async-signal-safe: no allocation, no stdio, numbers formatted by hand into a
-// fixed buffer.
+// The measured budget (wb/budget.h): phases sampled by a watchdog, the limits checked
+// at every look, and the line that stops a run. What the watchdog calls allocates
+// nothing and takes no lock (the run may be inside malloc when it looks): no stdio,
+// numbers formatted by hand into a fixed buffer, then write(2) and _exit.
 #include "wb/budget.h"
 
 #include <atomic>
@@ -17,12 +17,12 @@
 
 namespace wb::budget {
 
-volatile std::sig_atomic_t g_phase = kLoad;
+std::atomic<int> g_phase{kLoad};
 
 namespace {
 
-// The ticker's period in CPU seconds: a stopped run passes its limit by about this
-// much, and each tick costs a few microseconds (0.2 % at 2 ms).
+// The watchdog's period (s): a stopped run passes its limit by about this much, and
+// each look costs a few microseconds (about 0.2 % of a core at 2 ms).
 constexpr double kTickSeconds = 0.002;
 // The resident size is read every kRssEvery ticks, and at every tick once it is above
 // half the memory limit (reading /proc costs a few microseconds).
@@ -42,9 +42,9 @@ std::atomic<double> g_total{0};     // steps of the plan; 0: not known yet
 std::atomic<long long> g_done{0};   // steps done
 std::atomic<double> g_loop_cpu{-1};  // CPU seconds when the step loops started; < 0: not yet
 
-// The ticker's own state.
-volatile std::sig_atomic_t g_samples[kPhaseCount];
-volatile std::sig_atomic_t g_stopping = 0;
+// The watchdog's own state.
+long g_samples[kPhaseCount];
+std::atomic<int> g_stopping{0};
 long g_ticks = 0;
 double g_rss_prev = 0, g_rss_growth = 0;
 
@@ -53,8 +53,8 @@ long g_countdown = LONG_MAX;
 long g_poll_every = 1;
 double g_poll_cpu = 0;
 
-static_assert(std::atomic<double>::is_always_lock_free, "the ticker reads it in a handler");
-static_assert(std::atomic<long long>::is_always_lock_free, "the ticker reads it in a handler");
+static_assert(std::atomic<double>::is_always_lock_free, "read by the watchdog, lock-free");
+static_assert(std::atomic<long long>::is_always_lock_free, "read by the watchdog, lock-free");
 
 const char* const kPhaseNames[kPhaseCount] = {
     "reading and checking the scene file",
@@ -138,7 +138,7 @@ struct Line {
 // The phase that took the most samples, and its share of them (%).
 int costliest(int& percent) {
   long total = 0, best = -1;
-  int p = g_phase;
+  int p = g_phase.load(std::memory_order_relaxed);
   for (int k = 0; k < kPhaseCount; ++k) {
     total += g_samples[k];
     if (g_samples[k] > best) best = g_samples[k], p = k;
@@ -178,7 +178,7 @@ void add_progress(Line& l, double cpu) {
 }
 
 [[noreturn]] void stop(bool memory, double cpu, double rss) {
-  g_stopping = 1;
+  g_stopping.store(1);
   Line l;
   l.add(g_prefix);
   if (memory) {
@@ -187,7 +187,7 @@ void add_progress(Line& l, double cpu) {
     l.add(" of memory, its limit (");
     l.add(g_mem_flag);
     l.add("), while in ");
-    l.add(phase_name(g_phase));
+    l.add(phase_name(g_phase.load(std::memory_order_relaxed)));
     if (g_rss_growth > 0) {
       l.add(", growing ");
       l.add_mib(g_rss_growth);
@@ -216,10 +216,10 @@ void add_progress(Line& l, double cpu) {
 
 // One look at the clocks: from the ticker's handler, or from poll().
 void check() {
-  if (g_stopping) return;
+  if (g_stopping.load()) return;
   ++g_ticks;
-  const int p = g_phase;
-  if (p >= 0 && p < kPhaseCount) g_samples[p] = g_samples[p] + 1;
+  const int p = g_phase.load(std::memory_order_relaxed);
+  if (p >= 0 && p < kPhaseCount) ++g_samples[p];
   const double cpu = platform::cpu_seconds();
   if (cpu >= g_limit_s - kTickSeconds) stop(false, cpu, 0);
   if (g_ticks % kRssEvery == 0 || g_rss_prev > 0.5 * g_limit_b) {
@@ -301,7 +301,7 @@ void poll_clock() {
 
 std::string out_of_memory_text() {
   std::string s = "stopped: an allocation failed (the machine has no memory for it) while in " +
-                  std::string(phase_name(g_phase));
+                  std::string(phase_name(g_phase.load()));
   const double total = g_total.load(), done = double(g_done.load());
   if (total > 0 && g_loop_cpu.load() >= 0) {
     s += ", at step " + std::to_string((long long)done) + " of " +

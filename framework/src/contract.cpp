@@ -80,10 +80,10 @@ LoopResult run_steps(long steps, long every, double dt, double scale, const Step
     hooks.step();
     ++k;
     const double t = double(k) * dt;  // not accumulated: no drift in t
-    budget::g_phase = budget::kEnergy;
+    budget::set_phase(budget::kEnergy);
     const bool finite = hooks.finite();
     r.reason = divergence(finite, finite ? hooks.energy() : NAN, scale, k);
-    budget::g_phase = budget::kStep;
+    budget::set_phase(budget::kStep);
     if (!r.reason.empty() || k == steps || k % every == 0) record(k, t);
     budget::step_done();
     if (!r.reason.empty()) break;

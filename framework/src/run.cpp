@@ -85,6 +85,29 @@ std::int64_t parse_whole(const std::string& flag, const std::string& text, std::
   return v;
 }
 
+namespace {
+
+// The scene size S: the extent of the initial positions or their largest distance
+// from the origin, 1 m when both are 0 (tools/wbplot/recipes.py's length_scale, the
+// report's scene size).
+double scene_size(const Scene& scene) {
+  double S = 0;
+  if (scene.n() > 0) {
+    const Vec2 lo = scene.x.rowwise().minCoeff(), hi = scene.x.rowwise().maxCoeff();
+    S = std::max((hi - lo).norm(), scene.x.colwise().norm().maxCoeff());
+  }
+  return std::isfinite(S) && S > 0 ? S : 1.0;
+}
+
+// The terms' force bounds on every particle (Force::bound), summed.
+VecX force_bounds(const Scene& scene, const std::vector<const Force*>& terms) {
+  VecX bound = VecX::Zero(scene.n());
+  for (const Force* t : terms) t->bound(scene.x, scene.v, scene.m, bound);
+  return bound;
+}
+
+}  // namespace
+
 void check_initial_state(const Scene& scene, const World& world) {
   const Mat2X& x = scene.x;
   const Mat2X& v = scene.v;
@@ -103,6 +126,20 @@ void check_initial_state(const Scene& scene, const World& world) {
                      " N, its acceleration by " + num(a[i]) +
                      " m/s^2, expected finite forces and accelerations f/m (a force constant, "
                      "position, velocity or mass so large that they overflow)");
+  }
+  // The divergence rule's energy scale has a floor, the work the initial forces would do
+  // across the scene (particle_work_scale): bounded by sum |f_i| times S with the bounds
+  // above, it must be finite, or the rule would compare every step with a scale of 0.
+  const double S = scene_size(scene);
+  if (!std::isfinite(bound.sum() * S)) {
+    Eigen::Index i = 0;
+    bound.maxCoeff(&i);
+    throw InputError(scene.file + ": " + particle_key(scene, i) +
+                     ": initial state: the work the initial forces would do across the scene, "
+                     "sum of |f| times the scene's size " + num(S) + " m (the divergence "
+                     "rule's energy scale, docs/run-contract.md), overflows (the largest force, "
+                     "on particle " + std::to_string(i) + ", is bounded by " + num(bound[i]) +
+                     " N), expected masses, forces and positions whose product is finite");
   }
   // Energy: kinetic, then each term's potential; the momentum.
   const Energy e = world.energy(x, v);
@@ -128,21 +165,16 @@ void check_initial_state(const Scene& scene, const World& world) {
 }
 
 double particle_work_scale(const Scene& scene, const World& world) {
-  // The scene size S: the extent of the initial positions or their largest
-  // distance from the origin, 1 m when both are 0 (tools/wbplot/recipes.py's
-  // length_scale, the report's scene size).
-  double S = 0;
-  if (scene.n() > 0) {
-    const Vec2 lo = scene.x.rowwise().minCoeff(), hi = scene.x.rowwise().maxCoeff();
-    S = std::max((hi - lo).norm(), scene.x.colwise().norm().maxCoeff());
-  }
-  if (!(std::isfinite(S) && S > 0)) S = 1.0;
+  const double S = scene_size(scene);
   const Dynamics& dyn = world.dynamics();
   Mat2X a(2, scene.n());
   dyn.acceleration(scene.x, scene.v, a);
   dyn.reset_evals();
   const double work = (a.colwise().norm().transpose().array() * scene.m.array()).sum() * S;
-  return std::isfinite(work) ? work : 0.0;
+  if (std::isfinite(work)) return work;
+  // Forces beyond their bounds (a lab's function gone wrong): the bounds' work, finite
+  // by check_initial_state, rather than a scale of 0.
+  return force_bounds(scene, world.terms()).sum() * S;
 }
 
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt) {

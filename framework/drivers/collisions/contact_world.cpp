@@ -257,6 +257,33 @@ void check_radii(const Scene& scene) {
   }
 }
 
+void check_effective_masses(const Scene& scene) {
+  // Two particles that touch divide their impulse by 1/m_i + 1/m_j (C2, C5) and share a
+  // push-out by it: a sum that overflows (two discs of 1e-308 kg) would make every impulse
+  // 0 and the discs pass through each other, a run that looks like a stub. Pairs that can
+  // touch: a disc with a disc, or with a particle of radius 0.
+  Eigen::Index a = -1, b = -1, z = -1;  // the two lightest discs, the lightest point
+  for (Eigen::Index i = 0; i < scene.n(); ++i) {
+    if (!(scene.radius[i] > 0)) {
+      if (z < 0 || scene.m[i] < scene.m[z]) z = i;
+    } else if (a < 0 || scene.m[i] < scene.m[a]) {
+      b = a, a = i;
+    } else if (b < 0 || scene.m[i] < scene.m[b]) {
+      b = i;
+    }
+  }
+  if (a < 0) return;
+  for (const Eigen::Index j : {b, z}) {
+    if (j < 0 || std::isfinite(1 / scene.m[a] + 1 / scene.m[j])) continue;
+    const Eigen::Index light = scene.m[j] < scene.m[a] ? j : a, other = light == a ? j : a;
+    throw InputError(scene.file + ": " + particle_key(scene, light) + ".m: got " +
+                     num(scene.m[light]) + ", expected masses whose sum of inverses "
+                     "1/m_i + 1/m_j is finite for particles that can touch (with " +
+                     particle_key(scene, other) + ", m = " + num(scene.m[other]) +
+                     ", it overflows: their impulses would be 0)");
+  }
+}
+
 InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
                                  const std::vector<PlaneDef>& planes) {
   InitialOverlaps o;
@@ -321,6 +348,7 @@ InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
 ContactWorld::ContactWorld(const Scene& scene)
     : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
   check_radii(scene);
+  check_effective_masses(scene);
   planes_ = read_planes(scene, settings_);
   w_ = m_.cwiseInverse();
   any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
@@ -424,7 +452,7 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   }
 
   // Response: a fixed number of passes over the contacts, then the planes.
-  budget::g_phase = budget::kContacts;
+  budget::set_phase(budget::kContacts);
   if (timing) t0 = Clock::now();
   if (settings_.solver == Solver::kAccumulated) {
     accumulated(h, x, v);

@@ -7,12 +7,12 @@
 // first step and answers --estimate; this is the wall behind it.
 //
 // The code says which phase it is in (PhaseScope: a store, no clock read), the step
-// loops count their steps (step_done()), and a ticker samples the clocks: on POSIX a
-// CPU-time timer signal every few milliseconds of CPU (framework/src/budget_clock.cpp,
-// the only file that calls the platform); where there is none (WebAssembly), the step
-// loops' poll() reads std::clock() every so many steps instead.
+// loops count their steps (step_done()), and a watchdog samples the clocks every few
+// milliseconds: on POSIX a thread of its own (framework/src/budget_clock.cpp, the only
+// file that calls the platform); where there are no threads (WebAssembly), step_done()
+// reads std::clock() every so many steps instead.
 #pragma once
-#include <csignal>
+#include <atomic>
 #include <string>
 
 namespace wb::budget {
@@ -34,21 +34,22 @@ enum Phase : int {
   kPhaseCount
 };
 
-// The phase a PhaseScope sets: read by the ticker (a signal handler), so a plain
-// signal-safe integer. Written by the running code only.
-extern volatile std::sig_atomic_t g_phase;
+// The phase the running code is in: written by it (relaxed stores, plain moves on
+// common hardware), sampled by the watchdog.
+extern std::atomic<int> g_phase;
+inline void set_phase(Phase p) { g_phase.store(p, std::memory_order_relaxed); }
 
 // Sets the phase for its lifetime, then restores the one before (phases nest:
 // the forces inside a step, the CG iterations inside a Newton step).
 class PhaseScope {
  public:
-  explicit PhaseScope(Phase p) : saved_(g_phase) { g_phase = p; }
-  ~PhaseScope() { g_phase = saved_; }
+  explicit PhaseScope(Phase p) : saved_(g_phase.load(std::memory_order_relaxed)) { set_phase(p); }
+  ~PhaseScope() { g_phase.store(saved_, std::memory_order_relaxed); }
   PhaseScope(const PhaseScope&) = delete;
   PhaseScope& operator=(const PhaseScope&) = delete;
 
  private:
-  std::sig_atomic_t saved_;
+  int saved_;
 };
 
 // The limits, from --max-time and --max-memory (wb/cost.h's defaults).
