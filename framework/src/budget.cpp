@@ -42,9 +42,12 @@ std::atomic<double> g_total{0};     // steps of the plan; 0: not known yet
 std::atomic<long long> g_done{0};   // steps done
 std::atomic<double> g_loop_cpu{-1};  // CPU seconds when the step loops started; < 0: not yet
 
-// The watchdog's own state.
+// The watchdog's own state. g_state: 0 watching, 1 finished (the run is over, or said
+// its own error), 2 stopping (the watchdog is writing its line): whichever comes first
+// wins, so that a process says exactly one of the two.
 long g_samples[kPhaseCount];
-std::atomic<int> g_stopping{0};
+std::atomic<int> g_state{0};
+constexpr int kWatching = 0, kFinished = 1, kStopping = 2;
 long g_ticks = 0;
 double g_rss_prev = 0, g_rss_growth = 0;
 
@@ -177,8 +180,9 @@ void add_progress(Line& l, double cpu) {
   l.add_duration(loop_cpu + looped * total / double(done));
 }
 
-[[noreturn]] void stop(bool memory, double cpu, double rss) {
-  g_stopping.store(1);
+void stop(bool memory, double cpu, double rss) {
+  int expected = kWatching;
+  if (!g_state.compare_exchange_strong(expected, kStopping)) return;  // finished first
   Line l;
   l.add(g_prefix);
   if (memory) {
@@ -216,12 +220,12 @@ void add_progress(Line& l, double cpu) {
 
 // One look at the clocks: from the ticker's handler, or from poll().
 void check() {
-  if (g_stopping.load()) return;
+  if (g_state.load() != kWatching) return;
   ++g_ticks;
   const int p = g_phase.load(std::memory_order_relaxed);
   if (p >= 0 && p < kPhaseCount) ++g_samples[p];
   const double cpu = platform::cpu_seconds();
-  if (cpu >= g_limit_s - kTickSeconds) stop(false, cpu, 0);
+  if (cpu >= g_limit_s - kTickSeconds) return stop(false, cpu, 0);
   if (g_ticks % kRssEvery == 0 || g_rss_prev > 0.5 * g_limit_b) {
     const double rss = platform::resident_bytes();
     if (rss > 0) {
@@ -270,6 +274,13 @@ void start(const Limits& limits, const std::string& exe, const std::string& file
   }
 }
 
+void finish() {
+  int expected = kWatching;
+  if (g_state.compare_exchange_strong(expected, kFinished) || expected == kFinished) return;
+  // The watchdog is stopping the run: it ends the process in a moment; say nothing.
+  platform::wait_to_be_ended();
+}
+
 void plan(double total_steps) { g_total.store(total_steps, std::memory_order_relaxed); }
 
 void loop_started() {
@@ -282,6 +293,12 @@ void step_done() {
   g_done.store(g_done.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
   if (--g_countdown <= 0) poll_clock();
 }
+
+#if !WB_BUDGET_THREAD
+void phase_boundary() {
+  if (--g_countdown <= 0) poll_clock();
+}
+#endif
 
 void poll_clock() {
   if (g_ticker || !g_started) {

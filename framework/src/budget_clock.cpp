@@ -11,8 +11,9 @@
 
 #include <ctime>
 
-#if defined(__unix__) && (!defined(__EMSCRIPTEN__) || defined(__EMSCRIPTEN_PTHREADS__))
-#define WB_BUDGET_POSIX 1
+#include "wb/budget.h"  // WB_BUDGET_THREAD
+
+#if WB_BUDGET_THREAD
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -27,7 +28,7 @@
 
 namespace wb::budget::platform {
 
-#if WB_BUDGET_POSIX
+#if WB_BUDGET_THREAD
 
 namespace {
 
@@ -91,7 +92,11 @@ void write_stderr(const char* s, std::size_t n) {
 
 void exit_now(int status) { ::_exit(status); }
 
-#else  // no POSIX: the step loops poll std::clock(); memory is not watched
+void wait_to_be_ended() {
+  for (;;) ::pause();
+}
+
+#else  // no threads: the step loops and phases poll std::clock(); memory is not watched
 
 double cpu_seconds() {
   const std::clock_t c = std::clock();
@@ -108,6 +113,8 @@ void write_stderr(const char* s, std::size_t n) {
 }
 
 void exit_now(int status) { std::_Exit(status); }
+
+void wait_to_be_ended() { std::_Exit(2); }  // no watchdog thread here: never reached
 
 #endif
 

@@ -19,5 +19,8 @@ bool start_ticker(double period, void (*tick)());
 // (no destructors, no atexit: the caller removed what must be removed).
 void write_stderr(const char* s, std::size_t n);
 [[noreturn]] void exit_now(int status);
+// Blocks the calling thread until the watchdog, which is stopping the run, ends the
+// process.
+[[noreturn]] void wait_to_be_ended();
 
 }  // namespace wb::budget::platform

@@ -143,14 +143,17 @@ int guarded_main(const std::string& exe, const std::function<int()>& body) {
   try {
     return body();
   } catch (const InputError& e) {
+    budget::finish();  // one line, this one: the watchdog says nothing more
     say(exe, "error", e.what());
     return 2;
   } catch (const std::bad_alloc&) {
+    budget::finish();
     // Memory the machine could not give (an allocation beyond what it has): a run too
     // large for it, bad input like a limit, never an internal error (wb/budget.h).
     say(exe, "error", budget::out_of_memory_text());
     return 2;
   } catch (const std::exception& e) {
+    budget::finish();
     say(exe, "internal error", e.what());
     return 1;
   }

@@ -138,6 +138,7 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
                      s->dt, s->t_end, s->file, repeats);
       const Estimate e = sweep_estimate(*s, plan, repeats, flags->scene_file);
       if (flags->estimate) {
+        budget::finish();
         print_estimate(e, budget, s->file);
         return 0;
       }
@@ -158,6 +159,7 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
       budget::PhaseScope writing(budget::kOutput);
       csv.rows() += sweep_table(s->name, names, rows, false);
       csv.commit();
+      budget::finish();
       print_summary(sweep_summary(flags->sweep_csv, rows));
       return 0;
     }
@@ -171,6 +173,7 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
     const bool outputs = !flags->out.empty() || !flags->stats.empty();
     const Estimate e = run_estimate(*s, r, outputs, flags->scene_file);
     if (flags->estimate) {
+      budget::finish();
       print_estimate(e, budget, s->file);
       return 0;
     }
@@ -185,6 +188,7 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
     // Accepted: what will be slow is said now, once, before the run.
     for (const std::string& x : warnings) say(exe, "warning", x);
     const Summary sum = s->run(r, files);
+    budget::finish();
     for (const std::string& x : sum.warnings) say(exe, "warning", x);
     print_summary(summary_json(sum));
     return 0;

@@ -9,11 +9,25 @@
 // The code says which phase it is in (PhaseScope: a store, no clock read), the step
 // loops count their steps (step_done()), and a watchdog samples the clocks every few
 // milliseconds: on POSIX a thread of its own (framework/src/budget_clock.cpp, the only
-// file that calls the platform); where there are no threads (WebAssembly), step_done()
-// reads std::clock() every so many steps instead.
+// file that calls the platform); where there are no threads (WB_BUDGET_THREAD 0,
+// WebAssembly without pthreads), step_done() and every PhaseScope count down to a read
+// of std::clock() instead.
 #pragma once
 #include <atomic>
 #include <string>
+
+// WB_BUDGET_THREAD: 1 where the watchdog is a thread of its own (POSIX, emscripten with
+// pthreads), 0 where a build has no threads (emscripten without -pthread: the live
+// pages' WebAssembly). Without one, the run's own thread reads the clock at its step
+// boundaries (step_done) and at its phase boundaries (PhaseScope), about every 10 ms of
+// CPU: a stretch of work with neither (one long solve) is stopped only at its end.
+#ifndef WB_BUDGET_THREAD
+#if defined(__unix__) && (!defined(__EMSCRIPTEN__) || defined(__EMSCRIPTEN_PTHREADS__))
+#define WB_BUDGET_THREAD 1
+#else
+#define WB_BUDGET_THREAD 0
+#endif
+#endif
 
 namespace wb::budget {
 
@@ -39,12 +53,26 @@ enum Phase : int {
 extern std::atomic<int> g_phase;
 inline void set_phase(Phase p) { g_phase.store(p, std::memory_order_relaxed); }
 
+#if WB_BUDGET_THREAD
+inline void phase_boundary() {}  // the watchdog thread looks by itself
+#else
+// A phase begins or ends: one decrement of the poll's countdown, the clock read when it
+// reaches 0 (poll_clock).
+void phase_boundary();
+#endif
+
 // Sets the phase for its lifetime, then restores the one before (phases nest:
 // the forces inside a step, the CG iterations inside a Newton step).
 class PhaseScope {
  public:
-  explicit PhaseScope(Phase p) : saved_(g_phase.load(std::memory_order_relaxed)) { set_phase(p); }
-  ~PhaseScope() { g_phase.store(saved_, std::memory_order_relaxed); }
+  explicit PhaseScope(Phase p) : saved_(g_phase.load(std::memory_order_relaxed)) {
+    set_phase(p);
+    phase_boundary();
+  }
+  ~PhaseScope() {
+    g_phase.store(saved_, std::memory_order_relaxed);
+    phase_boundary();
+  }
   PhaseScope(const PhaseScope&) = delete;
   PhaseScope& operator=(const PhaseScope&) = delete;
 
@@ -71,9 +99,13 @@ void plan(double total_steps);
 // is what the projection scales.
 void loop_started();
 
+// The run is over (its summary is next): the watchdog stops looking, so that a run which
+// finished is never stopped while it prints and exits.
+void finish();
+
 // One step done (any run of the plan): a relaxed store and a decrement, cheap enough
 // for every step. Where no ticker runs (WebAssembly) it also reads the clock every so
-// many steps (poll_clock), about every 10 ms of CPU.
+// many steps and phase boundaries (poll_clock), about every 10 ms of CPU.
 void step_done();
 void poll_clock();
 
