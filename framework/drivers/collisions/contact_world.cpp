@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <string>
 #include <tuple>
 
 #include "collide_particles.h"
@@ -257,6 +259,17 @@ void check_radii(const Scene& scene) {
   }
 }
 
+// The shortest text that reads back as x (a subnormal mass as the scene wrote it, 1e-308,
+// not num's 17 digits 9.9999999999999991e-309).
+static std::string shortest(double x) {
+  char buf[32];
+  for (int digits = 1; digits < 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) return buf;
+  }
+  return num(x);
+}
+
 void check_effective_masses(const Scene& scene) {
   // Two particles that touch divide their impulse by 1/m_i + 1/m_j (C2, C5) and share a
   // push-out by it: a sum that overflows (two discs of 1e-308 kg) would make every impulse
@@ -277,9 +290,9 @@ void check_effective_masses(const Scene& scene) {
     if (j < 0 || std::isfinite(1 / scene.m[a] + 1 / scene.m[j])) continue;
     const Eigen::Index light = scene.m[j] < scene.m[a] ? j : a, other = light == a ? j : a;
     throw InputError(scene.file + ": " + particle_key(scene, light) + ".m: got " +
-                     num(scene.m[light]) + ", expected masses whose sum of inverses "
+                     shortest(scene.m[light]) + ", expected masses whose sum of inverses "
                      "1/m_i + 1/m_j is finite for particles that can touch (with " +
-                     particle_key(scene, other) + ", m = " + num(scene.m[other]) +
+                     particle_key(scene, other) + ", m = " + shortest(scene.m[other]) +
                      ", it overflows: their impulses would be 0)");
   }
 }
