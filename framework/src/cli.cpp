@@ -21,16 +21,23 @@ InputError flag_error(const std::string& flag, const std::string& got,
   return InputError(flag + ": got " + got + ", expected " + expected);
 }
 
-// A number flag: the whole text one finite number (strtod's syntax), else
+// A number flag: the whole text one finite number, read by the scene files' reader
+// (wb::read_number: JSON's grammar, no blanks, no hex, correctly rounded), else
 // InputError naming the flag and the text ("" included).
 double parse_number(const std::string& flag, const std::string& text,
                     const std::string& expected) {
-  char* end = nullptr;
-  const double d = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(d)) {
-    throw flag_error(flag, "\"" + text + "\"", expected);
+  const NumberText t = read_number(text);
+  if (!t.valid) {
+    throw flag_error(flag, "\"" + text + "\"",
+                     expected + " (written as in JSON: digits, an optional fraction and "
+                                "exponent; no blanks, no \"+\", no hex)");
   }
-  return d;
+  if (t.overflow || t.underflow) {
+    throw flag_error(flag, "\"" + text + "\"",
+                     expected + (t.overflow ? " (it is too large for a double)"
+                                            : " (it is too small for a double: it reads as 0)"));
+  }
+  return t.value;
 }
 
 }  // namespace
@@ -61,9 +68,11 @@ RunFlags read_run_flags(int argc, const char* const* argv, const FlagSpec& spec,
   if (spec.seed)
     app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
   app.add_option("--max-time", max_time_in,
-                 "Refuse a run (or sweep) estimated above S seconds of CPU (default 3600)");
+                 "CPU seconds a run (or sweep) may take: refused when estimated above, stopped when "
+      "it gets there (default 3600)");
   app.add_option("--max-memory", max_memory_in,
-                 "Refuse a run (or sweep) estimated above M MiB of memory (default 2048)");
+                 "MiB of memory a run (or sweep) may hold: refused when estimated above, stopped when "
+      "it gets there (default 2048)");
   app.add_flag("--estimate", f.estimate,
                "Print the cost model's estimate as one JSON line and run nothing");
   CLI::Option *o_sweep = nullptr, *o_integrators = nullptr, *o_dts = nullptr;
@@ -127,12 +136,21 @@ RunFlags read_run_flags(int argc, const char* const* argv, const FlagSpec& spec,
     throw flag_error("--every", "\"" + *every_in + "\" without --out or --stats",
                      "--every only beside an output it thins (--out, --stats)");
   }
-  // The budget: seconds and MiB, from a second up to a year and a terabyte.
+  // The budget: CPU seconds and MiB, from a hundredth of a second up to a year, and
+  // from 1 MiB up to a terabyte (docs/run-contract.md, "Limits").
   if (max_time_in) {
-    f.max_time = double(parse_whole("--max-time", *max_time_in, 1, 366 * 86400));
+    const std::string expected = "a number of seconds from 0.01 to 31622400";
+    f.max_time = parse_number("--max-time", *max_time_in, expected);
+    if (!(*f.max_time >= 0.01 && *f.max_time <= 366.0 * 86400)) {
+      throw flag_error("--max-time", "\"" + *max_time_in + "\"", expected);
+    }
   }
   if (max_memory_in) {
-    f.max_memory_mib = double(parse_whole("--max-memory", *max_memory_in, 1, 1 << 20));
+    const std::string expected = "a number of MiB from 1 to 1048576";
+    f.max_memory_mib = parse_number("--max-memory", *max_memory_in, expected);
+    if (!(*f.max_memory_mib >= 1 && *f.max_memory_mib <= double(1 << 20))) {
+      throw flag_error("--max-memory", "\"" + *max_memory_in + "\"", expected);
+    }
   }
   if (!f.out.empty()) check_output_path("--out", f.out);
   if (!f.stats.empty()) check_output_path("--stats", f.stats);

@@ -7,7 +7,9 @@
 #include <ctime>
 #include <iostream>
 #include <limits>
+#include <new>
 
+#include "wb/budget.h"
 #include "wb/output.h"
 
 namespace wb {
@@ -64,7 +66,13 @@ std::string unconverged_divergence(long steps, long unconverged) {
 
 LoopResult run_steps(long steps, long every, double dt, double scale, const StepHooks& hooks) {
   LoopResult r;
-  hooks.record(0, 0.0);
+  budget::loop_started();
+  budget::PhaseScope phase(budget::kStep);
+  const auto record = [&](long k, double t) {
+    budget::PhaseScope writing(budget::kOutput);
+    hooks.record(k, t);
+  };
+  record(0, 0.0);
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   long k = 0;
@@ -72,9 +80,12 @@ LoopResult run_steps(long steps, long every, double dt, double scale, const Step
     hooks.step();
     ++k;
     const double t = double(k) * dt;  // not accumulated: no drift in t
+    budget::set_phase(budget::kEnergy);
     const bool finite = hooks.finite();
     r.reason = divergence(finite, finite ? hooks.energy() : NAN, scale, k);
-    if (!r.reason.empty() || k == steps || k % every == 0) hooks.record(k, t);
+    budget::set_phase(budget::kStep);
+    if (!r.reason.empty() || k == steps || k % every == 0) record(k, t);
+    budget::step_done();
     if (!r.reason.empty()) break;
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -132,9 +143,17 @@ int guarded_main(const std::string& exe, const std::function<int()>& body) {
   try {
     return body();
   } catch (const InputError& e) {
+    budget::finish();  // one line, this one: the watchdog says nothing more
     say(exe, "error", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    budget::finish();
+    // Memory the machine could not give (an allocation beyond what it has): a run too
+    // large for it, bad input like a limit, never an internal error (wb/budget.h).
+    say(exe, "error", budget::out_of_memory_text());
+    return 2;
   } catch (const std::exception& e) {
+    budget::finish();
     say(exe, "internal error", e.what());
     return 1;
   }
@@ -163,10 +182,13 @@ std::string sweep_help(const std::string& what) {
 }
 
 std::string budget_help() {
-  return "\nCost (docs/scenes.md, \"Cost\"): every run and sweep is estimated before it starts.\n"
-         "Above --max-time (default 3600 s of CPU, with every iteration at its cap) or\n"
-         "--max-memory (default 2048 MiB) it is refused; above a minute or half the memory it\n"
-         "warns. --estimate prints the estimate as JSON and runs nothing.\n";
+  return "\nCost (docs/scenes.md, \"Cost\"): every run and sweep is estimated before it starts,\n"
+         "and measured while it runs. Estimated above --max-time (default 3600 s of CPU, with\n"
+         "every iteration at its cap) or --max-memory (default 2048 MiB) it is refused; above a\n"
+         "minute or half the memory it warns. Whatever the estimate, a run whose CPU time or\n"
+         "resident memory reaches its limit stops there: exit 2, one line naming the phase that\n"
+         "costs and the total it was heading for. --estimate prints the estimate as JSON and\n"
+         "runs nothing.\n";
 }
 
 SweepPlan plan_sweep(const std::vector<std::string>& names,
@@ -262,6 +284,8 @@ ordered_json sweep_summary(const std::string& csv, const std::vector<SweepRow>& 
 
 std::vector<SweepRow> sweep_rows(const SweepPlan& plan, const std::vector<std::string>& names,
                                  const SweepHooks& h, const std::string& exe, int repeats) {
+  budget::loop_started();
+  const budget::PhaseScope stepping(budget::kStep);
   std::vector<SweepRow> rows;
   const double inf = std::numeric_limits<double>::infinity();
   for (std::size_t i : plan.integrators) {
@@ -277,6 +301,7 @@ std::vector<SweepRow> sweep_rows(const SweepPlan& plan, const std::vector<std::s
       double energy_error = 0;
       for (long k = 0; k < row.steps; ++k) {
         h.steps(i, row.dt, 1);
+        const budget::PhaseScope checking(budget::kEnergy);
         const bool finite = h.finite();
         const double E = finite ? h.energy() : NAN;
         if (!divergence(finite, E, h.blowup_scale, k + 1).empty()) {
@@ -292,7 +317,10 @@ std::vector<SweepRow> sweep_rows(const SweepPlan& plan, const std::vector<std::s
                 std::to_string(row.steps) + " steps: " + h.unmoved);
       }
       row.energy_error = row.diverged ? inf : energy_error;
-      row.error = row.diverged ? inf : h.error(double(row.steps) * row.dt);
+      {
+        const budget::PhaseScope reference(budget::kReference);
+        row.error = row.diverged ? inf : h.error(double(row.steps) * row.dt);
+      }
 
       // Timed runs: the pure step loop, the fastest of `repeats`.
       row.wall_s = inf;

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <charconv>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -114,6 +116,11 @@ std::string one_line(const std::string& s, std::size_t max_bytes) {
   return e.substr(0, head) + mid + e.substr(tail);
 }
 
+namespace {
+// The text of a number whose double hides it (below, at the number reader).
+const std::string* remembered_text(const std::string& file, const std::string& path);
+}  // namespace
+
 JsonObject::JsonObject(std::string file, const json& j, std::string path)
     : file_(std::move(file)), j_(j), path_(std::move(path)) {
   if (!j_.is_object()) {
@@ -130,6 +137,9 @@ void JsonObject::fail(const std::string& key, const json* value,
                       const std::string& expected) const {
   std::string where = key.empty() ? (path_.empty() ? "(top level)" : path_) : key_path(key);
   std::string got = value ? "got " + describe(*value) : "missing";
+  if (value && value->is_number_float()) {  // its text, where its double would mislead
+    if (const std::string* text = remembered_text(file_, where)) got = "got " + *text;
+  }
   throw InputError(file_ + ": " + where + ": " + got + ", expected " + expected);
 }
 
@@ -343,69 +353,161 @@ void render(const json& v, std::string& out, int depth) {
   }
 }
 
-// What the text of a JSON number is exactly (its digits, not the double they
-// round to): not 0, a whole number, and that whole number when it fits 64 bits.
-struct ExactNumber {
-  bool nonzero = false, whole = false, negative = false;
-  bool fits_signed = false, fits_unsigned = false;
-  std::uint64_t magnitude = 0;
-};
+}  // namespace
 
-ExactNumber exact_number(const std::string& text) {
-  ExactNumber e;
+// ---- The one number reader (wb/input.h).
+
+namespace {
+
+// The texts of numbers a message may need that their double does not show (a fraction
+// refused as a whole number), by file and JSON path; at most kMaxTexts of them.
+constexpr std::size_t kMaxTexts = 10000;
+std::map<std::string, std::map<std::string, std::string>>& number_texts() {
+  static std::map<std::string, std::map<std::string, std::string>> texts;
+  return texts;
+}
+std::size_t g_texts = 0;
+
+void remember_text(const std::string& file, const std::string& path, const std::string& text) {
+  if (g_texts >= kMaxTexts) return;
+  ++g_texts;
+  number_texts()[file][path] = text.size() > 80 ? text.substr(0, 77) + "..." : text;
+}
+
+const std::string* remembered_text(const std::string& file, const std::string& path) {
+  const auto f = number_texts().find(file);
+  if (f == number_texts().end()) return nullptr;
+  const auto p = f->second.find(path);
+  return p == f->second.end() ? nullptr : &p->second;
+}
+
+bool digit(char c) { return c >= '0' && c <= '9'; }
+
+}  // namespace
+
+NumberText read_number(const std::string& text) {
+  NumberText r;
+  const std::size_t n = text.size();
   std::size_t i = 0;
-  if (i < text.size() && text[i] == '-') e.negative = true, ++i;
-  std::string digits;  // integer and fraction digits, the point removed
-  long exponent = 0;   // value = digits x 10^exponent
-  for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
-    digits += text[i];
-  }
-  if (i < text.size() && text[i] == '.') {
-    for (++i; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
-      digits += text[i];
-      --exponent;
-    }
-  }
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+  // The grammar, and where its parts are.
+  const bool minus = i < n && text[i] == '-';
+  if (minus) ++i;
+  const std::size_t int_begin = i;
+  if (i < n && text[i] == '0') {
     ++i;
-    bool minus = false;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) minus = text[i++] == '-';
-    long x = 0;
-    for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
-      x = std::min(x * 10 + (text[i] - '0'), 100000L);  // beyond, nothing fits anyway
+  } else if (i < n && text[i] >= '1' && text[i] <= '9') {
+    while (i < n && digit(text[i])) ++i;
+  } else {
+    return r;
+  }
+  const std::size_t int_end = i;
+  std::size_t frac_begin = i, frac_end = i;
+  if (i < n && text[i] == '.') {
+    frac_begin = ++i;
+    while (i < n && digit(text[i])) ++i;
+    frac_end = i;
+    if (frac_end == frac_begin) return r;
+  }
+  // The written exponent, saturated far beyond any double (and any 16 MiB of digits).
+  constexpr std::int64_t kExpCap = std::int64_t(1) << 50;
+  std::int64_t exp = 0;
+  if (i < n && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    bool exp_minus = false;
+    if (i < n && (text[i] == '+' || text[i] == '-')) exp_minus = text[i++] == '-';
+    const std::size_t exp_begin = i;
+    while (i < n && digit(text[i])) {
+      exp = std::min(kExpCap, exp * 10 + (text[i] - '0'));
+      ++i;
     }
-    exponent += minus ? -x : x;
+    if (i == exp_begin) return r;
+    if (exp_minus) exp = -exp;
   }
-  // Drop leading zeros, then trailing zeros into the exponent.
-  const std::size_t first = digits.find_first_not_of('0');
-  if (first == std::string::npos) {  // 0, -0.0, 0e5
-    e.whole = e.fits_signed = e.fits_unsigned = true;
-    e.negative = false;
-    return e;
+  if (i != n) return r;
+  r.valid = true;
+
+  // The value is D x 10^e: D the significant digits (no leading or trailing zeros).
+  auto at = [&](std::size_t k) {  // k-th digit of the integer part, then of the fraction
+    const std::size_t ni = int_end - int_begin;
+    return k < ni ? text[int_begin + k] : text[frac_begin + (k - ni)];
+  };
+  const std::size_t total = (int_end - int_begin) + (frac_end - frac_begin);
+  std::size_t first = 0, last = total;  // [first, last): significant
+  while (first < total && at(first) == '0') ++first;
+  if (first == total) {  // 0, -0.0, 0e5: zero, and whole
+    r.whole = r.fits = true;
+    r.value = minus ? -0.0 : 0.0;
+    return r;
   }
-  digits = digits.substr(first);
-  while (digits.back() == '0') digits.pop_back(), ++exponent;
-  e.nonzero = true;
-  e.whole = exponent >= 0;
-  if (!e.whole || double(digits.size()) + double(exponent) > 20) return e;
-  digits.append(std::size_t(exponent), '0');
-  std::uint64_t m = 0;
-  for (char c : digits) {
-    const std::uint64_t d = std::uint64_t(c - '0');
-    if (m > (UINT64_MAX - d) / 10) return e;  // more than 64 bits
-    m = m * 10 + d;
+  while (at(last - 1) == '0') --last;
+  r.nonzero = true;
+  const std::int64_t frac_digits = std::int64_t(frac_end - frac_begin);
+  // e: the exponent of the last significant digit.
+  const std::int64_t e = exp - frac_digits + std::int64_t(total - last);
+  const std::int64_t k = std::int64_t(last - first);
+  r.whole = e >= 0;
+  r.negative = minus;
+  if (r.whole && k + e <= 20) {
+    std::uint64_t m = 0;
+    bool ok = true;
+    for (std::int64_t q = 0; q < k + e && ok; ++q) {
+      const std::uint64_t d = q < k ? std::uint64_t(at(first + std::size_t(q)) - '0') : 0;
+      ok = m <= (UINT64_MAX - d) / 10;
+      m = m * 10 + d;
+    }
+    r.fits = ok;
+    r.magnitude = ok ? m : 0;
   }
-  e.magnitude = m;
-  e.fits_unsigned = true;
-  e.fits_signed = m <= (e.negative ? std::uint64_t(INT64_MAX) + 1 : std::uint64_t(INT64_MAX));
-  return e;
+
+  // The double: correctly rounded (std::from_chars where the library has it for doubles;
+  // strtod, also correctly rounded in glibc and musl, elsewhere: the text is already
+  // known to be a plain decimal, so the locale and hex forms cannot enter).
+  // The magnitude of the number is 10^(k + e - 1) to 10^(k + e).
+  const std::int64_t order = k + e;
+  if (order > 400) {
+    r.overflow = true;
+    r.value = minus ? -HUGE_VAL : HUGE_VAL;
+    return r;
+  }
+  if (order < -400) {
+    r.underflow = true;
+    r.value = minus ? -0.0 : 0.0;
+    return r;
+  }
+  double v = 0;
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+  const auto res = std::from_chars(text.data(), text.data() + n, v);
+  if (res.ec == std::errc::result_out_of_range) {
+    v = order > 0 ? HUGE_VAL : 0.0;
+    if (minus) v = -v;
+  }
+#else
+  v = std::strtod(text.c_str(), nullptr);
+#endif
+  r.value = v;
+  r.overflow = std::isinf(v);
+  r.underflow = v == 0.0;
+  return r;
 }
 
-// The signed whole number of an ExactNumber that fits_signed.
-std::int64_t signed_value(const ExactNumber& e) {
-  if (!e.negative) return std::int64_t(e.magnitude);
-  return e.magnitude == std::uint64_t(INT64_MAX) + 1 ? INT64_MIN : -std::int64_t(e.magnitude);
+bool whole_in(const NumberText& t, std::int64_t min, std::int64_t max, std::int64_t& out) {
+  if (!t.valid || !t.whole || !t.fits) return false;
+  if (!t.negative) {
+    if (max < 0 || t.magnitude > std::uint64_t(max)) return false;
+    if (min > 0 && t.magnitude < std::uint64_t(min)) return false;
+    out = std::int64_t(t.magnitude);
+    return true;
+  }
+  // -magnitude >= min
+  if (t.magnitude > std::uint64_t(INT64_MAX) + 1) return false;
+  const std::int64_t v =
+      t.magnitude == std::uint64_t(INT64_MAX) + 1 ? INT64_MIN : -std::int64_t(t.magnitude);
+  if (v < min || v > max) return false;
+  out = v;
+  return true;
 }
+
+namespace {
 
 // Builds the document as the parser reads it (nlohmann's SAX interface),
 // keeping the JSON path of the value being read for messages, refusing a key
@@ -422,20 +524,29 @@ class DomBuilder {
   bool boolean(bool b) { return value(json(b)); }
   bool number_integer(json::number_integer_t i) { return value(json(i)); }
   bool number_unsigned(json::number_unsigned_t u) { return value(json(u)); }
-  // A number written with a fraction or an exponent: stored as the integer it
-  // exactly is when its text is a whole number that fits 64 bits (so 5.0 and
-  // 9007199254740993.0 are whole numbers, read exactly), else as the double; a
+  // A number written with a fraction or an exponent: read again from its text by the
+  // one reader (read_number, the value nlohmann's strtod found is not used) and stored
+  // as the integer it exactly is when its text is a whole number that fits 64 bits (so
+  // 5.0 and 9007199254740993.0 are whole numbers, read exactly), else as the double; a
   // number whose text is not 0 but that reads as 0 (1e-400) is refused.
-  bool number_float(json::number_float_t d, const std::string& text) {
-    const ExactNumber e = exact_number(text);
-    if (e.nonzero && d == 0.0) {
+  bool number_float(json::number_float_t, const std::string& text) {
+    const NumberText e = read_number(text);
+    if (e.underflow) {
       throw InputError(file_ + ": " + path() + ": got " + text +
                        ", a number too small for a double (it reads as 0), expected 0 or a "
                        "number of at least 4.9e-324 in size (the smallest double)");
     }
-    if (e.whole && e.fits_signed) return value(json(signed_value(e)));
-    if (e.whole && e.fits_unsigned && !e.negative) return value(json(e.magnitude));
-    return value(json(d));
+    if (e.overflow || !e.valid) {  // the parser refuses these before; kept for its message
+      throw InputError(file_ + ": " + path() + ": got " + text +
+                       ", a number too large for a double, expected a finite number");
+    }
+    std::int64_t i = 0;
+    if (whole_in(e, INT64_MIN, INT64_MAX, i)) return value(json(i));
+    if (e.whole && e.fits && !e.negative) return value(json(e.magnitude));
+    // A fraction that rounds to a whole double (1000.0000000000000000001) would be shown
+    // as "1000.0" by a message refusing it as a whole number: its text is kept for that.
+    if (!e.whole && e.value == std::floor(e.value)) remember_text(file_, path(), text);
+    return value(json(e.value));
   }
   bool string(std::string& s) { return value(json(std::move(s))); }
   bool binary(json::binary_t& b) { return value(json(std::move(b))); }
@@ -546,6 +657,11 @@ std::string describe(const json& value) {
 }
 
 json parse_json(const std::string& text, const std::string& file) {
+  // The texts kept from this file's last parse are of another document.
+  if (number_texts().count(file)) {
+    g_texts -= number_texts()[file].size();
+    number_texts().erase(file);
+  }
   json doc;
   DomBuilder where(file, doc);
   try {

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <set>
 
+#include "wb/budget.h"
+
 namespace wb {
 
 namespace {
@@ -117,11 +119,15 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
   const std::string& exe = fs.exe;
 
   return guarded_main(exe, [&] {
-    std::unique_ptr<LabScene> s = load(*flags);
-    s->exe = exe;
     Budget budget;
     if (flags->max_time) budget.seconds = *flags->max_time;
     if (flags->max_memory_mib) budget.bytes = *flags->max_memory_mib * 1024.0 * 1024.0;
+    // The wall: from here on the process's CPU time and memory are measured (wb/budget.h),
+    // the scene's loading included; the estimate below refuses before the first step.
+    budget::start({budget.seconds, budget.bytes}, exe, flags->scene_file);
+    budget::PhaseScope loading(budget::kLoad);
+    std::unique_ptr<LabScene> s = load(*flags);
+    s->exe = exe;
     std::vector<std::string> names;
     for (const IntegratorLine& it : spec.integrators) names.push_back(it.name);
 
@@ -132,18 +138,28 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
                      s->dt, s->t_end, s->file, repeats);
       const Estimate e = sweep_estimate(*s, plan, repeats, flags->scene_file);
       if (flags->estimate) {
+        budget::finish();
         print_estimate(e, budget, s->file);
         return 0;
       }
       std::vector<std::string> warnings;
       const std::string w = judge(e, budget, s->file);
       if (!w.empty()) warnings.push_back(w);
+      // Every integrator's runs (an untimed one and `repeats` timed ones per step
+      // size), and the reference, run once.
+      double runs = 0;
+      for (long n : plan.steps) runs += double(n) * double(1 + repeats);
+      budget::plan(runs * double(plan.integrators.size()) + s->reference_steps(plan));
+      budget::PhaseScope preparing(budget::kPrepare);
       for (const std::string& x : s->prepare(plan.integrators, &plan)) warnings.push_back(x);
       CsvFile csv(flags->sweep_csv, sweep_columns() + "\n", "--sweep");
       for (const std::string& x : warnings) say(exe, "warning", x);
+      budget::loop_started();
       const std::vector<SweepRow> rows = sweep_rows(plan, names, s->sweep_hooks(), exe, repeats);
+      budget::PhaseScope writing(budget::kOutput);
       csv.rows() += sweep_table(s->name, names, rows, false);
       csv.commit();
+      budget::finish();
       print_summary(sweep_summary(flags->sweep_csv, rows));
       return 0;
     }
@@ -157,18 +173,22 @@ int run_lab(int argc, char** argv, const LabSpec& spec, const LabLoader& load) {
     const bool outputs = !flags->out.empty() || !flags->stats.empty();
     const Estimate e = run_estimate(*s, r, outputs, flags->scene_file);
     if (flags->estimate) {
+      budget::finish();
       print_estimate(e, budget, s->file);
       return 0;
     }
     std::vector<std::string> warnings;
     const std::string w = judge(e, budget, s->file);
     if (!w.empty()) warnings.push_back(w);
+    budget::plan(double(r.steps));
+    budget::PhaseScope preparing(budget::kPrepare);
     for (const std::string& x : s->prepare({r.integrator}, nullptr)) warnings.push_back(x);
     RunFiles files(flags->out, spec.trace_columns + "\n", flags->stats,
                    spec.stats_columns + "\n");
     // Accepted: what will be slow is said now, once, before the run.
     for (const std::string& x : warnings) say(exe, "warning", x);
     const Summary sum = s->run(r, files);
+    budget::finish();
     for (const std::string& x : sum.warnings) say(exe, "warning", x);
     print_summary(summary_json(sum));
     return 0;

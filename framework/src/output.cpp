@@ -1,7 +1,12 @@
 // Atomic output files and exact number formatting.
 #include "wb/output.h"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <limits.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <charconv>
@@ -9,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include "wb/input.h"
 
@@ -16,26 +22,73 @@ namespace wb {
 
 namespace {
 
-// Temporary files not yet committed, removed by a signal that ends the
-// process (SIGINT, SIGTERM, SIGHUP) before it dies: a stopped run leaves no
-// "<path>.tmp-<pid>" behind. Fixed slots, since a handler may not allocate.
+// Temporary files not yet committed, removed by every catchable signal that ends the
+// process before it dies (SIGINT, SIGTERM, SIGXCPU, SIGSEGV, ...; list below), and by
+// the budget's stop (wb/budget.h): a stopped run leaves no "<path>.tmp-<pid>" behind.
+// Fixed slots, since a handler may not allocate. (SIGKILL cannot be caught: the next
+// run writing in that folder removes what a killed one left, remove_stale_temporaries.)
 constexpr int kTmpSlots = 8;
 constexpr std::size_t kTmpPathBytes = 4096;
 char g_tmp[kTmpSlots][kTmpPathBytes];
 volatile std::sig_atomic_t g_tmp_used[kTmpSlots];
 
-extern "C" void remove_tmp_and_die(int sig) {
-  for (int k = 0; k < kTmpSlots; ++k)
-    if (g_tmp_used[k]) ::unlink(g_tmp[k]);
-  std::signal(sig, SIG_DFL);
+// What each signal did before: a handler that was there (a sanitizer's, libFuzzer's)
+// still runs after the temporaries are gone.
+struct sigaction g_previous[NSIG];
+
+extern "C" void remove_tmp_and_die(int sig, siginfo_t* info, void* context) {
+  remove_temporaries();
+  const struct sigaction& prev = g_previous[sig];
+  if ((prev.sa_flags & SA_SIGINFO) && prev.sa_sigaction) {
+    prev.sa_sigaction(sig, info, context);
+    return;
+  }
+  if (prev.sa_handler != SIG_DFL && prev.sa_handler != SIG_IGN && prev.sa_handler) {
+    prev.sa_handler(sig);
+    return;
+  }
+  // The default action: die of the signal (a fault raised again by the instruction
+  // that caused it, once this handler returns).
+  ::sigaction(sig, &prev, nullptr);
   std::raise(sig);
+}
+
+// Every signal whose default action ends the process and that a handler can catch.
+// SIGPROF is the budget's ticker when it runs (its stop removes the temporaries).
+void install_signal_handlers() {
+  std::vector<int> sigs = {SIGHUP,  SIGINT,  SIGQUIT, SIGILL,  SIGTRAP, SIGABRT,
+                           SIGBUS,  SIGFPE,  SIGUSR1, SIGSEGV, SIGUSR2, SIGPIPE,
+                           SIGALRM, SIGTERM, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGSYS,
+                           SIGPROF};
+#ifdef SIGSTKFLT
+  sigs.push_back(SIGSTKFLT);
+#endif
+#ifdef SIGPWR
+  sigs.push_back(SIGPWR);
+#endif
+#ifdef SIGIO
+  sigs.push_back(SIGIO);
+#endif
+#ifdef SIGRTMIN
+  for (int s = SIGRTMIN; s <= SIGRTMAX; ++s) sigs.push_back(s);
+#endif
+  for (int sig : sigs) {
+    struct sigaction old {};
+    if (sig <= 0 || sig >= NSIG || ::sigaction(sig, nullptr, &old) != 0) continue;
+    if (old.sa_handler == SIG_IGN) continue;  // ignored stays ignored (nohup)
+    if (sig == SIGPROF && old.sa_handler != SIG_DFL) continue;  // the budget's ticker
+    g_previous[sig] = old;
+    struct sigaction sa {};
+    sa.sa_sigaction = remove_tmp_and_die;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_SIGINFO | SA_RESTART;
+    ::sigaction(sig, &sa, nullptr);
+  }
 }
 
 int register_tmp(const std::string& tmp) {
   static const bool installed = [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
-      if (std::signal(sig, remove_tmp_and_die) == SIG_IGN) std::signal(sig, SIG_IGN);
-    }
+    install_signal_handlers();
     return true;
   }();
   (void)installed;
@@ -55,6 +108,11 @@ void unregister_tmp(int slot) {
 }
 
 }  // namespace
+
+void remove_temporaries() {
+  for (int k = 0; k < kTmpSlots; ++k)
+    if (g_tmp_used[k]) ::unlink(g_tmp[k]);
+}
 
 namespace {
 
@@ -93,7 +151,50 @@ fs::path output_target(const std::string& path) {
   return ec ? p : w;
 }
 
+// The first bytes of every file a CsvFile writes (the traces, stats and sweep tables of
+// docs/run-contract.md): a temporary that begins otherwise is not one of ours.
+bool ours(const char* head, std::size_t n) {
+  if (n == 0) return true;  // killed before its first flush
+  for (const char* h : {"t,id,", "step,t,", "scene,integrator,"}) {
+    const std::size_t k = std::strlen(h);
+    if (n >= k && std::memcmp(head, h, k) == 0) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+void remove_stale_temporaries(const std::string& dir) {
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) return;
+  const std::string me = std::to_string(::getpid());
+  while (const dirent* e = ::readdir(d)) {
+    // "<name>.tmp-<pid>": the pid all digits, not ours, and not alive.
+    const std::string name = e->d_name;
+    const auto dot = name.rfind(".tmp-");
+    if (dot == std::string::npos || dot == 0) continue;
+    const std::string pid = name.substr(dot + 5);
+    if (pid.empty() || pid.size() > 9 || pid == me ||
+        pid.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    if (::kill(pid_t(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to ask)
+    const std::string path = dir + "/" + name;
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) continue;
+    struct stat st {};
+    char head[32];
+    bool stale = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == ::geteuid() &&
+                 ::flock(fd, LOCK_EX | LOCK_NB) == 0;  // no writer holds it (another pid namespace)
+    if (stale) {
+      const ssize_t n = ::read(fd, head, sizeof head);
+      stale = n >= 0 && ours(head, std::size_t(n));
+    }
+    if (stale) ::unlink(path.c_str());
+    ::close(fd);
+  }
+  ::closedir(d);
+}
 
 void check_output_path(const std::string& flag, const std::string& path) {
   std::error_code ec;
@@ -123,6 +224,13 @@ void check_output_path(const std::string& flag, const std::string& path) {
     throw InputError(flag + ": got \"" + path +
                      "\", expected a file in a folder you can write (\"" + dir.string() +
                      "\" is not writable)");
+  }
+  // An existing file the user may not write is refused, as a shell's redirection would
+  // refuse it: the rename could replace it (the folder is writable), but it is not ours to.
+  if (!ec && fs::exists(st) && ::access(path.c_str(), W_OK) != 0) {
+    throw InputError(flag + ": got \"" + path +
+                     "\", a file you may not write (its permissions do not let you), expected "
+                     "a file you can write or a new one");
   }
   const std::string name = p.filename().string();
   if (name.size() > name_max(p)) {
@@ -169,6 +277,8 @@ AtomicFile::AtomicFile(std::string path, std::string flag)
       cut_utf8(t.filename().string(), max > suffix.size() ? max - suffix.size() : 1);
   tmp_ = (t.has_parent_path() ? (t.parent_path() / (name + suffix)) : fs::path(name + suffix))
              .string();
+  // What a run killed in this folder (SIGKILL: no handler runs) left behind goes first.
+  remove_stale_temporaries(t.has_parent_path() ? t.parent_path().string() : ".");
   f_ = std::fopen(tmp_.c_str(), "wb");
   if (!f_) {
     const int err = errno;
@@ -176,6 +286,9 @@ AtomicFile::AtomicFile(std::string path, std::string flag)
     fail("cannot open for writing", err);
   }
   slot_ = register_tmp(tmp_);
+  // Held until the file is closed, or the process ends however it ends: a later run
+  // that can take the lock knows the writer is gone (remove_stale_temporaries).
+  ::flock(::fileno(f_), LOCK_EX | LOCK_NB);
 }
 
 AtomicFile::~AtomicFile() {
@@ -195,6 +308,16 @@ void AtomicFile::write(const char* s, std::size_t n) {
 }
 
 void AtomicFile::commit() {
+  // The file replaced keeps its permissions (and its owner, where we may set it), as a
+  // shell's redirection into it would: a 0600 file does not become 0644.
+  struct stat old {};
+  if (!tmp_.empty() && ::stat(target_.c_str(), &old) == 0 && S_ISREG(old.st_mode)) {
+    const int fd = ::fileno(f_);
+    ::fchmod(fd, old.st_mode & 07777);
+    if (::fchown(fd, old.st_uid, old.st_gid) != 0) {
+      // Not ours to give away: the new file is the writer's, its mode still the old one.
+    }
+  }
   bool ok = std::fflush(f_) == 0;
   int err = errno;
   if (std::fclose(f_) != 0 && ok) ok = false, err = errno;

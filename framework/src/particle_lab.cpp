@@ -74,6 +74,13 @@ class ParticleScene : public LabScene {
     }
   }
 
+  double reference_steps(const SweepPlan& plan) const override {
+    if (read_exact(scene_).kind != ExactSolution::kNone) return 0;
+    double n = 0;
+    for (const ReferenceRun& r : reference_runs(plan)) n += double(r.steps);
+    return n;
+  }
+
   std::vector<std::string> prepare(const std::vector<std::size_t>& integrators,
                                    const SweepPlan* sweep) override {
     if (!info_.make_world) throw std::logic_error("LabInfo.make_world is not set");

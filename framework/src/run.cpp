@@ -70,24 +70,43 @@ void append_stats_row(std::string& buf, long step, double t, const Energy& e, co
 
 std::int64_t parse_whole(const std::string& flag, const std::string& text, std::int64_t min,
                          std::int64_t max) {
-  // Decimal digits only: no sign, no base prefix (010 is ten), no exponent,
-  // no silent clamping of a value that does not fit.
+  // The scene files' reader and rule (wb::read_number, docs/scenes.md "Whole numbers"):
+  // JSON's grammar (no sign but "-", no base prefix, so 010 is refused as JSON refuses
+  // it), exactly a whole number (1e3 and 5.0 are; 0.5 is not), no silent clamping.
   const std::string expected =
       "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
-  // At most 19 significant digits (< 10^19 < 2^64): the value fits a uint64.
-  const std::size_t first = std::min(text.find_first_not_of('0'), text.size());
-  bool digits = !text.empty() && text.size() - first <= 19;
-  std::uint64_t value = 0;
-  for (std::size_t i = first; digits && i < text.size(); ++i) {
-    const char c = text[i];
-    digits = c >= '0' && c <= '9';
-    value = value * 10 + std::uint64_t(c - '0');
+  const NumberText t = read_number(text);
+  std::int64_t v = 0;
+  if (!whole_in(t, min, max, v)) {
+    throw InputError(flag + ": got \"" + text + "\", expected " + expected +
+                     (t.valid ? "" : " (written as in JSON: digits, no blanks, no \"+\", no "
+                                     "leading zeros, no hex)"));
   }
-  if (!digits || max < 0 || value > std::uint64_t(max) || std::int64_t(value) < min) {
-    throw InputError(flag + ": got \"" + text + "\", expected " + expected + " (decimal digits)");
-  }
-  return std::int64_t(value);
+  return v;
 }
+
+namespace {
+
+// The scene size S: the extent of the initial positions or their largest distance
+// from the origin, 1 m when both are 0 (tools/wbplot/recipes.py's length_scale, the
+// report's scene size).
+double scene_size(const Scene& scene) {
+  double S = 0;
+  if (scene.n() > 0) {
+    const Vec2 lo = scene.x.rowwise().minCoeff(), hi = scene.x.rowwise().maxCoeff();
+    S = std::max((hi - lo).norm(), scene.x.colwise().norm().maxCoeff());
+  }
+  return std::isfinite(S) && S > 0 ? S : 1.0;
+}
+
+// The terms' force bounds on every particle (Force::bound), summed.
+VecX force_bounds(const Scene& scene, const std::vector<const Force*>& terms) {
+  VecX bound = VecX::Zero(scene.n());
+  for (const Force* t : terms) t->bound(scene.x, scene.v, scene.m, bound);
+  return bound;
+}
+
+}  // namespace
 
 void check_initial_state(const Scene& scene, const World& world) {
   const Mat2X& x = scene.x;
@@ -107,6 +126,20 @@ void check_initial_state(const Scene& scene, const World& world) {
                      " N, its acceleration by " + num(a[i]) +
                      " m/s^2, expected finite forces and accelerations f/m (a force constant, "
                      "position, velocity or mass so large that they overflow)");
+  }
+  // The divergence rule's energy scale has a floor, the work the initial forces would do
+  // across the scene (particle_work_scale): bounded by sum |f_i| times S with the bounds
+  // above, it must be finite, or the rule would compare every step with a scale of 0.
+  const double S = scene_size(scene);
+  if (!std::isfinite(bound.sum() * S)) {
+    Eigen::Index i = 0;
+    bound.maxCoeff(&i);
+    throw InputError(scene.file + ": " + particle_key(scene, i) +
+                     ": initial state: the work the initial forces would do across the scene, "
+                     "sum of |f| times the scene's size " + num(S) + " m (the divergence "
+                     "rule's energy scale, docs/run-contract.md), overflows (the largest force, "
+                     "on particle " + std::to_string(i) + ", is bounded by " + num(bound[i]) +
+                     " N), expected masses, forces and positions whose product is finite");
   }
   // Energy: kinetic, then each term's potential; the momentum.
   const Energy e = world.energy(x, v);
@@ -132,21 +165,16 @@ void check_initial_state(const Scene& scene, const World& world) {
 }
 
 double particle_work_scale(const Scene& scene, const World& world) {
-  // The scene size S: the extent of the initial positions or their largest
-  // distance from the origin, 1 m when both are 0 (tools/wbplot/recipes.py's
-  // length_scale, the report's scene size).
-  double S = 0;
-  if (scene.n() > 0) {
-    const Vec2 lo = scene.x.rowwise().minCoeff(), hi = scene.x.rowwise().maxCoeff();
-    S = std::max((hi - lo).norm(), scene.x.colwise().norm().maxCoeff());
-  }
-  if (!(std::isfinite(S) && S > 0)) S = 1.0;
+  const double S = scene_size(scene);
   const Dynamics& dyn = world.dynamics();
   Mat2X a(2, scene.n());
   dyn.acceleration(scene.x, scene.v, a);
   dyn.reset_evals();
   const double work = (a.colwise().norm().transpose().array() * scene.m.array()).sum() * S;
-  return std::isfinite(work) ? work : 0.0;
+  if (std::isfinite(work)) return work;
+  // Forces beyond their bounds (a lab's function gone wrong): the bounds' work, finite
+  // by check_initial_state, rather than a scale of 0.
+  return force_bounds(scene, world.terms()).sum() * S;
 }
 
 RunResult simulate(const Scene& scene, const World& world, const RunOptions& opt) {

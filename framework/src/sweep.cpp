@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 
+#include "wb/budget.h"
 #include "wb/contract.h"
 #include "wb/exact.h"
 #include "wb/output.h"
@@ -141,6 +142,7 @@ Mat2X rk4_positions(const Scene& scene, const World& world, double h, long steps
   for (long k = 0; k < steps; ++k) {
     rk4_step(dyn, h, x, v, s);
     world.after_step(h, x, v);
+    budget::step_done();
     if (!(x.allFinite() && v.allFinite())) break;
   }
   return x;
@@ -229,6 +231,7 @@ SweepHooks ParticleSweep::hooks() {
     for (long k = 0; k < n; ++k) {
       integ.step(dyn, dt, x_, v_, scratch_);
       world_.after_step(dt, x_, v_);
+      budget::step_done();
     }
   };
   h.finite = [this] { return x_.allFinite() && v_.allFinite(); };

@@ -8,6 +8,13 @@
 #include "upper_blocks.h"
 
 struct NewtonOptions {
+  // Your step uses the solver it is given. A run chooses it: the scene's newton.solver
+  // ("ldlt", "cg"), or, when the scene does not say ("auto", the default), the solver the
+  // system's pattern needs: LDLT when one factorisation in the unknowns' own order costs
+  // at most 30 CG iterations (counted on the pattern, without factorising: a rope, a
+  // small cloth), else CG (a large cloth, whose factor fills its band; CG needs
+  // `definite`, as below). The glue decides it once per run
+  // (framework/drivers/implicit/implicit_world.cpp), as the provided path's auto does.
   enum Solver { kLDLT, kCG };
   Solver solver = kLDLT;       // Eigen::SimplicialLDLT, or Eigen::ConjugateGradient
   double tol = 1e-9;           // converged when |G(y)| <= tol * scale

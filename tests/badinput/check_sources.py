@@ -4,7 +4,10 @@ except through the functions that check what they write (issue 31).
 
   stderr    wb::say (framework/src/contract.cpp): "<exe>: <kind>: <text>", the text made
             one line of valid UTF-8 by one_line (a file name or key from outside cannot
-            split it); diagnostics are warnings or nothing
+            split it); diagnostics are warnings or nothing. The one other line: the
+            budget's stop (framework/src/budget.cpp, written by budget_clock.cpp from
+            the watchdog thread, where iostreams may not run), its prefix made by
+            one_line and its text fixed ASCII and digits
   stdout    the summary line (wb::print_summary) and --help (framework/src/cli.cpp)
   files     AtomicFile and CsvFile (framework/src/output.cpp): paths checked before the
             run, a temporary renamed into place, a failed write exit status 2
@@ -24,7 +27,8 @@ REPO = os.path.dirname(os.path.dirname(HERE))
 
 # (pattern, where it may appear, what to use instead)
 RULES = [
-    (re.compile(r"std::cerr|\bstderr\b|\bperror\s*\("), {"framework/src/contract.cpp"},
+    (re.compile(r"std::cerr|\bstderr\b|\bperror\s*\(|\bwrite\s*\(\s*2\s*,"),
+     {"framework/src/contract.cpp", "framework/src/budget_clock.cpp"},
      "wb::say(exe, \"warning\", text) (wb/contract.h)"),
     (re.compile(r"std::cout|\bstdout\b|\bputs\s*\(|(?<![sn])printf\s*\("),
      {"framework/src/contract.cpp", "framework/src/cli.cpp"},

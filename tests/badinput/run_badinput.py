@@ -16,7 +16,13 @@ file left behind (`absent`), special files still special (`special`: made by
 (`max_seconds`: another limit; `solution_not_stub`: on the solution side, no stub
 warning and no "stub" in the summary; `max_cpu_seconds`: a limit on the CPU time it
 used, which a loaded machine does not inflate) and MEMORY_LIMIT_BYTES of
-address space. `{exe}` in an `expect` string is the executable's name;
+address space. `budget`: a run that must stay within the limits it was given (its
+--max-time and --max-memory flags) to within BUDGET_SLACK, measured on the process
+(its CPU time and peak resident size, os.wait4), whether it finishes, is refused or is
+stopped by its budget (docs/scenes.md, "Cost"). `stop_signal`: the signal `stop_after`
+sends (default SIGTERM). `precreate`: [name, text] files made in {tmp} before the run
+(a killed run's temporaries). `readonly`: files made in {tmp} with mode 0444 that the
+run may not write; when the runner is root, the run is made as the user nobody. `{exe}` in an `expect` string is the executable's name;
 `{badutf8}` in an argument is the byte 0xFF, `{name250}` and `{name300}` file
 names of 250 and 300 bytes. Large
 scenes (deep nesting, a 17 MiB file, a file at the 16 MiB cap, generators at
@@ -43,6 +49,8 @@ REPO = os.path.dirname(os.path.dirname(HERE))
 MAX_LINE = 1100  # messages are cut to 1000 bytes (kMaxMessageBytes) plus the "<exe>: error: " prefix
 TIME_LIMIT_S = 20.0  # each case is refused in well under a second; this is a hang detector
 MEMORY_LIMIT_BYTES = 2 << 30  # a refused scene must not allocate gigabytes first
+BUDGET_SLACK = 1.1  # a run stopped by its budget passes its limits by at most 10 % (issue 45)
+NOBODY = 65534  # the uid and gid a root runner gives a `readonly` case's run
 # How the run contract's warnings about a stub end (docs/run-contract.md, `warnings`).
 STUB_WARNING_ENDINGS = ("written yet?", "still a stub?", "still stubs?")
 
@@ -89,10 +97,11 @@ def generate(kind, tmp):
         text = json.dumps({"dt": 1e-3, "t_end": 0, "cloth": {
             "origin": [0, 0], "rows": 1000, "cols": 1000, "spacing": 0.01, "m": 0.001, "k": 10,
             "k_bend": 1}, "forces": [{"type": "gravity", "g": [0, -9.81]}]})
-    elif kind == "cloth-300":  # the issue's 300 x 300 cloth
+    elif kind == "cloth-300":  # the issue's 300 x 300 cloth, by LDLT in natural order (its
+        # fill-in makes it slow; without the newton key, CG is chosen and it is not: issue 45)
         text = json.dumps({"dt": 1e-3, "t_end": 1, "cloth": {
             "origin": [0, 0], "rows": 300, "cols": 300, "spacing": 0.01, "m": 0.001, "k": 10},
-            "forces": [{"type": "gravity", "g": [0, -9.81]}]})
+            "forces": [{"type": "gravity", "g": [0, -9.81]}], "newton": {"solver": "ldlt"}})
     elif kind == "discs-at-one-point":  # 10^5 discs emitted at one point: 5e9 pairs
         text = json.dumps({"dt": 1e-3, "t_end": 1, "contact": {}, "emitters": [
             {"count": 100000, "min": [0, 0], "max": [0, 0], "m": 1, "radius": 0.1}]})
@@ -144,6 +153,52 @@ def generate(kind, tmp):
             x, y = R * math.cos(a), R * math.sin(a)
             parts.append({"x": [x, y], "v": [-x / (2 * h), -y / (2 * h)], "m": 1, "radius": 0.01})
         text = json.dumps({"dt": h, "t_end": 1, "contact": {}, "particles": parts})
+    elif kind == "giant-disc-among-1e5":  # issue 45: cells 4 radii wide hold every disc
+        parts = [{"x": [0, 0], "m": 1, "radius": 1e9}]
+        text = json.dumps({"dt": 1e-3, "t_end": 1, "contact": {}, "particles": parts,
+                           "emitters": [{"count": 100000, "seed": 3, "min": [-100, -100],
+                                         "max": [100, 100], "m": 1, "radius": 0.01}]})
+    elif kind == "discs-on-2000-planes":  # issue 45: 2000 identical planes, 1000 iterations
+        planes = [{"point": [0, 0], "normal": [0, 1]}] * 2000
+        text = json.dumps({"dt": 1e-3, "t_end": 10, "planes": planes,
+                           "contact": {"solver": "accumulated", "iterations": 1000},
+                           "forces": [{"type": "gravity", "g": [0, -9.81]}],
+                           "emitters": [{"count": 2000, "seed": 1, "min": [-50, 0.05],
+                                         "max": [50, 0.06], "m": 1, "radius": 0.05}]})
+    elif kind in ("rope-long-springs", "rope-long-springs-ldlt"):  # issue 45: fill-in
+        n = 5000
+        springs = [{"type": "spring", "i": i, "j": n - 1 - i, "k": 1}
+                   for i in range(0, 5000, 10)]
+        doc = {"dt": 1 / 60, "t_end": 10, "rope": {"start": [0, 0], "end": [50, 0],
+                                                   "beads": n, "m": 0.01, "k": 100},
+               "forces": springs + [{"type": "gravity", "g": [0, -9.81]}]}
+        if kind.endswith("-ldlt"):
+            doc["newton"] = {"solver": "ldlt"}
+        text = json.dumps(doc)
+    elif kind == "cloth-300-cg-tight":  # issue 45: CG to 1e-14, 300 x 300
+        text = json.dumps({"dt": 1 / 60, "t_end": 10, "cloth": {
+            "origin": [0, 0], "rows": 300, "cols": 300, "spacing": 0.01, "m": 0.001,
+            "k": 1000}, "forces": [{"type": "gravity", "g": [0, -9.81]}],
+            "newton": {"solver": "cg", "cg_tol": 1e-14}})
+    elif kind == "cloth-100-no-newton":  # issue 45: the lab's default solver by pattern
+        text = json.dumps({"dt": 1 / 60, "t_end": 1, "cloth": {
+            "origin": [0, 0], "rows": 100, "cols": 100, "spacing": 0.05, "m": 0.01,
+            "k": 1e4, "k_bend": 100}, "forces": [{"type": "gravity", "g": [0, -9.81]}]})
+    elif kind == "rigid-380000-point-forces":  # issue 45: force terms the model undercounts
+        f = '{"type":"force","body":0,"F":[1e-6,0,0]}'
+        text = ('{"dt":0.001,"t_end":100,"bodies":[{"shape":"sphere","radius":1,"m":1}],'
+                '"forces":[' + ",".join([f] * 380000) + "]}")
+    elif kind == "damping-400000":  # issue 45: 400 000 damping terms on one particle
+        f = '{"type":"damping","b":1e-9}'
+        text = ('{"dt":0.001,"t_end":100,"particles":[{"x":[0,0],"v":[1,0],"m":1}],'
+                '"forces":[' + ",".join([f] * 400000) + "]}")
+    elif kind == "sweep-1e5-terms":  # issue 45: a sweep whose every step pays 10^5 terms
+        f = '{"type":"gravity","g":[0,-1e-6]}'
+        text = ('{"dt":0.01,"t_end":1,"particles":[{"x":[0,0],"v":[1,0],"m":1}],'
+                '"forces":[' + ",".join([f] * 100000) + "]}")
+    elif kind == "dt-long-zeros":  # issue 45: 1 and 100 001 zeros, e-100002: dt = 0.1
+        text = ('{"t_end": 1, "particles": [{"x": [0, 0], "m": 1}], "dt": 1'
+                + "0" * 100001 + "e-100002}")
     else:
         raise SystemExit(f"run_badinput.py: unknown generator '{kind}'")
     with open(path, "w", encoding="utf-8") as f:
@@ -159,6 +214,54 @@ def summary_state(stdout):
 
 def limit_memory():
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT_BYTES, MEMORY_LIMIT_BYTES))
+
+
+def as_nobody():
+    """preexec_fn of a `readonly` case run by root: the run is the user nobody's."""
+    limit_memory()
+    os.setgroups([])
+    os.setgid(NOBODY)
+    os.setuid(NOBODY)
+
+
+def communicate(proc, timeout):
+    """proc.communicate(timeout), and the child's own resource usage (os.wait4): its CPU
+    time and peak resident size, which RUSAGE_CHILDREN cannot give one child at a time."""
+    # The readers are the process's own, started once: a second call (after a timeout,
+    # the process killed or signalled) keeps what the first read.
+    if not hasattr(proc, "wb_readers"):
+        proc.wb_got = {}
+
+        def drain(name, pipe):
+            proc.wb_got[name] = pipe.read()
+
+        proc.wb_readers = [threading.Thread(target=drain, args=(k, p), daemon=True)
+                           for k, p in (("out", proc.stdout), ("err", proc.stderr))]
+        for t in proc.wb_readers:
+            t.start()
+    got, readers = proc.wb_got, proc.wb_readers
+    deadline = time.monotonic() + timeout
+    while True:
+        pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+        if pid:
+            break
+        if time.monotonic() > deadline:
+            raise subprocess.TimeoutExpired(proc.args, timeout)
+        time.sleep(0.01)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    for t in readers:
+        t.join()
+    return got.get("out", b""), got.get("err", b""), usage
+
+
+def flag_value(argv, flag):
+    """The number after `flag` in argv, or None."""
+    if flag in argv[:-1]:
+        try:
+            return float(argv[argv.index(flag) + 1])
+        except ValueError:
+            return None
+    return None
 
 
 def run_case(case, args):
@@ -191,6 +294,18 @@ def run_case(case, args):
                                  daemon=True)
             t.start()
             readers.append((name, t, got))
+        for name, text in case.get("precreate", []):
+            with open(os.path.join(tmp, name), "w", encoding="utf-8") as f:
+                f.write(text)
+        preexec = None if args.no_memory_limit else limit_memory
+        for name in case.get("readonly", []):
+            path = os.path.join(tmp, name)
+            with open(path, "w", encoding="utf-8") as f:
+                f.write("kept\n")
+            os.chmod(path, 0o444)
+            if os.geteuid() == 0:  # root may write anything: the run is nobody's
+                os.chmod(tmp, 0o777)
+                preexec = as_nobody
         start = time.monotonic()
         cpu_before = resource.getrusage(resource.RUSAGE_CHILDREN)
         # A valid but slow run ("kill_after": S) must warn before it starts: it
@@ -200,9 +315,10 @@ def run_case(case, args):
         stop_after = case.get("stop_after")
         limit = case.get("max_seconds", TIME_LIMIT_S) * args.time_scale
         proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                preexec_fn=None if args.no_memory_limit else limit_memory)
+                                preexec_fn=preexec)
+        usage = None
         try:
-            out, err_bytes = proc.communicate(timeout=kill_after or stop_after or limit)
+            out, err_bytes, usage = communicate(proc, kill_after or stop_after or limit)
             code = proc.returncode
             if kill_after and case.get("may_finish") and code == 0:
                 code = "killed"  # a skeleton's stub does no work: it may finish in time
@@ -215,10 +331,10 @@ def run_case(case, args):
                 proc.communicate()
                 return [f"took more than {limit} s"]
             if stop_after:
-                proc.send_signal(signal.SIGTERM)
+                proc.send_signal(getattr(signal, case.get("stop_signal", "SIGTERM")))
             else:
                 proc.kill()
-            out, err_bytes = proc.communicate()
+            out, err_bytes, usage = communicate(proc, limit)
             code = "stopped" if stop_after else "killed"
         p = subprocess.CompletedProcess(argv, code, out, err_bytes)
         for _, t, _ in readers:
@@ -227,8 +343,19 @@ def run_case(case, args):
         cpu_after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = (cpu_after.ru_utime - cpu_before.ru_utime) + (cpu_after.ru_stime - cpu_before.ru_stime)
         problems = []
+        if usage is not None:  # this child's own, not every child's since the last case
+            cpu = usage.ru_utime + usage.ru_stime
         if "max_cpu_seconds" in case and cpu > case["max_cpu_seconds"] * args.time_scale:
             problems.append(f"used {cpu:.1f} s of CPU, expected at most {case['max_cpu_seconds']}")
+        if case.get("budget") and usage is not None:
+            max_time, max_mib = flag_value(argv, "--max-time"), flag_value(argv, "--max-memory")
+            rss_mib = usage.ru_maxrss / 1024
+            if max_time and cpu > BUDGET_SLACK * max_time * args.time_scale:
+                problems.append(f"used {cpu:.2f} s of CPU, more than {BUDGET_SLACK} x its "
+                                f"--max-time {max_time:g}")
+            if max_mib and not args.no_memory_limit and rss_mib > BUDGET_SLACK * max_mib:
+                problems.append(f"held {rss_mib:.0f} MiB, more than {BUDGET_SLACK} x its "
+                                f"--max-memory {max_mib:g}")
         status = case.get("status", "stopped" if stop_after else "killed" if kill_after else 2)
         if p.returncode != status:
             problems.append(f"exit status {p.returncode}, expected {status}")
@@ -239,10 +366,16 @@ def run_case(case, args):
             err = p.stderr.decode("utf-8", "replace")
         lines = err.split("\n")
         if status == 2:
-            if len(lines) != 2 or lines[1] != "":
-                problems.append(f"stderr has {len(lines) - 1} lines, expected exactly one")
-            if len(p.stderr) > MAX_LINE:
-                problems.append(f"stderr is {len(p.stderr)} bytes, expected at most {MAX_LINE}")
+            said = lines[:-1]
+            if case.get("budget"):  # an accepted run may warn before it starts, then stop
+                said = [ln for ln in said if not ln.startswith(os.path.basename(exe) + ": warning: ")]
+            if len(said) != 1 or lines[-1] != "":
+                problems.append(f"stderr has {len(said)} lines (besides warnings before the "
+                                f"run), expected exactly one" if case.get("budget") else
+                                f"stderr has {len(lines) - 1} lines, expected exactly one")
+            longest = max(len(ln.encode("utf-8")) + 1 for ln in lines)
+            if longest > MAX_LINE:
+                problems.append(f"stderr has a line of {longest} bytes, expected at most {MAX_LINE}")
             if p.stdout:
                 problems.append("stdout is not empty")
             if "\r" in err:
@@ -293,8 +426,13 @@ def run_case(case, args):
             data = got[0] if got else b""
             if not data.startswith(case.get("fifo_starts", "").encode()):
                 problems.append(f"the reader of {name} got {data[:40]!r}")
+        for name in case.get("readonly", []):
+            with open(os.path.join(tmp, name), encoding="utf-8") as f:
+                if f.read() != "kept\n":
+                    problems.append(f"{name}, a file the run may not write, was replaced")
         if args.verbose or problems:
-            print(f"    ({wall:.2f} s, {cpu:.2f} s CPU) stderr: {err.strip()[:300]!r}")
+            rss = f", {usage.ru_maxrss / 1024:.0f} MiB" if usage is not None else ""
+            print(f"    ({wall:.2f} s, {cpu:.2f} s CPU{rss}) stderr: {err.strip()[:300]!r}")
         return problems
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

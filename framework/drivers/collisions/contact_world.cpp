@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <string>
 #include <tuple>
 
 #include "collide_particles.h"
@@ -14,6 +16,7 @@
 #include "contact_solver.h"
 #include "friction_impulse.h"
 #include "grid_pairs.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -256,6 +259,44 @@ void check_radii(const Scene& scene) {
   }
 }
 
+// The shortest text that reads back as x (a subnormal mass as the scene wrote it, 1e-308,
+// not num's 17 digits 9.9999999999999991e-309).
+static std::string shortest(double x) {
+  char buf[32];
+  for (int digits = 1; digits < 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) return buf;
+  }
+  return num(x);
+}
+
+void check_effective_masses(const Scene& scene) {
+  // Two particles that touch divide their impulse by 1/m_i + 1/m_j (C2, C5) and share a
+  // push-out by it: a sum that overflows (two discs of 1e-308 kg) would make every impulse
+  // 0 and the discs pass through each other, a run that looks like a stub. Pairs that can
+  // touch: a disc with a disc, or with a particle of radius 0.
+  Eigen::Index a = -1, b = -1, z = -1;  // the two lightest discs, the lightest point
+  for (Eigen::Index i = 0; i < scene.n(); ++i) {
+    if (!(scene.radius[i] > 0)) {
+      if (z < 0 || scene.m[i] < scene.m[z]) z = i;
+    } else if (a < 0 || scene.m[i] < scene.m[a]) {
+      b = a, a = i;
+    } else if (b < 0 || scene.m[i] < scene.m[b]) {
+      b = i;
+    }
+  }
+  if (a < 0) return;
+  for (const Eigen::Index j : {b, z}) {
+    if (j < 0 || std::isfinite(1 / scene.m[a] + 1 / scene.m[j])) continue;
+    const Eigen::Index light = scene.m[j] < scene.m[a] ? j : a, other = light == a ? j : a;
+    throw InputError(scene.file + ": " + particle_key(scene, light) + ".m: got " +
+                     shortest(scene.m[light]) + ", expected masses whose sum of inverses "
+                     "1/m_i + 1/m_j is finite for particles that can touch (with " +
+                     particle_key(scene, other) + ", m = " + shortest(scene.m[other]) +
+                     ", it overflows: their impulses would be 0)");
+  }
+}
+
 InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
                                  const std::vector<PlaneDef>& planes) {
   InitialOverlaps o;
@@ -320,6 +361,7 @@ InitialOverlaps initial_overlaps(const Mat2X& x, const VecX& radius,
 ContactWorld::ContactWorld(const Scene& scene)
     : forces_(scene), m_(scene.m), r_(scene.radius), x_prev_(scene.x) {
   check_radii(scene);
+  check_effective_masses(scene);
   planes_ = read_planes(scene, settings_);
   w_ = m_.cwiseInverse();
   any_radius_ = r_.size() > 0 && r_.maxCoeff() > 0;
@@ -391,6 +433,7 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   // the largest radius.
   contacts_.clear();
   pairs_.next_step();
+  const budget::PhaseScope phase(budget::kPairs);
   if (any_radius_ && x.cols() >= 2) {
     if (timing) t0 = Clock::now();
     const double margin =
@@ -422,6 +465,7 @@ void ContactWorld::after_step(double h, Mat2X& x, Mat2X& v) const {
   }
 
   // Response: a fixed number of passes over the contacts, then the planes.
+  budget::set_phase(budget::kContacts);
   if (timing) t0 = Clock::now();
   if (settings_.solver == Solver::kAccumulated) {
     accumulated(h, x, v);

@@ -15,6 +15,7 @@
 #include "spring.h"
 #include "uniform_gravity.h"
 #include "vortex.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -454,6 +455,7 @@ ParticleDynamics::ParticleDynamics(const ForceList& forces, const VecX& m)
       f_(Mat2X::Zero(2, m.size())) {}
 
 void ParticleDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+  const budget::PhaseScope phase(budget::kForces);
   sums_.ready = false;  // a step through the whole arrays: no sums of its state
   accumulate_forces(forces_, x, v, m_, f_);
   if (f_.cols() != x.cols()) {
@@ -496,6 +498,7 @@ void ParticleDynamics::eval_block(Eigen::Index first, const Mat2X& x, const Mat2
   // An f of the block's size starts at zero (what the skeleton's F6, which does
   // nothing, then leaves); F6 zeroes it (TODO(F6)) and every term adds to it.
   if (b.f.cols() != nb) b.f.setZero(2, nb);
+  const budget::PhaseScope phase(budget::kForces);
   accumulate_forces(forces_, x, v, b.m, b.f);
   if (b.f.cols() != nb) {
     throw std::runtime_error("accumulate_forces left f with " + std::to_string(b.f.cols()) +

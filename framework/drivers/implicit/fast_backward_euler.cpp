@@ -12,6 +12,7 @@
 #endif
 
 #include "spring_derivatives.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -64,11 +65,15 @@ struct Graph {
 // order `place` (place[i]: particle i's position): the elimination-tree walk
 // of Eigen's SimplicialCholesky, one pass over the rows of L. Returns the sum
 // over columns of count^2, the factorisation's multiply-adds, and nnz_l.
-double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l) {
+// With `cap` > 0 the walk stops once the work passes it (and returns what it counted,
+// more than `cap`): a pattern that fills in is known to be too dear in O(cap) time.
+double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l,
+                   double cap = 0) {
   const int n = g.n();
   const std::size_t size = std::size_t(n);
   std::vector<int> old_of(size), parent(size, -1), tag(size, 0), count(size, 0);
   for (int i = 0; i < n; ++i) old_of[std::size_t(place[std::size_t(i)])] = i;
+  double so_far = 0;  // sum of count^2 as the counts grow
   for (int k = 0; k < n; ++k) {
     tag[std::size_t(k)] = k;
     const int o = old_of[std::size_t(k)];
@@ -76,10 +81,12 @@ double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l)
       for (int i = place[std::size_t(g.adj[std::size_t(e)])]; i < k && tag[std::size_t(i)] != k;
            i = parent[std::size_t(i)]) {
         if (parent[std::size_t(i)] == -1) parent[std::size_t(i)] = k;
+        so_far += 2.0 * count[std::size_t(i)] + 1;
         ++count[std::size_t(i)];
         tag[std::size_t(i)] = k;
       }
     }
+    if (cap > 0 && so_far > cap) break;
   }
   double work = 0;
   nnz_l = 0;
@@ -88,6 +95,50 @@ double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l)
     nnz_l += c;
   }
   return work;
+}
+
+// The particle graph of a network: free particles joined by a spring, each neighbour
+// once, sorted (compressed rows, no diagonal).
+Graph particle_graph(const SpringNetwork& net) {
+  const auto free_particle = [&](Eigen::Index i) { return i >= 0 && !net.is_pinned(i); };
+  const auto coupled = [&](const NetworkSpring& s) {
+    return free_particle(s.i) && free_particle(s.j) && s.i != s.j;
+  };
+  Graph graph;
+  const std::size_t n = std::size_t(net.n());
+  graph.start.assign(n + 1, 0);
+  for (const NetworkSpring& s : net.springs) {
+    if (!coupled(s)) continue;
+    ++graph.start[std::size_t(s.i) + 1];
+    ++graph.start[std::size_t(s.j) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) graph.start[i + 1] += graph.start[i];
+  std::vector<int> fill(graph.start.begin(), graph.start.end() - 1);
+  graph.adj.resize(std::size_t(graph.start.back()));
+  for (const NetworkSpring& s : net.springs) {
+    if (!coupled(s)) continue;
+    graph.adj[std::size_t(fill[std::size_t(s.i)]++)] = int(s.j);
+    graph.adj[std::size_t(fill[std::size_t(s.j)]++)] = int(s.i);
+  }
+  // Sorted, each neighbour once (two springs between the same particles share blocks).
+  std::vector<int> start(n + 1, 0), adj;
+  adj.reserve(graph.adj.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    auto b = graph.adj.begin() + graph.start[i], e = graph.adj.begin() + graph.start[i + 1];
+    std::sort(b, e);
+    adj.insert(adj.end(), b, std::unique(b, e));
+    start[i + 1] = int(adj.size());
+  }
+  graph.start.swap(start);
+  graph.adj.swap(adj);
+  return graph;
+}
+
+// One CG iteration's multiply-adds on the graph: the product (a 2 x 2 block per particle
+// and two per coupling) and five vector operations.
+double cg_iteration_work(const Graph& g) {
+  const double couplings = 0.5 * double(g.adj.size());
+  return 8.0 * double(g.n()) + 16.0 * couplings + 20.0 * double(g.n());
 }
 
 // Approximate minimum degree order of the graph (Eigen's AMDOrdering):
@@ -121,6 +172,17 @@ std::vector<int> amd_order(const Graph& g) {
 }
 
 }  // namespace
+
+double natural_order_factor_ratio(const SpringNetwork& net, double cap) {
+  const Graph g = particle_graph(net);
+  std::vector<int> place(std::size_t(g.n()));
+  for (int i = 0; i < g.n(); ++i) place[std::size_t(i)] = i;
+  const double iteration = std::max(1.0, cg_iteration_work(g));
+  double nnz_l = 0;
+  return 8.0 * factor_work(g, place, nnz_l, cap * iteration / 8.0) / iteration;
+}
+
+double direct_budget_iterations() { return kDirectBudget; }
 
 struct FastBackwardEuler::Impl {
   const SpringNetwork& net;
@@ -192,34 +254,7 @@ struct FastBackwardEuler::Impl {
 
   bool free_particle(Eigen::Index i) const { return i >= 0 && !net.is_pinned(i); }
 
-  void build_graph() {
-    const std::size_t n = std::size_t(net.n());
-    graph.start.assign(n + 1, 0);
-    for (const NetworkSpring& s : net.springs) {
-      if (!coupled(s)) continue;
-      ++graph.start[std::size_t(s.i) + 1];
-      ++graph.start[std::size_t(s.j) + 1];
-    }
-    for (std::size_t i = 0; i < n; ++i) graph.start[i + 1] += graph.start[i];
-    std::vector<int> fill(graph.start.begin(), graph.start.end() - 1);
-    graph.adj.resize(std::size_t(graph.start.back()));
-    for (const NetworkSpring& s : net.springs) {
-      if (!coupled(s)) continue;
-      graph.adj[std::size_t(fill[std::size_t(s.i)]++)] = int(s.j);
-      graph.adj[std::size_t(fill[std::size_t(s.j)]++)] = int(s.i);
-    }
-    // Sorted, each neighbour once (two springs between the same particles share blocks).
-    std::vector<int> start(n + 1, 0), adj;
-    adj.reserve(graph.adj.size());
-    for (std::size_t i = 0; i < n; ++i) {
-      auto b = graph.adj.begin() + graph.start[i], e = graph.adj.begin() + graph.start[i + 1];
-      std::sort(b, e);
-      adj.insert(adj.end(), b, std::unique(b, e));
-      start[i + 1] = int(adj.size());
-    }
-    graph.start.swap(start);
-    graph.adj.swap(adj);
-  }
+  void build_graph() { graph = particle_graph(net); }
   bool coupled(const NetworkSpring& s) const {
     return free_particle(s.i) && free_particle(s.j) && s.i != s.j;
   }
@@ -330,7 +365,7 @@ struct FastBackwardEuler::Impl {
       place = amd_order(graph);
       factor = 8.0 * factor_work(graph, place, nnz_l);
     }
-    const double iteration = 8.0 * double(n) + 16.0 * couplings + 20.0 * double(n);
+    const double iteration = cg_iteration_work(graph);
     const double ratio = factor / std::max(1.0, iteration);
     FastSolverOptions::Solver s = fo.solver;
     if (s == FastSolverOptions::kAuto) {
@@ -557,6 +592,7 @@ struct FastBackwardEuler::Impl {
   bool solve(const Eigen::VectorXd& start, double abs_tol) {
     bool ok = false;
     if (!direct) {
+      const budget::PhaseScope phase(budget::kCg);
       ok = solve_cg(start, abs_tol);
 #ifdef WB_HAVE_CHOLMOD
     } else if (solver == "cholmod") {

@@ -50,6 +50,16 @@ struct FastSolverOptions {
   WorkMeter* newton_meter = nullptr;
 };
 
+// One LDLT factorisation of the network's system in the unknowns' own order (the lab's
+// NewtonWorkspace::ldlt), in CG iterations: the count the fast path's auto makes, from the
+// elimination tree of the free particles' graph, without factorising. The walk stops
+// once the ratio passes `cap` (a pattern that fills in is known to be dear in O(n)), so
+// the answer is exact up to `cap` and only "more than cap" beyond.
+double natural_order_factor_ratio(const SpringNetwork& net, double cap);
+// The budget auto uses: a direct solve when one factorisation costs at most this many
+// CG iterations.
+double direct_budget_iterations();
+
 // True when this build has SuiteSparse's CHOLMOD (CMake option WB_CHOLMOD).
 bool have_cholmod();
 

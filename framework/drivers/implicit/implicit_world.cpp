@@ -8,6 +8,7 @@
 
 #include "backward_euler_spring.h"
 #include "implicit_trapezoid.h"
+#include "wb/budget.h"
 
 namespace wb {
 
@@ -185,19 +186,23 @@ std::vector<char> read_pinned(const Scene& s) {
   return flags;
 }
 
-NewtonOptions read_newton(const Scene& s) {
+// The scene's newton options; `automatic` says whether newton.solver is "auto" (its
+// default): the glue then picks LDLT or CG from the network's pattern (lab_solver).
+NewtonOptions read_newton(const Scene& s, bool* automatic = nullptr) {
   NewtonOptions opt;
+  if (automatic) *automatic = true;
   JsonObject top(s.file, s.doc, "");
   if (!top.has("newton")) return opt;
   JsonObject o = top.object("newton");
   o.only_keys(
       {"solver", "tol", "max_iterations", "definite", "cg_tol", "fast_solver", "fast_cg_tol"});
-  const std::string solver = o.string_or("solver", "ldlt");
+  const std::string solver = o.string_or("solver", "auto");
   if (solver == "cg") {
     opt.solver = NewtonOptions::kCG;
-  } else if (solver != "ldlt") {
-    o.fail("solver", &o.raw().at("solver"), "one of: ldlt, cg");
+  } else if (solver != "ldlt" && solver != "auto") {
+    o.fail("solver", &o.raw().at("solver"), "one of: auto, ldlt, cg");
   }
+  if (automatic) *automatic = solver == "auto";
   opt.tol = o.number_or("tol", opt.tol, kTolerance);
   opt.max_iterations = int(o.integer_or("max_iterations", opt.max_iterations, 1, 1000));
   opt.definite = o.boolean_or("definite", opt.definite);
@@ -354,7 +359,7 @@ ForceList implicit_forces(const Scene& scene) {
 
 ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
     : forces_(forces),
-      opt_(read_newton(scene)),
+      opt_(read_newton(scene, &auto_solver_)),
       fast_opt_(read_fast(scene)),
       file_(scene.file),
       inv_m_(scene.m.transpose().array().inverse()),
@@ -391,6 +396,22 @@ ImplicitDynamics::ImplicitDynamics(const ForceList& forces, const Scene& scene)
     JsonObject o = top.element("forces", k);
     if (o.string("type") == "damping") net_.drag += o.number("b", kNonNegative);
   }
+  // newton.solver "auto" (the default): the solver the pattern needs, as the provided
+  // path's auto chooses it (fast_backward_euler.h): LDLT in the unknowns' own order (the
+  // lab's) when one factorisation costs at most kDirectBudget CG iterations (a rope, a
+  // small cloth), else CG (a large cloth, whose factor fills its band), which needs the
+  // clamped, definite blocks (newton.definite, true by default).
+  // A scene that sets no cg_tol: a one-solve step (baraff-witkin) needs no more than 1e-2
+  // of the momenta at stake (its own linearisation error is larger), Newton keeps the
+  // default, below its tol (newton_adapter).
+  one_solve_cg_tol_ = !(scene.doc.contains("newton") && scene.doc.at("newton").is_object() &&
+                        scene.doc.at("newton").contains("cg_tol"));
+  if (auto_solver_) {
+    const budget::PhaseScope phase(budget::kPrepare);
+    const double budget = direct_budget_iterations();
+    const double ratio = natural_order_factor_ratio(net_, budget);
+    opt_.solver = ratio > budget && opt_.definite ? NewtonOptions::kCG : NewtonOptions::kLDLT;
+  }
 }
 
 FastBackwardEuler& ImplicitDynamics::fast() const {
@@ -399,6 +420,7 @@ FastBackwardEuler& ImplicitDynamics::fast() const {
 }
 
 void ImplicitDynamics::eval(const Mat2X& x, const Mat2X& v, Mat2X& a) const {
+  const budget::PhaseScope phase(budget::kForces);
   a.setZero();
   for (const auto& term : forces_) {
     if (external_only_ && (term->type() == "spring" || term->type() == "damping")) continue;
@@ -520,7 +542,8 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
              kSecondsPerSpringCopy, springs * kBytesPerNetworkSpring);
   const SolveKind kind = solve_kind(it);
   if (kind == SolveKind::kNone) return;
-  const NewtonOptions opt = read_newton(scene);
+  bool automatic = false;
+  const NewtonOptions opt = read_newton(scene, &automatic);
   const FastSolverOptions fo = read_fast(scene);
   const double n = double(scene.n());
   // A cloth, or many hand-written springs, is a 2D network (its factor fills in).
@@ -546,12 +569,17 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
                             : std::sqrt(n);
     double t = kSecondsPerSolveChain * n, held = kFactorEntriesChain * n;
     std::string how = "LDLT", solver_key = key;
-    if (opt.solver == NewtonOptions::kCG) {
-      t = kTypicalCgIterations * kSecondsPerLabCgParticle * n;
+    const double cg_t = kTypicalCgIterations * kSecondsPerLabCgParticle * n;
+    const double band_t = kSecondsPerBandFlop * 2.0 * n * std::pow(2.0 * band, 2.0);
+    // "auto" takes the cheaper: CG where LDLT's band would cost more (and CG may run).
+    const bool cg = opt.solver == NewtonOptions::kCG ||
+                    (automatic && grid && opt.definite && cg_t < band_t);
+    if (cg) {
+      t = cg_t;
       held = 0;
       how = "CG, about " + num(kTypicalCgIterations) + " iterations";
     } else if (grid) {
-      t = kSecondsPerBandFlop * 2.0 * n * std::pow(2.0 * band, 2.0);
+      t = band_t;
       held = 2.0 * n * 2.0 * band;
       how = "LDLT in the particles' order, a band of " + num(band) +
             " (newton.solver \"cg\" is made for 2D networks)";
@@ -612,6 +640,9 @@ void newton_adapter(const char* name, bool trapezoid, bool one_iteration, const 
   d.external_forces(x, v, s.a0);
   NewtonOptions opt = d.options();
   opt.one_iteration = one_iteration;
+  if (one_iteration && d.one_solve_cg_tol()) opt.cg_tol = kOneSolveCgTol;
+  // The lab's step (the student's I3-I5): its solves are CG's iterations or LDLT's.
+  const budget::PhaseScope phase(opt.solver == NewtonOptions::kCG ? budget::kCg : budget::kNewton);
   const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v, ws)
                                    : backward_euler_step(d.network(), s.a0, h, opt, x, v, ws);
   d.record(name, r);
@@ -622,6 +653,7 @@ void fast_adapter(const char* name, bool one_iteration, const Dynamics& dyn, dou
   d.external_forces(x, v, s.a0);
   NewtonOptions opt = d.options();
   opt.one_iteration = one_iteration;
+  const budget::PhaseScope phase(budget::kNewton);  // its CG iterations say so themselves
   d.record(name, d.fast().step(s.a0, h, opt, x, v));
 }
 }  // namespace
@@ -661,7 +693,7 @@ void use_implicit(LabInfo& info) {
       "  rope    {start, end, beads, m, k, damping, pin: start|ends|none}\n"
       "  cloth   {origin, rows, cols, spacing, m, k, k_shear, k_bend, damping,\n"
       "           pin: corners|top|none}\n"
-      "  newton  {solver: ldlt|cg, tol, max_iterations, definite, cg_tol,\n"
+      "  newton  {solver: auto|ldlt|cg, tol, max_iterations, definite, cg_tol,\n"
       "           fast_solver: auto|ldlt|cholmod|cg, fast_cg_tol}\n");
 }
 

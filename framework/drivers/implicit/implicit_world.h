@@ -89,6 +89,10 @@ constexpr double kTypicalNewtonIterations = 2.5;
 // The fast path's CG iterations per linear solve as the model counts them (the
 // stiff cloth of docs/benchmarks.md: 20 to 60).
 constexpr double kTypicalCgIterations = 40;
+// The CG tolerance of a one-solve step (baraff-witkin) when the scene sets no
+// newton.cg_tol: a fraction of the momenta at stake, as the provided path's
+// fast_cg_tol (one solve's own linearisation error is larger; Newton keeps 1e-12).
+constexpr double kOneSolveCgTol = 1e-2;
 
 // The cost model's terms of an implicit-lab scene for one integrator: its forces
 // (generated springs included), and for the implicit integrators the Newton
@@ -103,6 +107,8 @@ class ImplicitDynamics : public Dynamics {
   ImplicitDynamics(const ForceList& forces, const Scene& scene);
   const SpringNetwork& network() const { return net_; }
   const NewtonOptions& options() const { return opt_; }
+  // The scene set no newton.cg_tol: a one-solve step's CG stops at kOneSolveCgTol.
+  bool one_solve_cg_tol() const { return one_solve_cg_tol_; }
   // The network's workspace for the lab's Newton steps (backward_euler.h): its
   // pattern and LDLT analysis are made by the first step and kept for every
   // run on this network; its warm start is cleared when a run starts.
@@ -127,6 +133,8 @@ class ImplicitDynamics : public Dynamics {
  private:
   const ForceList& forces_;
   SpringNetwork net_;
+  bool auto_solver_ = true;  // newton.solver "auto": opt_.solver chosen from the pattern
+  bool one_solve_cg_tol_ = true;
   NewtonOptions opt_;
   FastSolverOptions fast_opt_;
   mutable std::unique_ptr<FastBackwardEuler> fast_;

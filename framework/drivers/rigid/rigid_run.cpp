@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "rigid_world.h"
+#include "wb/budget.h"
 #include "wb/lab.h"
 #include "wb/run.h"
 
@@ -61,23 +62,10 @@ void append_stats_row(std::string& buf, long step, double t, const Totals& s) {
   buf += '\n';
 }
 
-// The floor of the run's energy scale (wb::energy_scale): the work gravity
-// and the point forces would do across the scene, sum of (m |g| + |F|) times
-// the scene size (the extent of the centres or their largest distance from
-// the origin; 1 m when both are 0).
-double work_scale(const Scene& scene, const std::vector<Body>& bodies) {
-  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
-  double far = 0, force = 0;
-  for (const Body& b : bodies) {
-    lo = lo.cwiseMin(b.x);
-    hi = hi.cwiseMax(b.x);
-    far = std::max(far, b.x.norm());
-    force += b.m * scene.g.norm();
-  }
-  for (const PointForce& f : scene.point_forces) force += f.F.norm();
-  double S = bodies.empty() ? 0.0 : std::max((hi - lo).norm(), far);
-  if (!(std::isfinite(S) && S > 0)) S = 1.0;
-  return std::isfinite(force * S) ? force * S : 0.0;
+// The floor of the run's energy scale (wb::energy_scale): the work gravity and the
+// point forces would do across the scene (rigid::work_scale_of), finite by the loader.
+double work_scale(const Scene& scene, const std::vector<Body>& /*bodies*/) {
+  return work_scale_of(scene);
 }
 
 ordered_json vec_json(const Vec3& v) {
@@ -270,7 +258,10 @@ class RigidScene : public wb::LabScene {
     };
     h.steps = [this](std::size_t i, double dt, long n) {
       const Integrator& integ = info_.integrators.at(i);
-      for (long k = 0; k < n; ++k) step(scene_, integ, dt, bodies_);
+      for (long k = 0; k < n; ++k) {
+        step(scene_, integ, dt, bodies_);
+        wb::budget::step_done();
+      }
       steps_ += n;
     };
     h.finite = [this] { return finite(bodies_); };

@@ -11,6 +11,7 @@
 #include "hinge.h"
 #include "integrate_position.h"
 #include "plane_contact.h"
+#include "wb/budget.h"
 #include "wb/run.h"
 #include "world_inertia.h"
 
@@ -268,7 +269,41 @@ void check_hinge(const JsonObject& o, const BodyDef& d, const Hinge& hg) {
              wb::num(reach) + " m)");
 }
 
+// The floor of the run's energy scale (docs/run-contract.md, "Diverged"), the work of
+// the initial forces across the scene, sum of (m |g| + |F|) times the scene size: a
+// number formed from the scene's own, refused when it overflows (a body of 1e308 kg
+// under gravity), never turned into a scale of 0 that calls step 1 diverged.
+void check_work_scale(const JsonObject& top, const Scene& s) {
+  const double w = work_scale_of(s);
+  if (std::isfinite(w)) return;
+  std::size_t heaviest = 0;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i)
+    if (s.bodies[i].body.m > s.bodies[heaviest].body.m) heaviest = i;
+  throw wb::InputError(
+      s.file + ": bodies[" + std::to_string(heaviest) + "].m: got " +
+      wb::num(s.bodies[heaviest].body.m) +
+      ", expected masses, gravity, forces and positions whose initial work across the scene, "
+      "sum of (m |g| + |F|) times the scene's size (the divergence rule's energy scale, "
+      "docs/run-contract.md), is finite; it overflows");
+}
+
 }  // namespace
+
+double work_scale_of(const Scene& scene) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
+  double far = 0, force = 0;
+  for (const BodyDef& d : scene.bodies) {
+    const Body& b = d.body;
+    lo = lo.cwiseMin(b.x);
+    hi = hi.cwiseMax(b.x);
+    far = std::max(far, b.x.norm());
+    force += b.m * scene.g.norm();
+  }
+  for (const PointForce& f : scene.point_forces) force += f.F.norm();
+  double S = scene.bodies.empty() ? 0.0 : std::max((hi - lo).norm(), far);
+  if (!(std::isfinite(S) && S > 0)) S = 1.0;
+  return force * S;
+}
 
 std::vector<std::string> initial_overlap_notes(const Scene& s) {
   constexpr double kOverlapTol = 1e-9;  // m: below this, rounding of a body set on the plane
@@ -362,6 +397,26 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
                  wb::num(heaviest) + ") is at most " + std::string(kMaxBodyQuantityText));
     }
   }
+  // A contact's effective inverse mass along its normal, 1/m + |r x n|^2 / I with r up to
+  // the body's size from its centre, is what the contact impulses divide by: finite and
+  // not so large that its inverse is 0 (a contact that could push nothing).
+  for (std::size_t i = 0; i < s.bodies.size() && !s.planes.empty(); ++i) {
+    const BodyDef& d = s.bodies[i];
+    const double dmin = smallest_dimension(d), dmax = largest_dimension(d);
+    const double I_min = d.body.m * (dmin * dmin) / 6;
+    const double w = 1 / d.body.m + 3 * (dmax * dmax) / I_min;
+    if (within_body_limit(w)) continue;
+    JsonObject o = top.element("bodies", i);
+    const char* key = d.shape == BodyDef::kBox ? "size" : d.shape == BodyDef::kSphere ? "radius"
+                      : dmax == d.length                                          ? "length"
+                                                                                   : "radius";
+    o.fail(key, &o.raw().at(key),
+           "a body whose contacts with the planes can be solved: the effective inverse mass "
+           "at its surface, 1/m + 3 d_max^2 / I_min with I_min = m d_min^2 / 6, at most " +
+               std::string(kMaxBodyQuantityText) + " (here " + wb::num(w) +
+               ": its largest dimension is too large for its smallest)");
+  }
+  check_work_scale(top, s);
   if (top.has("contact")) {
     JsonObject c = top.object("contact");
     c.only_keys({"restitution", "friction", "solver", "iterations", "resting_speed"});
@@ -501,7 +556,9 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
 
 double step(const Scene& scene, const Integrator& integ, double h, std::vector<Body>& bodies,
             StepState& state) {
+  namespace budget = wb::budget;
   // Accumulate forces.
+  budget::set_phase(budget::kForces);
   for (Body& b : bodies) {
     b.f.setZero();
     b.tau.setZero();
@@ -512,12 +569,14 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
     apply_force(b, pf.F, b.x + b.q.toRotationMatrix() * pf.point_body);
   }
   // Integrate velocities.
+  budget::set_phase(budget::kStep);
   for (Body& b : bodies) {
     const Vec3 v0 = b.v, w0 = b.omega;
     integ.velocity(b, h);
     state.velocity_changed = state.velocity_changed || b.v != v0 || b.omega != w0;
   }
   // Constraint impulses: hinges, then contacts.
+  budget::set_phase(budget::kHinges);
   for (const Hinge& hg : scene.hinges) {
     if (hg.revolute) {
       apply_revolute(bodies[hg.body], hg.r_body, hg.anchor, hg.axis_body, hg.axis, h, hg.beta);
@@ -525,6 +584,7 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
       apply_hinge(bodies[hg.body], hg.r_body, hg.anchor, h, hg.beta);
     }
   }
+  budget::set_phase(budget::kContacts);
   const std::size_t np = scene.planes.size();
   std::vector<Vec3> vp(bodies.size(), Vec3::Zero()), wp(bodies.size(), Vec3::Zero());
   if (scene.solver == Solver::kAccumulated) state.contacts.resize(bodies.size() * np);
@@ -569,6 +629,7 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
   // that turns omega with the body. Its angular velocity in the body frame is kept, and so
   // is its kinetic energy: turning the body under an unchanged world omega would change
   // (1/2) omega . R I R^T omega (a box pushed out of the floor at t = 0 lost 2 % of it).
+  budget::set_phase(budget::kStep);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     Body& b = bodies[i];
     integrate_position(b, h);

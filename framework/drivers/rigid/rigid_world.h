@@ -85,6 +85,12 @@ Scene scene_from_json(const std::string& file, const wb::json& doc);
 // none otherwise. Said once before the run (after the cost model accepted the scene).
 std::vector<std::string> initial_overlap_notes(const Scene& s);
 
+// The work of the scene's initial forces across it (J), sum of (m |g| + |F|) times the
+// scene's size (the extent of the centres or their largest distance from the origin,
+// 1 m when both are 0): the floor of the divergence rule's energy scale. Finite for
+// every scene the loader accepts.
+double work_scale_of(const Scene& scene);
+
 // The update of (v, omega) an integrator stands for (the student's R5 functions).
 using VelocityStep = void (*)(Body&, double);
 struct Integrator {

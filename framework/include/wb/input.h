@@ -35,6 +35,29 @@ struct InputError : std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
+// ---- Numbers: one reader for scene files and flags (docs/scenes.md, "Numbers").
+
+// What the text of a number is. The grammar is JSON's, the whole text and nothing
+// else: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)? (no blanks, no "+" in front, no
+// hex, no "inf" or "nan"). `value` is the double nearest the number the digits write
+// (ties to even), for any number of digits and any exponent (std::from_chars); whether
+// it is a whole number, and which, is decided from the digits exactly.
+struct NumberText {
+  bool valid = false;      // the whole text is one number in JSON's grammar
+  double value = 0;        // correctly rounded; 0 when underflow, +-inf when overflow
+  bool overflow = false;   // too large for a double (1e999)
+  bool underflow = false;  // not 0, but reads as 0 (1e-400)
+  bool nonzero = false;    // the digits are not all 0
+  bool whole = false;      // exactly a whole number (5, 5.0, 1e3, -0)
+  bool negative = false;   // a whole number below 0
+  bool fits = false;       // a whole number whose magnitude fits 64 bits (below)
+  std::uint64_t magnitude = 0;
+};
+NumberText read_number(const std::string& text);
+
+// A whole number in [min, max] from `t` (a valid NumberText), or false.
+bool whole_in(const NumberText& t, std::int64_t min, std::int64_t max, std::int64_t& out);
+
 // Reads typed values from one JSON object at a known path in a known file.
 //   JsonObject f(reader, doc["forces"][2], "forces[2]");
 //   double k = f.number("k", {.min = 0});

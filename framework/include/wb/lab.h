@@ -60,6 +60,8 @@ class LabScene {
   virtual void cost(std::size_t integrator, StepCost& c) const = 0;
   // What a sweep adds besides its runs (a reference run).
   virtual void sweep_cost(const SweepPlan& /*plan*/, Estimate& /*e*/) const {}
+  // The steps of that reference run, for the budget's projection (wb/budget.h).
+  virtual double reference_steps(const SweepPlan& /*plan*/) const { return 0; }
   // Builds what the runs of these integrators need (a sweep's: `sweep` is its
   // plan, else null) and checks what it derives from the scene (initial forces,
   // energy, momenta; what an integrator or a sweep requires): InputError naming

@@ -11,8 +11,10 @@
 namespace wb {
 
 // Writes to "<path>.tmp-<pid>" and renames over <path> on commit(); a file
-// destroyed before commit() (an error, a crash unwinding) or a run stopped by
-// SIGINT, SIGTERM or SIGHUP removes its temporary. Only a regular file (or a
+// destroyed before commit() (an error, a crash unwinding), a run stopped by any
+// catchable signal (SIGINT, SIGTERM, SIGXCPU, ...) or by its budget (wb/budget.h)
+// removes its temporary, and the next AtomicFile in that folder removes one that a
+// killed run left (remove_stale_temporaries). The file replaced keeps its permissions. Only a regular file (or a
 // new one) is replaced: a path that is a device or a FIFO (/dev/null, a pipe)
 // is written through, and a symbolic link's target is replaced, not the link.
 //
@@ -70,6 +72,16 @@ void check_output_path(const std::string& flag, const std::string& path);
 // (writing both to /dev/null is fine). Either may be empty (not given).
 void check_distinct(const std::string& flag_a, const std::string& a, const std::string& flag_b,
                     const std::string& b);
+
+// Removes every temporary of this process not yet committed (async-signal-safe): the
+// budget's stop (wb/budget.h) and the signal handlers call it before the process ends.
+void remove_temporaries();
+
+// Removes from `dir` the temporaries ("<name>.tmp-<pid>") that runs killed without a
+// chance to clean up (SIGKILL) left: their process is gone, no one holds their lock,
+// they are the user's own regular files and hold what a CsvFile writes (or nothing).
+// Every AtomicFile calls it for its folder before it creates its own.
+void remove_stale_temporaries(const std::string& dir);
 
 // Appends x with 17 significant digits (reads back to the same double).
 void append_number(std::string& out, double x);

@@ -66,8 +66,9 @@ struct RunOptions {
   CsvFile* stats = nullptr;  // step,t,energy,...; null: none
 };
 
-// A whole-number flag: decimal digits only, in [min, max], else InputError
-// naming the flag, the text and the range (no base prefixes, no clamping).
+// A whole-number flag: a number in JSON's grammar that is exactly a whole number in
+// [min, max] (wb::read_number, as a scene's whole numbers: 1e3 and 10.0 are 10^3 and
+// 10), else InputError naming the flag, the text and the range (no clamping).
 std::int64_t parse_whole(const std::string& flag, const std::string& text, std::int64_t min,
                          std::int64_t max);
 
