@@ -868,6 +868,8 @@ def stage_reportdoc(build, out, verbose):
             findings.append(f"docs/report.md: names no figure `{pat}` (lab {lab}: "
                             f"{', '.join(names[:3])}{' ...' if len(names) > 3 else ''}, "
                             "drawn by the last tools/report): add it to the lab's table")
+    if ONLY_LABS:
+        return findings  # the names the other labs' figures have are theirs to check
     # Names docs/report.md lists that no lab's report drew.
     every = set()
     for lab in labs():
