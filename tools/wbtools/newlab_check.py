@@ -2,13 +2,15 @@
 
 In a temporary copy of the repository (HEAD's files, `git archive`; with --worktree the work
 tree's tracked and untracked files instead), never the real tree, this adds the lab "drag"
-(tools/newlab.d/: one task, D1 Heun's step, its solution, its graded tests with a held-out one,
-its handout with the points block, a default scene, its driver) and one wb_lab(drag) line, then
+(tools/newlab.d/, whose README.md says what a new lab adds: one task, D1 Heun's step, its
+solution, its graded tests with a held-out one, its handout with the points block and a figure,
+a default scene, its driver) and one wb_lab(drag) line, then
 shows that every per-lab check sees it:
 
   1. the copy builds the lab alone (-DWB_LABS=drag, -Werror): its skeleton, its solution and
      their tests (build/bin/drag, drag-solution, drag-tests, drag-solution-tests);
-  2. its graded tests pass against the solution (ctest -L solution);
+  2. its graded tests pass against the solution (ctest -L solution), and its default scene
+     runs within the cost model's estimate (ctest -L cost: tests/badinput/check_cost.py);
   3. tools/pattern's per-lab stages, restricted to it (--lab drag): stubs (the skeleton warns
      it is a stub, the solution does not), stubfigs, periods, asserts, nanfree, testnames,
      points, claims, answers, docrefs;
@@ -18,11 +20,14 @@ shows that every per-lab check sees it:
   5. the grader: the skeleton scores 0, the solution 100 (tools/grade --lab drag);
   6. the student pack of that lab alone works on its own (tools/pack --lab drag --verify: its
      links and paths resolve, it builds, its README's commands run, the skeleton scores 0) and
-     holds the lab's student files, tests, scene, handout and figure, and no solution.
+     holds the lab's student files, tests, scene, handout and figure, and no solution;
+  7. docs/report.md names the figures the pack's report drew of it (tools/pattern reportdoc).
 
 It fails if a step fails, naming the step; the temporary folder is removed in every case.
-About 2 minutes of CPU (the framework and the lab compiled twice: the copy's build and the
-grader's). Exit status: 0 all passed, 1 a step failed, 2 bad input."""
+About 160 s of CPU (2026-12-07, /usr/bin/time on the shared 2-core machine), most of it
+compiling: the framework twice (the copy's build, the pack's prebuilt framework), the lab's
+tests three times (the copy's build, the grader's, the pack's), the pack's student build.
+Exit status: 0 all passed, 1 a step failed, 2 bad input."""
 import argparse
 import os
 import re
@@ -114,6 +119,8 @@ def add_lab(repo):
     for d, _, names in os.walk(src):
         for name in names:
             rel = os.path.relpath(os.path.join(d, name), src)
+            if rel == "README.md":
+                continue  # the folder's own: what a new lab adds
             out = os.path.join(repo, rel[:-3] if rel.endswith(".in") else rel)
             if os.path.exists(out):
                 raise StepFailed(f"add the lab: {os.path.relpath(out, repo)} exists already")
@@ -228,6 +235,12 @@ def check(work, worktree):
     s.run("its graded tests pass against the solution (ctest -L solution)",
           ["ctest", "--test-dir", build, "-L", "solution", "--no-tests=error",
            "--output-on-failure"], repo, capture=True)
+    out = s.run("its default scenes within the cost model, no cost warning (ctest -L cost)",
+                ["ctest", "--test-dir", build, "-L", "cost", "--no-tests=error",
+                 "--output-on-failure", "-V"], repo, capture=True)
+    s.check("the cost model's check ran the new lab's scene",
+            [] if f"{LAB}/coast.json" in out else
+            [f"ctest -L cost did not run scenes/{LAB}/coast.json: {out[-400:]}"])
     out = s.run("tools/pattern's per-lab stages see it and pass (--lab drag)",
                 [os.path.join(repo, "tools", "pattern"), "-v", "--lab", LAB, "stubs", "stubfigs",
                  "periods", "asserts", "nanfree", "testnames", "points", "claims", "answers",
@@ -250,6 +263,10 @@ def check(work, worktree):
           [os.path.join(repo, "tools", "pack"), "--lab", LAB, "--out", pack, "--verify"], repo)
     s.check("the pack holds the lab's student files, tests, scene and handout, no solution",
             pack_contents(pack))
+    # The pack drew the lab's report (build/report/drag/): its figures are in docs/report.md.
+    s.run("docs/report.md names every figure the report drew of it (tools/pattern reportdoc "
+          "--lab drag)", [os.path.join(repo, "tools", "pattern"), "reportdoc", "--lab", LAB],
+          repo, capture=True)
     print(f"newlab-check: all passed in {time.monotonic() - s.t0:.0f} s", flush=True)
 
 
