@@ -54,6 +54,22 @@ class StepFailed(Exception):
     pass
 
 
+RUNNING = []  # the step's process, while it runs
+
+
+def stop_step():
+    """Ends the running step's whole process group (on a stop, before the folder goes)."""
+    for p in RUNNING:
+        try:
+            os.killpg(p.pid, signal.SIGTERM)
+            p.wait(timeout=20)
+        except (ProcessLookupError, subprocess.TimeoutExpired):
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+
 class Steps:
     def __init__(self):
         self.t0 = time.monotonic()
@@ -62,15 +78,21 @@ class Steps:
         """Runs one step's command; raises StepFailed naming the step when it fails."""
         t0 = time.monotonic()
         print(f"newlab-check: {what}\n+ {' '.join(cmd)}", flush=True)
-        p = subprocess.run(cmd, cwd=cwd, env=dict(os.environ, **(env or {})),
-                           stdout=subprocess.PIPE if capture else None,
-                           stderr=subprocess.STDOUT if capture else None, text=True)
+        # In a process group of its own, so that a stop ends the whole step (a build's
+        # compilers too) before the folder is removed (stop_step).
+        p = subprocess.Popen(cmd, cwd=cwd, env=dict(os.environ, **(env or {})),
+                             stdout=subprocess.PIPE if capture else None,
+                             stderr=subprocess.STDOUT if capture else None, text=True,
+                             start_new_session=True)
+        RUNNING.append(p)
+        stdout, _ = p.communicate()
+        RUNNING.remove(p)
         if p.returncode != 0:
             if capture:
-                print(p.stdout, end="", flush=True)
+                print(stdout, end="", flush=True)
             raise StepFailed(f"{what} (exit {p.returncode})")
         print(f"newlab-check: ok: {what} ({time.monotonic() - t0:.0f} s)", flush=True)
-        return p.stdout if capture else ""
+        return stdout if capture else ""
 
     def check(self, what, problems):
         for p in problems:
@@ -270,6 +292,10 @@ def check(work, worktree):
     print(f"newlab-check: all passed in {time.monotonic() - s.t0:.0f} s", flush=True)
 
 
+def stopped(*_):
+    raise KeyboardInterrupt  # a SIGTERM: stop as on Ctrl-C (the step ended, the folder removed)
+
+
 def main():
     ap = argparse.ArgumentParser(prog="tools/newlab-check", description=__doc__.split("\n\n")[0],
                                  epilog="\n\n".join(__doc__.split("\n\n")[1:]),
@@ -289,17 +315,21 @@ def main():
         return 2
     work = tempfile.mkdtemp(prefix="wb-newlab-")
     # A stop (tools/check stopped, Ctrl-C) still removes the folder.
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))
+    signal.signal(signal.SIGTERM, stopped)
     try:
         check(work, args.worktree)
         return 0
     except StepFailed as e:
         print(f"newlab-check: FAILED: {e}", flush=True)
         return 1
+    except KeyboardInterrupt:
+        print("newlab-check: stopped", flush=True)
+        return 130
     except subprocess.CalledProcessError as e:
         print(f"newlab-check: FAILED: making the copy: {e}", flush=True)
         return 1
     finally:
+        stop_step()
         if args.keep:
             print(f"newlab-check: kept {work}", flush=True)
         else:
