@@ -9,8 +9,9 @@ shows that every per-lab check sees it:
 
   1. the copy builds the lab alone (-DWB_LABS=drag, -Werror): its skeleton, its solution and
      their tests (build/bin/drag, drag-solution, drag-tests, drag-solution-tests);
-  2. its graded tests pass against the solution (ctest -L solution), and its default scene
-     runs within the cost model's estimate (ctest -L cost: tests/badinput/check_cost.py);
+  2. its graded tests pass against the solution (ctest -L solution); the bad-input cases
+     that run on every lab refuse its bad input with one line and exit 2, and its default
+     scene runs within the cost model's estimate (ctest -L badinput);
   3. tools/pattern's per-lab stages, restricted to it (--lab drag): stubs (the skeleton warns
      it is a stub, the solution does not), stubfigs, periods, asserts, nanfree, testnames,
      points, claims, answers, docrefs;
@@ -257,12 +258,13 @@ def check(work, worktree):
     s.run("its graded tests pass against the solution (ctest -L solution)",
           ["ctest", "--test-dir", build, "-L", "solution", "--no-tests=error",
            "--output-on-failure"], repo, capture=True)
-    out = s.run("its default scenes within the cost model, no cost warning (ctest -L cost)",
-                ["ctest", "--test-dir", build, "-L", "cost", "--no-tests=error",
-                 "--output-on-failure", "-V"], repo, capture=True)
-    s.check("the cost model's check ran the new lab's scene",
-            [] if f"{LAB}/coast.json" in out else
-            [f"ctest -L cost did not run scenes/{LAB}/coast.json: {out[-400:]}"])
+    out = s.run("bad input gets one line and exit 2, its default scene within the cost model "
+                "(ctest -L badinput)", ["ctest", "--test-dir", build, "-L", "badinput",
+                                        "--no-tests=error", "--output-on-failure", "-V"],
+                repo, capture=True)
+    s.check("the bad-input cases of every lab and the cost model's check ran the new lab",
+            [f"ctest -L badinput did not run {what}" for what in
+             (f"every-lab-scene-missing@{LAB}", f"{LAB}/coast.json") if what not in out])
     out = s.run("tools/pattern's per-lab stages see it and pass (--lab drag)",
                 [os.path.join(repo, "tools", "pattern"), "-v", "--lab", LAB, "stubs", "stubfigs",
                  "periods", "asserts", "nanfree", "testnames", "points", "claims", "answers",
