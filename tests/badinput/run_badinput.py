@@ -31,6 +31,7 @@ their maximum) are generated into a temporary folder, not checked in.
   tests/badinput/run_badinput.py --bin build/bin [--side solution] [-k NAME]
 """
 import argparse
+import glob
 import json
 import math
 import os
@@ -438,6 +439,25 @@ def run_case(case, args):
         shutil.rmtree(tmp, ignore_errors=True)
 
 
+def every_lab(cases):
+    """The cases with "lab": "*" once for every lab folder (labs/<lab>/, a new lab's too), named
+    <name>@<lab>, with {first_scene} its first default scene; the others as they are."""
+    labs = sorted(d for d in os.listdir(os.path.join(REPO, "labs"))
+                  if os.path.isdir(os.path.join(REPO, "labs", d)))
+    out = []
+    for case in cases:
+        if case["lab"] != "*":
+            out.append(case)
+            continue
+        for lab in labs:
+            scenes = sorted(glob.glob(os.path.join(REPO, "scenes", lab, "*.json")))
+            first = scenes[0] if scenes else os.path.join(REPO, "scenes", lab, "none.json")
+            out.append(dict(case, name=f"{case['name']}@{lab}", lab=lab,
+                            args=[a.replace("{first_scene}", first) for a in case["args"]],
+                            expect=[e.replace("{lab}", lab) for e in case.get("expect", [])]))
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -454,7 +474,7 @@ def main():
     ap.add_argument("-v", "--verbose", action="store_true", help="print every message")
     args = ap.parse_args()
     with open(os.path.join(HERE, "cases.json"), encoding="utf-8") as f:
-        cases = json.load(f)["cases"]
+        cases = every_lab(json.load(f)["cases"])
     failed = ran = 0
     for case in cases:
         if args.only and args.only not in case["name"]:

@@ -58,6 +58,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.dont_write_bytecode = True
 
+from grader.common import FORBIDDEN_NAME_CHARS  # noqa: E402
 from wbplot import recipes  # noqa: E402
 from wbplot.common import summary_line  # noqa: E402
 
@@ -75,11 +76,19 @@ def rel(p):
     return p if r.startswith("..") else r
 
 
-def labs():
+ONLY_LABS = []  # tools/pattern --lab: the labs the per-lab stages look at (empty: every lab)
+
+
+def all_labs():
     """Every lab: a folder labs/<lab>/ (the student side)."""
     d = os.path.join(ROOT, "labs")
     return sorted(x for x in os.listdir(d) if os.path.isdir(os.path.join(d, x))) \
         if os.path.isdir(d) else []
+
+
+def labs():
+    """The labs the stages look at: every lab, or those given with --lab."""
+    return [lab for lab in all_labs() if not ONLY_LABS or lab in ONLY_LABS]
 
 
 def scenes(lab):
@@ -327,7 +336,10 @@ def lint_claims(path):
 
 def stage_claims(build, out, verbose):
     findings = []
-    for path in sorted(glob.glob(os.path.join(ROOT, "handouts", "*.md"))):
+    handouts = sorted(glob.glob(os.path.join(ROOT, "handouts", "*.md")))
+    if ONLY_LABS:
+        handouts = [h for h in handouts if os.path.basename(h)[:-3] in ONLY_LABS]
+    for path in handouts:
         for line, sent in lint_claims(path):
             findings.append(f"{rel(path)}:{line}: states a number or a direction about a run "
                             f"without a claim marker: \"{sent}\": add <!-- claim: ... --> "
@@ -567,6 +579,12 @@ def test_name_findings(lab, files, tasks, read):
                             "TEST_CASE(\"name\", \"[tags]\"): write name and tags as string "
                             "literals")
         for case, tags in cases:
+            bad = sorted(set(case) & FORBIDDEN_NAME_CHARS)
+            if bad or case != case.strip() or case.startswith(("#", "-")):
+                findings.append(f"{where}/{name}: test \"{case}\": the grader refuses a name "
+                                f"with {' '.join(bad) or 'a space at an end or a leading # or -'}"
+                                " (Catch's test-spec syntax, tools/grader/build.py check_list): "
+                                "reword it")
             if f"[{task}]" not in tags:
                 findings.append(f"{where}/{name}: test \"{case}\" lacks the tag [{task}] of "
                                 "the task its file is named after: tag it, or move it to its "
@@ -850,6 +868,8 @@ def stage_reportdoc(build, out, verbose):
             findings.append(f"docs/report.md: names no figure `{pat}` (lab {lab}: "
                             f"{', '.join(names[:3])}{' ...' if len(names) > 3 else ''}, "
                             "drawn by the last tools/report): add it to the lab's table")
+    if ONLY_LABS:
+        return findings  # the names the other labs' figures have are theirs to check
     # Names docs/report.md lists that no lab's report drew.
     every = set()
     for lab in labs():
@@ -884,6 +904,10 @@ def main():
                     help="some of: " + ", ".join(STAGES) + " (default: all)")
     ap.add_argument("--build-dir", default="build",
                     help="executables in DIR/bin, the report in DIR/report (default build)")
+    ap.add_argument("--lab", action="append", default=[], metavar="LAB",
+                    help="only this lab (repeatable): the stages that go lab by lab look at it "
+                         "alone (claims: its handout); docrefs and imports still read the whole "
+                         "repository (tools/newlab-check uses it on its throwaway lab)")
     ap.add_argument("-v", "--verbose", action="store_true", help="print what passed too")
     ap.add_argument("--write", action="store_true",
                     help="with the points stage: write every handout's lists of tests and "
@@ -901,8 +925,14 @@ def main():
     if args.write and "points" not in stages:
         print("tools/pattern: error: --write: goes with the points stage", file=sys.stderr)
         return 2
+    unknown = [lab for lab in args.lab if lab not in all_labs()]
+    if unknown:
+        print(f"tools/pattern: error: --lab {unknown[0]}: no folder labs/{unknown[0]}/ "
+              f"(expected one of: {', '.join(all_labs())})", file=sys.stderr)
+        return 2
     global WRITE_POINTS
     WRITE_POINTS = args.write
+    ONLY_LABS[:] = args.lab
     build = os.path.join(ROOT, args.build_dir)
     out = os.path.join(build, "pattern")
     total = 0

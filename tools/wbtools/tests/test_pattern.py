@@ -51,6 +51,17 @@ def test_every_case_carries_its_files_task_tag():
                    "its task's file"]
 
 
+@pytest.mark.parametrize("name", ["F5 spring, damped", "F5 spring; damped", "F5 spring [k]",
+                                  " F5 spring", "F5 spring "])
+def test_a_name_the_grader_refuses_is_found(name):
+    """Defect: a test name the grader refuses (a , or ; or [ ]: Catch's test-spec syntax)
+    passed tools/pattern and was found only when a lab was graded (a new lab's first
+    tools/grade stopped with an internal error)."""
+    text = GOOD.replace("F5 spring: the force is -k (L - rest)", name)
+    assert any("the grader refuses" in f for f in findings(["test_F5_spring.cpp"],
+                                                           {"test_F5_spring.cpp": text}))
+
+
 def test_the_repositorys_labs_follow_the_scheme():
     """Defect: a lab of the repository breaks the scheme (every lab, present and future)."""
     assert pattern.stage_testnames(None, None, False) == []
