@@ -43,7 +43,7 @@ void require_same_pairs(const wb::Mat2X& x, const wb::VecX& r, const std::string
   for (const auto& [i, j] : got) {
     INFO(what << ": grid_pairs gave (" << i << ", " << j << "), expected i < j, both < "
               << x.cols() << " (the vector held (1, 0) and (5, 3) before the call: clear it)");
-    REQUIRE((0 <= i && i < j && j < x.cols()));
+    REQUIRE((0 <= i && i < j && j < x.cols()));  // nanfree: integers
   }
   Pairs sorted = got;
   std::sort(sorted.begin(), sorted.end());
@@ -188,7 +188,7 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
       grid_pairs(x, radius, got);
       for (const auto& pr : got) {
         INFO("pair (" << pr.first << ", " << pr.second << "): expected 0 <= i < j < " << n);
-        REQUIRE((0 <= pr.first && pr.first < pr.second && pr.second < n));
+        REQUIRE((0 <= pr.first && pr.first < pr.second && pr.second < n));  // nanfree: integers
       }
       std::sort(got.begin(), got.end());
       std::sort(expected.begin(), expected.end());

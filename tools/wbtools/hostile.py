@@ -4,7 +4,8 @@ than its honest maximum, leaves a process or a file behind, leaks a planted
 secret, or changes anything outside its scratch build.
 
 Each case (tests/hostile/<case>/case.json) is the solution of a lab with one
-student file replaced by a hostile one. Its honest maximum is the lab's 100
+student file replaced by a hostile one, or ("generate") every file of the lab made for the
+case, for each lab it names ("labs"). Its honest maximum is the lab's 100
 points less those of the tests tagged with the tasks the hostile file touches
 ("touches"). Every case runs through Gradescope's run_autograder as
 submitted (screening on); a case with "no_screen": true runs a second time
@@ -123,7 +124,9 @@ def load_cases(names):
         with open(path, encoding="utf-8") as f:
             c = json.load(f)
         c["name"] = name
-        cases.append(c)
+        # A case of every lab ("labs"): one run per lab, the submission made for each.
+        for lab in c.pop("labs", None) or [c["lab"]]:
+            cases.append(dict(c, lab=lab))
     missing = set(names) - {c["name"] for c in cases}
     if missing:
         raise SystemExit(f"hostile: unknown case {', '.join(sorted(missing))} (tests/hostile/)")
@@ -179,6 +182,12 @@ class Run:
         if os.path.lexists(sub):
             shutil.rmtree(sub)
         os.makedirs(sub)
+        if case.get("generate"):  # every file of the lab made for the case (nonfinite.py)
+            from wbtools import nonfinite
+            for name, text in nonfinite.submission(REPO, case["lab"], case["generate"]).items():
+                with open(os.path.join(sub, name), "w", encoding="utf-8") as f:
+                    f.write(text)
+            return
         sol = os.path.join(REPO, "solutions", case["lab"])
         for f in sorted(os.listdir(sol)):
             shutil.copy(os.path.join(sol, f), os.path.join(sub, f))
@@ -381,16 +390,19 @@ def main(argv):
                     bad += not ok
                     layer = case.get("stopped_by", "").split(" | ")
                     layer = layer[-1] if no_screen else layer[0]
-                    rows.append((case["name"], mode, score, limit, "held" if ok else "GOT THROUGH",
+                    rows.append((case["name"] if case["lab"] == "euler" else
+                                 f"{case['name']} ({lab})", mode, score, limit,
+                                 "held" if ok else "GOT THROUGH",
                                  layer, problems))
-                    log(f"hostile: {case['name']} ({mode}): {score}/{limit} "
+                    log(f"hostile: {case['name']} ({lab}, {mode}): {score}/{limit} "
                         f"{'held' if ok else 'GOT THROUGH'} in {time.monotonic() - t1:.0f} s: "
                         f"{how[:110]}")
                     for p in problems:
                         log(f"    problem: {p}")
-            if not args.case:
+            loop = [c for c in cases if c["name"] == "infinite-loop" and c["lab"] == lab]
+            if not args.case and loop:
                 t1 = time.monotonic()
-                problems = kill_grader(run, next(c for c in cases if c["name"] == "infinite-loop"))
+                problems = kill_grader(run, loop[0])
                 bad += bool(problems)
                 rows.append(("(grader SIGKILLed)", "as submitted", None, 0,
                              "GOT THROUGH" if problems else "held",
@@ -406,9 +418,9 @@ def main(argv):
         else:
             shutil.rmtree(scratch, ignore_errors=True)
     print()
-    print(f"{'case':<24} {'run':<13} {'score':>5} {'max':>4}  verdict      designed to be stopped by")
+    print(f"{'case':<30} {'run':<13} {'score':>5} {'max':>4}  verdict      designed to be stopped by")
     for name, mode, score, limit, verdict, how, _ in rows:
-        print(f"{name:<24} {mode:<13} {score if score is not None else '-':>5} {limit:>4}  "
+        print(f"{name:<30} {mode:<13} {score if score is not None else '-':>5} {limit:>4}  "
               f"{verdict:<12} {how[:90]}")
     print(f"\nhostile: {len(rows) - bad} of {len(rows)} runs held, in {time.monotonic() - t0:.0f} s")
     return 1 if bad else 0
