@@ -104,7 +104,7 @@ def build(root, labs, sanitize, jobs):
     src, out = os.path.join(root, "src"), os.path.join(root, "build")
     files = project.pristine_files(REPO)
     files.update(worker_files(REPO, project.known_labs(REPO)))
-    files.update(adversary_files(REPO, labs))
+    files.update(adversary_files(REPO, project.known_labs(REPO)))  # every lab: one configure
     sync(src, files)
     args = [f"-DWB_LABS={';'.join(project.known_labs(REPO))}", "-DWB_SOLUTIONS=OFF",
             "-DWB_BENCH=OFF", "-DWB_TESTS=ON", "-DCMAKE_BUILD_TYPE=Release", "-DWB_HARDENED=ON",
