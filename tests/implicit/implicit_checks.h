@@ -264,6 +264,10 @@ inline Network random_network(wbtest::HeldOut& g, bool pin) {
   };
   for (Eigen::Index i = 1; i < n; ++i) add(i, g.integer(0, i - 1), Vec2::Zero());
   add(n - 1, 0, Vec2::Zero());
+  // At least one spring compressed (rest > L), where the definite clamp changes its block.
+  w.net.springs[0].rest =
+      (Vec2(w.x.col(w.net.springs[0].i)) - Vec2(w.x.col(w.net.springs[0].j))).norm() *
+      g.uniform(1.1, 1.4);
   for (long a = g.integer(1, 2); a > 0; --a) add(g.integer(0, n - 1), -1, g.vec2(-2.0, 2.0));
   if (pin) {
     w.net.pinned.assign(std::size_t(n), 0);

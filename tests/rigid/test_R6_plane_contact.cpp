@@ -525,6 +525,9 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
       if (s == 0) {  // every point closing slower than the threshold: resting, no bounce
         b0.omega.setZero();
         b0.v += (-threshold * g.uniform(0.1, 0.9) - b0.v.dot(n)) * n;
+      } else if (s == 1) {  // every point leaving faster than the threshold: aims at -u.n
+        b0.omega.setZero();
+        b0.v += (threshold + g.uniform(0.2, 2.0) - b0.v.dot(n)) * n;
       }
       const int k = int(g.integer(1, 4));
       std::vector<Contact> cs(static_cast<std::size_t>(k));
