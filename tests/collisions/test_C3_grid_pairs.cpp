@@ -156,7 +156,7 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
   for (wbtest::HeldOut& g : wbtest::held_out("C3")) {
     INFO(g.replay());
     for (int s = 0; s < 4; ++s) {
-      const Eigen::Index n = g.integer(20, 60);
+      const Eigen::Index n = s == 3 ? g.integer(40, 60) : g.integer(20, 60);
       wb::Mat2X x(2, n);
       wb::VecX radius(n);
       if (s == 3) {

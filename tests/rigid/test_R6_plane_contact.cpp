@@ -518,8 +518,8 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
     for (int s = 0; s < 4; ++s) {
       Body b0 = rigidtest::random_body(g);
       const Vec3 n = g.unit3();
-      const double e = g.uniform(0.0, 1.0), threshold = g.uniform(0.0, 1.0),
-                   mu = g.uniform(0.0, 1.2);
+      const double e = s == 2 ? g.uniform(0.3, 1.0) : g.uniform(0.0, 1.0),
+                   threshold = g.uniform(0.0, 1.0), mu = g.uniform(0.0, 1.2);
       // The body moving into the plane (or slowly along it), 1 to 4 contact points.
       b0.v -= (b0.v.dot(n) + g.uniform(-0.5, 3.0)) * n;
       if (s == 0) {  // every point closing slower than the threshold: resting, no bounce
@@ -528,15 +528,19 @@ TEST_CASE("R6 held-out: random bodies and contacts are solved as the header says
       } else if (s == 1) {  // every point leaving faster than the threshold: aims at -u.n
         b0.omega.setZero();
         b0.v += (threshold + g.uniform(0.2, 2.0) - b0.v.dot(n)) * n;
+      } else if (s == 2) {   // every point closing faster than the threshold: bounces (e > 0.3),
+        b0.omega.setZero();  // so u.n is not 0 when the friction acts: the slip is u's part in
+        b0.v += (-threshold - g.uniform(0.5, 3.0) - b0.v.dot(n)) * n;  // the plane alone
       }
       const int k = int(g.integer(1, 4));
       std::vector<Contact> cs(static_cast<std::size_t>(k));
       std::vector<heldout_R6::Ref> refs(static_cast<std::size_t>(k));
       for (int i = 0; i < k; ++i) {
         cs[std::size_t(i)].p = b0.x + g.vec3(-1, 1);
-        // Totals from the last step: none, or some (Pt in the plane within the cone).
-        if (g.coin()) {
-          cs[std::size_t(i)].Pn = g.uniform(0.0, 2.0);
+        // Totals from the last step: none, or some (Pt in the plane within the cone); the first
+        // contact always some (it is checked step by step: its warm start must show).
+        if (i == 0 || g.coin()) {
+          cs[std::size_t(i)].Pn = i == 0 ? g.uniform(0.2, 2.0) : g.uniform(0.0, 2.0);
           Vec3 t = g.vec3(-1, 1);
           t -= t.dot(n) * n;
           if (t.norm() > 0)

@@ -134,17 +134,20 @@ def load_cases(names):
 
 
 class Run:
-    def __init__(self, scratch, lab):
-        self.scratch, self.lab = scratch, lab
+    def __init__(self, scratch, labs):
+        self.scratch, self.labs = scratch, labs
         self.ag = os.path.join(scratch, "autograder")
         self.token = secrets.token_hex(8)  # what a leak must not show, in any part
         self.secret = "wb-secret-" + self.token
 
     def setup(self):
-        """The zip of `tools/pack --gradescope LAB`, unpacked and set up as on Gradescope."""
-        zip_path = os.path.join(self.scratch, f"{self.lab}-autograder.zip")
-        subprocess.run([os.path.join(REPO, "tools", "pack"), "--gradescope", self.lab,
-                        "--out", zip_path], check=True, stdout=subprocess.DEVNULL)
+        """The zip `tools/pack --gradescope LAB` builds (tools/gradescope/make_zip.py), of every
+        lab the cases need (one set-up for all: each lab's zip alone set up its own build),
+        unpacked and set up as on Gradescope."""
+        zip_path = os.path.join(self.scratch, "autograder.zip")
+        sys.path.insert(0, os.path.join(REPO, "tools", "gradescope"))
+        import make_zip
+        make_zip.build(self.labs, zip_path, REPO)
         src = os.path.join(self.ag, "source")
         if os.path.isdir(src):
             shutil.rmtree(src)
@@ -170,9 +173,9 @@ class Run:
             raise SystemExit("hostile: setup.sh of the autograder zip failed")
         log(f"hostile: autograder zip built and set up in {time.monotonic() - t0:.0f} s")
 
-    def honest_max(self, touches):
+    def honest_max(self, lab, touches):
         with open(os.path.join(self.ag, "grade-build", "tests.json"), encoding="utf-8") as f:
-            tests = json.load(f)["labs"][self.lab]
+            tests = json.load(f)["labs"][lab]
         return sum(t["points"] for t in tests
                    if not any(f"[{task}]".lower() == tag.lower() for task in touches
                               for tag in t["tags"]))
@@ -373,15 +376,15 @@ def main(argv):
     # it; the planted secret's folder stays private.
     os.chmod(scratch, 0o711)
     try:
+        run = Run(scratch, labs)
+        run.setup()
         for lab in labs:
-            run = Run(scratch, lab)
-            run.setup()
             for case in (c for c in cases if c["lab"] == lab):
                 modes = [False] + ([True] if case.get("no_screen") and not args.screen_only else [])
                 for no_screen in modes:
                     t1 = time.monotonic()
                     score, reasons, problems = run.run_case(case, no_screen)
-                    limit = min(run.honest_max(case["touches"]), case.get("honest_max", 100))
+                    limit = min(run.honest_max(lab, case["touches"]), case.get("honest_max", 100))
                     if score is not None and score > limit:
                         problems.append(f"scored {score}, more than the honest {limit}")
                     how = reasons[0] if reasons else ""
