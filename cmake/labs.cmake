@@ -242,6 +242,14 @@ function(wb_lab_worker lab side suffix)
     target_link_libraries(${lab}-adversary PRIVATE wb_headers)
     wb_use_pch(${lab}-adversary LAB)
   endif()
+  # tools/adversary --inputs only: the lab's own code, every call's inputs recorded.
+  if(EXISTS ${dir}/${lab}_recorder.cpp AND NOT TARGET ${lab}-recorder)
+    add_executable(${lab}-recorder EXCLUDE_FROM_ALL ${dir}/${lab}_recorder.cpp ${kernel_sources}
+                                                    $<TARGET_OBJECTS:wb_rpc_worker>)
+    target_include_directories(${lab}-recorder PRIVATE ${include_dirs})
+    target_link_libraries(${lab}-recorder PRIVATE ${lab}_${side} wb_headers)
+    wb_use_pch(${lab}-recorder LAB)
+  endif()
 endfunction()
 
 # The diagnosis probes of one lab (tests/<lab>/probes/*.cpp, tests/common/wb_probe.h): fixed

@@ -17,8 +17,10 @@
 // A generated <lab>_adversary.cpp (tools/wbtools/adversary.py) supplies dispatch() and the
 // labs' structs' poison() overloads, field by field.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <random>
@@ -299,5 +301,84 @@ struct ServeAdversary<R(A...)> {
     serve_adversary_impl<R, A...>(in, std::index_sequence_for<A...>{});
   }
 };
+
+}  // namespace wbrpc
+
+// ---- The recorder (tools/adversary --inputs): a worker with the lab's own code (the
+// solution's, in that scratch build) that writes, for every call, what its inputs look like
+// to a file named by WB_RECORD, then serves the call as the grader's worker does. What is
+// recorded: how many numbers the call carried, how many of them are short decimals (at most
+// 6 significant digits), the largest magnitude, and the particles (columns of its first
+// 2 x n argument). tools/wbtools/adversary.py's classifier asks whether these tell a public
+// test's call from a held-out one.
+namespace wbrpc {
+
+struct Observed {
+  long numbers = 0, short_decimals = 0;
+  double largest = 0;
+  Eigen::Index particles = -1;
+};
+inline bool short_decimal(double v) {
+  if (!std::isfinite(v)) return false;
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return std::strtod(buf, nullptr) == v;
+}
+template <class T>
+void observe(Observed&, const T&) {}
+inline void observe(Observed& o, const double& v) {
+  ++o.numbers;
+  o.short_decimals += short_decimal(v);
+  if (std::isfinite(v)) o.largest = std::max(o.largest, std::abs(v));
+}
+template <class S, int R, int C, int O, int MR, int MC>
+void observe(Observed& o, const Eigen::Matrix<S, R, C, O, MR, MC>& m) {
+  if constexpr (std::is_same_v<Eigen::Matrix<S, R, C, O, MR, MC>, wb::Mat2X>)
+    if (o.particles < 0) o.particles = m.cols();
+  for (Eigen::Index k = 0; k < m.size() && k < 4096; ++k) observe(o, double(m.data()[k]));
+}
+inline void observe(Observed& o, const Eigen::Quaterniond& q) { observe(o, q.coeffs()); }
+inline void observe(Observed& o, const Eigen::SparseMatrix<double>& m) {
+  for (Eigen::Index k = 0; k < m.nonZeros() && k < 4096; ++k) observe(o, m.valuePtr()[k]);
+}
+template <class A, class B>
+void observe(Observed& o, const std::pair<A, B>& p) {
+  observe(o, p.first);
+  observe(o, p.second);
+}
+template <class T, class Al>
+void observe(Observed& o, const std::vector<T, Al>& v) {
+  for (std::size_t k = 0; k < v.size() && k < 256; ++k) observe(o, v[k]);
+}
+
+template <class R, class... A, std::size_t... I>
+void serve_recorded_impl(R (*fn)(A...), std::int32_t id, In& in, std::index_sequence<I...>) {
+  std::tuple<typename Storage<A>::type...> args;
+  (get(in, std::get<I>(args)), ...);
+  Observed seen;
+  (observe(seen, std::get<I>(args)), ...);
+  if (const char* path = std::getenv("WB_RECORD")) {
+    if (std::FILE* f = std::fopen(path, "a")) {
+      std::fprintf(f, "%d %ld %ld %.17g %ld\n", int(id), seen.numbers, seen.short_decimals,
+                   seen.largest, long(seen.particles));
+      std::fclose(f);
+    }
+  }
+  Out o;
+  put(o, kResult);
+  if constexpr (std::is_void_v<R>) {
+    fn(std::get<I>(args)...);
+    (put_output<A>(o, std::get<I>(args)), ...);
+  } else {
+    const std::remove_cv_t<R> r = fn(std::get<I>(args)...);
+    (put_output<A>(o, std::get<I>(args)), ...);
+    put(o, r);
+  }
+  worker_channel().send(o);
+}
+template <class R, class... A>
+void serve_recorded(R (*fn)(A...), std::int32_t id, In& in) {
+  serve_recorded_impl(fn, id, in, std::index_sequence_for<A...>{});
+}
 
 }  // namespace wbrpc

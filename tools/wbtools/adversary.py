@@ -19,6 +19,7 @@ Exit status: 0 nothing found, 1 a finding, 2 bad usage."""
 import argparse
 import concurrent.futures
 import json
+import math
 import os
 import re
 import secrets
@@ -78,6 +79,21 @@ def adversary_files(repo, labs):
             raise RuntimeError(f"{lab}: the worker's dispatcher has a call this tool cannot read")
         text.append("void wbrpc::dispatch" + body)
         files[os.path.join(WORKER_DIR, f"{lab}_adversary.cpp")] = "\n".join(text).encode()
+        # The recorder: the grader's own dispatcher, each call's inputs recorded (--inputs).
+        rec = worker.split("void wbrpc::dispatch", 1)
+        body = re.sub(r"case (\d+):\n(\s+)serve\((.*), in\);",
+                      lambda m: f"case {m.group(1)}:\n{m.group(2)}serve_recorded({m.group(3)}, "
+                                f"{m.group(1)}, in);", rec[1])
+        head = rec[0].replace('#include "worker.h"', '#include "adversary.h"')
+        obs = ["namespace wbrpc {"]
+        obs += [f"void observe(Observed& o, const ::{q}& v);" for q, _ in structs]
+        for q, sbody in structs:
+            obs += [f"void observe(Observed& o, const ::{q}& v) {{"] + \
+                   [f"  observe(o, v.{f});" for f in re.findall(r"put\(o, v\.(\w+)\);", sbody)] + \
+                   ["}"]
+        obs += ["}  // namespace wbrpc", ""]
+        files[os.path.join(WORKER_DIR, f"{lab}_recorder.cpp")] = \
+            (head + "\n".join(obs) + "void wbrpc::dispatch" + body).encode()
     return files
 
 
@@ -99,10 +115,16 @@ def sync(src, files):
                 os.remove(os.path.join(d, name))
 
 
-def build(root, labs, sanitize, jobs):
-    """The test binaries and adversaries of `labs` in root/build; {lab: (tests, adversary)}."""
+def build(root, labs, sanitize, jobs, workers="adversary"):
+    """The test binaries and adversaries of `labs` in root/build; {lab: (tests, adversary)}.
+    workers="recorder": the recorders instead, the solutions as the labs' code."""
     src, out = os.path.join(root, "src"), os.path.join(root, "build")
     files = project.pristine_files(REPO)
+    if workers == "recorder":
+        for lab in project.known_labs(REPO):
+            for name in project.student_files(REPO, lab):
+                with open(os.path.join(REPO, "solutions", lab, name), "rb") as f:
+                    files[os.path.join("labs", lab, name)] = f.read()
     files.update(worker_files(REPO, project.known_labs(REPO)))
     files.update(adversary_files(REPO, project.known_labs(REPO)))  # every lab: one configure
     sync(src, files)
@@ -123,7 +145,7 @@ def build(root, labs, sanitize, jobs):
                        stdout=subprocess.DEVNULL)
         with open(stamp, "w", encoding="utf-8") as f:
             json.dump(args, f)
-    targets = [t for lab in labs for t in (f"{lab}-tests", f"{lab}-adversary")]
+    targets = [t for lab in labs for t in (f"{lab}-tests", f"{lab}-{workers}")]
     t0 = time.monotonic()
     p = subprocess.run(["cmake", "--build", out, "--target", *targets, "-j", str(jobs)],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
@@ -132,7 +154,7 @@ def build(root, labs, sanitize, jobs):
         raise SystemExit("adversary: the build failed")
     log(f"adversary: built {len(targets)} targets in {time.monotonic() - t0:.0f} s")
     return {lab: (os.path.join(out, "bin", f"{lab}-tests"),
-                  os.path.join(out, "bin", f"{lab}-adversary")) for lab in labs}
+                  os.path.join(out, "bin", f"{lab}-{workers}")) for lab in labs}
 
 
 def list_tests(lab, binary):
@@ -156,9 +178,9 @@ def list_tests(lab, binary):
     return out
 
 
-def run_one(binary, adversary, test, mode, cwd, seed):
-    """One test against the adversary, judged by the grader's verdict code: the TestResult,
-    or the GraderError's text (a finding)."""
+def run_one(binary, adversary, test, mode, cwd, seed, worker_env=None, seeds=1):
+    """One test against the adversary (or another worker: worker_env), judged by the grader's
+    verdict code: the TestResult, or the GraderError's text (a finding)."""
     nonce = "wb-" + secrets.token_hex(8)
     to_worker_r, to_worker_w = os.pipe()
     to_test_r, to_test_w = os.pipe()
@@ -168,13 +190,13 @@ def run_one(binary, adversary, test, mode, cwd, seed):
     wk = subprocess.Popen([adversary, str(to_worker_r), str(to_test_w)], cwd=cwd,
                           pass_fds=(to_worker_r, to_test_w), stdin=subprocess.DEVNULL,
                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                          env=dict(base, WB_ADVERSARY=mode))
+                          env=dict(base, **(worker_env or {"WB_ADVERSARY": mode})))
     os.close(to_worker_r), os.close(to_test_w)
     tp = subprocess.Popen([binary, test.name, "-w", "NoTests", "-r", "xml", "-n", nonce], cwd=cwd,
                           pass_fds=(to_test_r, to_worker_w), stdin=subprocess.DEVNULL,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                           env=dict(base, WB_WORKER_FDS=f"{to_test_r},{to_worker_w}",
-                                   WB_HELDOUT_SEED=f"{seed:#x}"))
+                                   WB_HELDOUT_SEED=f"{seed:#x}", WB_HELDOUT_SEEDS=str(seeds)))
     os.close(to_test_r), os.close(to_worker_w)
     try:
         data, err = tp.communicate(timeout=TEST_TIMEOUT)
@@ -191,6 +213,94 @@ def run_one(binary, adversary, test, mode, cwd, seed):
     except GraderError as e:
         tail = err.decode("utf-8", "replace").strip().splitlines()[-12:]
         return None, f"{e}\n      " + "\n      ".join(tail)
+
+
+# ------------------------------------------------------------ --inputs: public or held-out?
+# Issue 42, item 3: no property of an input (its digits, sizes, magnitudes) may tell a public
+# test's call from a held-out one, or a submission can answer the public inputs right and make
+# its mistake elsewhere. The recorder (adversary.h) writes what every call's inputs look like;
+# a decision stump on those features, trained on half the calls of a task and tried on the
+# other half, must do no better than chance (balanced accuracy at most CHANCE + MARGIN).
+CHANCE, MARGIN = 0.5, 0.1
+FEATURES = ("share of short decimals", "log2 particles", "log10 largest |number|")
+
+
+def call_features(line):
+    numbers, short, largest, particles = line.split()[1:5]
+    n = int(numbers)
+    return (int(short) / n if n else 1.0, math.log2(1 + max(int(particles), 0)),
+            math.log10(float(largest) + 1e-300))
+
+
+def record_inputs(built, lab, tests, cwd, seeds, per_test=300):
+    """{task: {"public": [features], "held-out": [features]}}: each test run once against the
+    recorder (a held-out test for `seeds` seeds), at most `per_test` calls kept from each."""
+    import random
+    out = {}
+    binary, recorder = built
+    for t in tests:
+        path = os.path.join(cwd, "calls.txt")
+        if os.path.exists(path):
+            os.remove(path)
+        held = heldout.is_held_out(t)
+        run_one(binary, recorder, t, None, cwd, 1, {"WB_RECORD": path}, seeds if held else 1)
+        try:
+            with open(path, encoding="utf-8") as f:
+                lines = [l for l in f if l.strip()]
+        except OSError:
+            lines = []
+        rng = random.Random(t.name)
+        if len(lines) > per_test:
+            lines = rng.sample(lines, per_test)
+        out.setdefault(heldout.task_of(t), {"public": [], "held-out": []})[
+            "held-out" if held else "public"] += [call_features(l) for l in lines]
+    return out
+
+
+def stump(public, held):
+    """The best one-feature threshold rule trained on the even calls of each class, and its
+    balanced accuracy on the odd ones: (accuracy, feature, threshold)."""
+    def balanced(rule, a, b):
+        return (sum(map(rule, a)) / len(a) + sum(not rule(x) for x in b) / len(b)) / 2
+    train_a, test_a, train_b, test_b = public[::2], public[1::2], held[::2], held[1::2]
+    if not (train_a and test_a and train_b and test_b):
+        return None
+    best = (0.0, None, None)
+    for k in range(len(FEATURES)):
+        values = sorted({x[k] for x in train_a + train_b})
+        for lo, hi in zip(values, values[1:]):
+            t = (lo + hi) / 2
+            for sign in (1, -1):
+                rule = (lambda x, k=k, t=t, sign=sign: sign * (x[k] - t) > 0)
+                acc = balanced(rule, train_a, train_b)
+                if acc > best[0]:
+                    best = (acc, (k, t, sign), rule)
+    if best[2] is None:
+        return CHANCE, "no feature differs", None
+    k, t, sign = best[1]
+    return balanced(best[2], test_a, test_b), FEATURES[k], f"{'>' if sign > 0 else '<'} {t:.3g}"
+
+
+def inputs_report(labs, built, cwd, seeds):
+    """The --inputs table; False when a task's calls can be told apart."""
+    ok = True
+    print(f"{'task':<6} {'public calls':>12} {'held-out calls':>14}  best rule (public if)"
+          f"{'':<28} balanced accuracy")
+    for lab in labs:
+        tests = list_tests(lab, built[lab][0])
+        for task, calls in sorted(record_inputs(built[lab], lab, tests, cwd, seeds).items()):
+            got = stump(calls["public"], calls["held-out"])
+            if got is None:
+                print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
+                      "(too few calls to measure)")
+                continue
+            acc, feature, rule = got
+            good = acc <= CHANCE + MARGIN
+            ok &= good
+            print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
+                  f"{feature + ' ' + (rule or ''):<49} {acc:.2f} {'ok' if good else 'TOLD APART'}")
+    print(f"aim: no better than chance ({CHANCE:.1f} + {MARGIN:.1f}) for every task")
+    return ok
 
 
 def score(results):
@@ -216,7 +326,15 @@ def main(argv):
     ap.add_argument("--test", help="only tests whose name starts with this")
     ap.add_argument("--mode", action="append", default=[],
                     help="only this mode: inf, nan, mixed:SEED (repeatable)")
+    ap.add_argument("--inputs", action="store_true",
+                    help="instead: record every call's inputs with the solutions' code (a "
+                         "scratch build of its own, default build-fuzz/inputs) and ask whether a "
+                         "classifier tells each task's public calls from its held-out ones")
+    ap.add_argument("--inputs-seeds", type=int, default=20, metavar="N",
+                    help="with --inputs: the held-out tests' seeds (default 20)")
     args = ap.parse_args(argv)
+    if args.inputs and args.build_dir == ap.get_default("build_dir"):
+        args.build_dir = os.path.join(REPO, "build-fuzz", "inputs")
     known = project.known_labs(REPO)
     labs = args.lab or known
     bad = [l for l in labs if l not in known]
@@ -226,10 +344,17 @@ def main(argv):
         return 2
     os.makedirs(args.build_dir, exist_ok=True)
     root = os.path.abspath(args.build_dir)
+    workers = "recorder" if args.inputs else "adversary"
     built = {lab: (os.path.join(root, "build", "bin", f"{lab}-tests"),
-                   os.path.join(root, "build", "bin", f"{lab}-adversary")) for lab in labs} \
-        if args.no_build else build(root, labs, not args.no_sanitize, args.jobs)
+                   os.path.join(root, "build", "bin", f"{lab}-{workers}")) for lab in labs} \
+        if args.no_build else build(root, labs, not args.no_sanitize and not args.inputs,
+                                    args.jobs, workers)
     cwd = tempfile.mkdtemp(prefix="wb-adversary-")
+    if args.inputs:
+        try:
+            return 0 if inputs_report(labs, built, cwd, args.inputs_seeds) else 1
+        finally:
+            shutil.rmtree(cwd, ignore_errors=True)
     findings, notes, t0 = [], [], time.monotonic()
     pool = concurrent.futures.ThreadPoolExecutor(args.jobs)
     try:
