@@ -303,7 +303,7 @@ TEST_CASE(
     // reuses the pattern and its slots: every value must be replaced, none added).
     for (const bool pin : {false, true}) {
       for (const bool definite : {false, true}) {
-        imtest::Network w = imtest::random_network(g, pin);
+        imtest::Network w = imtest::random_network(g, pin, true);
         const Eigen::Index n = w.net.n();
         const double h = g.log_uniform(1e-3, 0.1);
         SparseSystem sys;

@@ -598,7 +598,9 @@ TEST_CASE("I4 held-out: random networks take the Newton steps of the header and 
           "[implicit][I4][held-out][4pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("I4")) {
     INFO(g.replay());
-    for (int kind = 0; kind < 4; ++kind) {
+    // Kinds 0 and 1 twice: a mistake that a nearly linear network hides (a chord method, a
+    // tolerance without the scale) is then caught on at least 999 of 1000 seeds.
+    for (const int kind : {0, 0, 1, 1, 2, 3}) {
       // 0, 1: converged at a tolerance between two of the test's own Newton residuals, with
       // CG and a pinned particle (0), with LDLT and every mass, stiffness, drag and force
       // scaled by 10^6 to 10^7 or its inverse (1: the same motion; the scale so far from 1 that
