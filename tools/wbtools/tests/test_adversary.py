@@ -54,3 +54,19 @@ def test_the_nonfinite_submission_defines_every_function_and_fills_every_output(
             if ret != "void":
                 assert f"return filled<{ret}>();" in text
         assert ("quiet_NaN" in text) == (value == "nan")
+
+
+def test_the_inputs_classifier_tells_apart_only_what_differs():
+    """Defect: the --inputs rule scored on the calls it was trained on (any two samples look
+    separable), or missed a feature that separates them (short decimals against full doubles,
+    the case of issue 42)."""
+    import random
+    rng = random.Random(1)
+    same = [(rng.random(), rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(400)]
+    acc, _, _ = adversary.stump(same[:200], same[200:])
+    assert acc <= adversary.CHANCE + adversary.MARGIN
+    public = [(1.0, rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(200)]
+    held = [(0.0, rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(200)]
+    acc, feature, _ = adversary.stump(public, held)
+    assert acc == 1.0 and feature == "share of short decimals"
+    assert adversary.call_features("3 10 4 2.5 3") == pytest.approx((0.4, 2.0, 0.39794), 1e-4)
