@@ -233,6 +233,23 @@ function(wb_lab_worker lab side suffix)
   target_include_directories(${worker} PRIVATE ${include_dirs})
   target_link_libraries(${worker} PRIVATE ${lab}_${side} wb_headers)
   wb_use_pch(${worker} LAB)
+  # tools/adversary only (fuzz/adversary/, never in the grader's scratch copy): a worker that
+  # answers every call with values it chooses, no lab code linked.
+  if(EXISTS ${dir}/${lab}_adversary.cpp AND NOT TARGET ${lab}-adversary)
+    add_executable(${lab}-adversary EXCLUDE_FROM_ALL ${dir}/${lab}_adversary.cpp
+                                                     $<TARGET_OBJECTS:wb_rpc_worker>)
+    target_include_directories(${lab}-adversary PRIVATE ${include_dirs})
+    target_link_libraries(${lab}-adversary PRIVATE wb_headers)
+    wb_use_pch(${lab}-adversary LAB)
+  endif()
+  # tools/adversary --inputs only: the lab's own code, every call's inputs recorded.
+  if(EXISTS ${dir}/${lab}_recorder.cpp AND NOT TARGET ${lab}-recorder)
+    add_executable(${lab}-recorder EXCLUDE_FROM_ALL ${dir}/${lab}_recorder.cpp ${kernel_sources}
+                                                    $<TARGET_OBJECTS:wb_rpc_worker>)
+    target_include_directories(${lab}-recorder PRIVATE ${include_dirs})
+    target_link_libraries(${lab}-recorder PRIVATE ${lab}_${side} wb_headers)
+    wb_use_pch(${lab}-recorder LAB)
+  endif()
 endfunction()
 
 # The diagnosis probes of one lab (tests/<lab>/probes/*.cpp, tests/common/wb_probe.h): fixed

@@ -205,52 +205,60 @@ TEST_CASE("C1 held-out: random planes and particles in and out of contact follow
           "[collisions][C1][held-out][4pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("C1")) {
     INFO(g.replay());
-    for (int s = 0; s < 16; ++s) {
-      // Half the planes axis-aligned with short binary fractions, so that touching (gap 0)
-      // and an approach speed of exactly rest_speed are exact; the others tilted at random.
-      const bool exact = s % 2 == 0;
-      const Vec2 n = exact ? Vec2(0, g.sign()) : Vec2(g.unit2());
-      const Vec2 p =
-          exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
-      const double r = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
-      const double m = g.uniform(0.1, 5.0), e = g.uniform(0.0, 1.0);
-      const double rest_speed = exact ? g.integer(0, 8) / 8.0 : g.uniform(0.0, 1.0);
-      // The gap: touching, penetrating (the centre even below the plane), or clear.
-      const double gap = exact ? g.integer(-16, 4) / 8.0 * (s % 4 == 0 ? 0.0 : 1.0)
-                               : g.uniform(-2.0 * r, 0.5 * r);
-      const Vec2 t(-n.y(), n.x());
-      const Vec2 x0 = p + (r + gap) * n + g.uniform(-2, 2) * t;
-      // The normal velocity: approaching fast or slowly (below rest_speed), exactly at
-      // rest_speed, or receding.
-      const long which = g.integer(0, 3);
-      const double vn = which == 0   ? -g.uniform(1.0, 5.0)
-                        : which == 1 ? -rest_speed * g.uniform(0.0, 0.99)
-                        : which == 2 ? -rest_speed
-                                     : g.uniform(0.0, 2.0);
-      const Vec2 v0 = vn * n + g.uniform(-3, 3) * t;
-      Vec2 xe = x0, ve = v0;
-      double je = 0;
-      const double d = (x0 - p).dot(n) - r, vne = v0.dot(n);
-      if (d <= 0) {
-        if (vne < 0) {
-          const double ee = -vne < rest_speed ? 0.0 : e;
-          je = -(1 + ee) * m * vne;
-          ve = v0 + (je / m) * n;
+    // Every situation in every draw, with random values: the gap (touching exactly,
+    // penetrating, the centre below the plane, clear) times the normal motion (approaching
+    // fast, approaching slower than rest_speed, at exactly rest_speed, receding). A plane is
+    // axis-aligned with short binary fractions where a boundary must be exact (touching, an
+    // approach speed of exactly rest_speed), tilted at random otherwise.
+    for (int gap_kind = 0; gap_kind < 4; ++gap_kind) {
+      for (int motion = 0; motion < 4; ++motion) {
+        const bool exact = gap_kind == 0 || motion == 2 || g.coin();
+        const Vec2 n = exact ? (g.coin() ? Vec2(0, g.sign()) : Vec2(g.sign(), 0)) : g.unit2();
+        const Vec2 t(-n.y(), n.x());
+        const Vec2 p =
+            exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
+        const double r = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
+        // A mass away from 1 and a restitution away from 0, so that forgetting either shows.
+        const double m = g.coin() ? g.uniform(0.1, 0.8) : g.uniform(1.25, 5.0);
+        const double e = g.uniform(0.2, 1.0);
+        const double rest_speed = g.integer(1, 8) / 8.0;
+        const double gap = gap_kind == 0   ? 0.0
+                           : gap_kind == 1 ? -g.uniform(0.1, 0.9) * r
+                           : gap_kind == 2 ? -(1.0 + g.uniform(0.2, 1.0)) * r
+                                           : g.uniform(0.1, 0.5) * r;
+        const Vec2 x0 =
+            p + (r + gap) * n + (exact ? g.integer(-16, 16) / 8.0 : g.uniform(-2, 2)) * t;
+        const double vn = motion == 0   ? -g.uniform(1.5, 5.0)
+                          : motion == 1 ? -rest_speed * g.uniform(0.2, 0.95)
+                          : motion == 2 ? -rest_speed
+                                        : g.uniform(0.2, 2.0);
+        // A sliding speed above rest_speed: the resting test must read -v.n, not |v|.
+        const Vec2 v0 =
+            vn * n + g.sign() * (exact ? g.integer(10, 24) / 8.0 : g.uniform(1.25, 3.0)) * t;
+        Vec2 xe = x0, ve = v0;
+        double je = 0;
+        const double d = (x0 - p).dot(n) - r, vne = v0.dot(n);
+        if (d <= 0) {
+          if (vne < 0) {
+            const double ee = -vne < rest_speed ? 0.0 : e;
+            je = -(1 + ee) * m * vne;
+            ve = v0 + (je / m) * n;
+          }
+          xe = x0 - d * n;
         }
-        xe = x0 - d * n;
+        Vec2 x = x0, v = v0;
+        const double j = collide_plane(p, n, r, m, e, rest_speed, x, v);
+        INFO("plane through " << wbtest::str(p) << " normal " << wbtest::str(n) << ", r = " << r
+                              << ", m = " << m << ", e = " << e << ", rest_speed = " << rest_speed
+                              << "; x = " << wbtest::str(x0) << " (gap " << d
+                              << "), v = " << wbtest::str(v0) << " (v.n = " << vne << ")");
+        const double scale = 1.0 + x0.norm() + v0.norm();
+        wbtest::require_near(j, je, 1e-12 * (1.0 + m * std::abs(vne)),
+                             "the impulse j = -(1 + e) m v.n when in contact and approaching, "
+                             "e = 0 when -v.n < rest_speed, else 0");
+        wbtest::require_near(v, ve, 1e-12 * scale, "v + (j / m) n");
+        wbtest::require_near(x, xe, 1e-12 * scale, "in contact: moved out along n to just touch");
       }
-      Vec2 x = x0, v = v0;
-      const double j = collide_plane(p, n, r, m, e, rest_speed, x, v);
-      INFO("plane through " << wbtest::str(p) << " normal " << wbtest::str(n) << ", r = " << r
-                            << ", m = " << m << ", e = " << e << ", rest_speed = " << rest_speed
-                            << "; x = " << wbtest::str(x0) << " (gap " << d
-                            << "), v = " << wbtest::str(v0) << " (v.n = " << vne << ")");
-      const double scale = 1.0 + x0.norm() + v0.norm();
-      wbtest::require_near(j, je, 1e-12 * (1.0 + m * std::abs(vne)),
-                           "the impulse j = -(1 + e) m v.n when in contact and approaching, "
-                           "e = 0 when -v.n < rest_speed, else 0");
-      wbtest::require_near(v, ve, 1e-12 * scale, "v + (j / m) n");
-      wbtest::require_near(x, xe, 1e-12 * scale, "in contact: moved out along n to just touch");
     }
   }
 }

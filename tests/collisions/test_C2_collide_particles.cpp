@@ -187,24 +187,9 @@ TEST_CASE("C2 held-out: random pairs of discs in and out of contact follow the h
           "[collisions][C2][held-out][4pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("C2")) {
     INFO(g.replay());
-    for (int s = 0; s < 16; ++s) {
-      const double m1 = g.log_uniform(0.05, 20.0), m2 = g.log_uniform(0.05, 20.0);
-      const double e = g.uniform(0.0, 1.0);
-      const bool exact = s % 4 == 0;  // touching exactly: binary fractions along an axis
-      const double r1 = exact ? g.integer(0, 8) / 8.0 : g.uniform(0.0, 1.0);
-      const double r2 = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
-      const Vec2 x2 =
-          exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
-      Vec2 x1;
-      if (exact) {
-        x1 = x2 + (r1 + r2) * (g.coin() ? Vec2(g.sign(), 0) : Vec2(0, g.sign()));
-      } else if (s % 4 == 1) {
-        x1 = x2;  // coincident centres: the fallback normal (0, 1)
-      } else {
-        x1 = x2 + (r1 + r2) * g.uniform(0.3, 1.3) * g.unit2();  // overlapping or apart
-      }
-      const Vec2 v1 = g.vec2(-3, 3), v2 = g.vec2(-3, 3);
-      // The header's response, written here.
+    // The header's response, written here, against the lab's.
+    auto check = [](double m1, double r1, double m2, double r2, double e, const Vec2& x1,
+                    const Vec2& x2, const Vec2& v1, const Vec2& v2) {
       const double dist = (x1 - x2).norm(), sgap = r1 + r2 - dist;
       const Vec2 n = dist > 0 ? Vec2((x1 - x2) / dist) : Vec2(0, 1);
       const double vn = (v1 - v2).dot(n), w1 = 1 / m1, w2 = 1 / m2;
@@ -232,6 +217,36 @@ TEST_CASE("C2 held-out: random pairs of discs in and out of contact follow the h
       wbtest::require_near(u2, v2e, 1e-12 * scale, "v2 - (J / m2) n");
       wbtest::require_near(y1, x1e, 1e-12 * scale, "x1 moved out by s w1 / (w1 + w2) along n");
       wbtest::require_near(y2, x2e, 1e-12 * scale, "x2 moved out by s w2 / (w1 + w2) against n");
+    };
+    for (int s = 0; s < 16; ++s) {
+      const double m1 = g.log_uniform(0.05, 20.0), m2 = g.log_uniform(0.05, 20.0);
+      const double e = g.uniform(0.0, 1.0);
+      const bool exact = s % 4 == 0;  // touching exactly: binary fractions along an axis
+      const double r1 = exact ? g.integer(0, 8) / 8.0 : g.uniform(0.0, 1.0);
+      const double r2 = exact ? g.integer(1, 8) / 8.0 : g.uniform(0.05, 1.0);
+      const Vec2 x2 =
+          exact ? Vec2(g.integer(-8, 8) / 8.0, g.integer(-8, 8) / 8.0) : Vec2(g.vec2(-2, 2));
+      Vec2 x1;
+      if (exact) {
+        x1 = x2 + (r1 + r2) * (g.coin() ? Vec2(g.sign(), 0) : Vec2(0, g.sign()));
+      } else if (s % 4 == 1) {
+        x1 = x2;  // coincident centres: the fallback normal (0, 1)
+      } else {
+        x1 = x2 + (r1 + r2) * g.uniform(0.3, 1.3) * g.unit2();  // overlapping or apart
+      }
+      check(m1, r1, m2, r2, e, x1, x2, g.vec2(-3, 3), g.vec2(-3, 3));
+    }
+    // Overlapping, the two moving the same way along n: approaching (relative velocity
+    // against n) while disc 1 moves along n, and separating while disc 1 moves against n.
+    for (const double sense : {1.0, -1.0}) {
+      const double r1 = g.uniform(0.1, 1.0), r2 = g.uniform(0.1, 1.0);
+      const Vec2 x2 = g.vec2(-2, 2), n = g.unit2(), t(-n.y(), n.x());
+      const Vec2 x1 = x2 + (r1 + r2) * g.uniform(0.5, 0.95) * n;
+      const double a = g.uniform(0.5, 2.0), b = g.uniform(0.5, 2.0);
+      const Vec2 v1 = sense * a * n + g.uniform(-2, 2) * t;
+      const Vec2 v2 = sense * (a + b) * n + g.uniform(-2, 2) * t;
+      check(g.log_uniform(0.05, 20.0), r1, g.log_uniform(0.05, 20.0), r2, g.uniform(0.2, 1.0), x1,
+            x2, v1, v2);
     }
   }
 }

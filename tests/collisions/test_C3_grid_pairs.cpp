@@ -43,7 +43,7 @@ void require_same_pairs(const wb::Mat2X& x, const wb::VecX& r, const std::string
   for (const auto& [i, j] : got) {
     INFO(what << ": grid_pairs gave (" << i << ", " << j << "), expected i < j, both < "
               << x.cols() << " (the vector held (1, 0) and (5, 3) before the call: clear it)");
-    REQUIRE((0 <= i && i < j && j < x.cols()));
+    REQUIRE((0 <= i && i < j && j < x.cols()));  // nanfree: integers
   }
   Pairs sorted = got;
   std::sort(sorted.begin(), sorted.end());
@@ -155,11 +155,21 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
           "[collisions][C3][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("C3")) {
     INFO(g.replay());
-    for (int s = 0; s < 3; ++s) {
-      const Eigen::Index n = g.integer(20, 60);
+    for (int s = 0; s < 4; ++s) {
+      const Eigen::Index n = s == 3 ? g.integer(40, 60) : g.integer(20, 60);
       wb::Mat2X x(2, n);
       wb::VecX radius(n);
-      if (s == 0) {
+      if (s == 3) {
+        // Dense: discs of about one radius R in a box R sqrt(n) / 2 wide, so that the box
+        // alone asks for cells narrower than R: many pairs lie between R and 2R apart, in
+        // cells two apart when the cells are narrower than the largest diameter.
+        const double R = g.log_uniform(0.1, 10.0), side = R * std::sqrt(double(n)) / 2;
+        const wb::Vec2 origin = g.vec2(-100, 100) * R;
+        for (Eigen::Index i = 0; i < n; ++i) {
+          radius[i] = R * g.uniform(0.8, 1.0);
+          x.col(i) = origin + side * g.vec2(0, 1);
+        }
+      } else if (s == 0) {
         // A lattice of touching discs of one radius (binary fractions, offset at random by
         // whole spacings): boxes touch exactly on the cells' boundaries.
         const double r = g.integer(1, 8) / 16.0;
@@ -188,7 +198,7 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
       grid_pairs(x, radius, got);
       for (const auto& pr : got) {
         INFO("pair (" << pr.first << ", " << pr.second << "): expected 0 <= i < j < " << n);
-        REQUIRE((0 <= pr.first && pr.first < pr.second && pr.second < n));
+        REQUIRE((0 <= pr.first && pr.first < pr.second && pr.second < n));  // nanfree: integers
       }
       std::sort(got.begin(), got.end());
       std::sort(expected.begin(), expected.end());
@@ -199,8 +209,11 @@ TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair
                           std::back_inserter(extra));
       const bool repeated = std::adjacent_find(got.begin(), got.end()) != got.end();
       std::ostringstream what;
-      what << (s == 0 ? "a lattice of touching discs" : "mixed radii") << ", " << n
-           << " discs: " << expected.size() << " pairs expected, " << got.size() << " found";
+      what << (s == 0   ? "a lattice of touching discs"
+               : s == 3 ? "dense discs"
+                        : "mixed radii")
+           << ", " << n << " discs: " << expected.size() << " pairs expected, " << got.size()
+           << " found";
       if (!missing.empty())
         what << "; missing (" << missing[0].first << ", " << missing[0].second
              << "): x = " << wbtest::str(x.col(missing[0].first))

@@ -155,16 +155,25 @@ TEST_CASE("C4 held-out: random contacts inside and outside the friction cone fol
           "[collisions][C4][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("C4")) {
     INFO(g.replay());
-    for (int s = 0; s < 16; ++s) {
+    for (int s = 0; s < 18; ++s) {
       // The first two along an axis, so that v_t = 0 exactly (and mu jn = 0 in the first).
       const Vec2 n = s < 2 ? Vec2(0, g.sign()) : Vec2(g.unit2()), t(-n.y(), n.x());
-      const double m = g.uniform(0.1, 5.0), mu = s == 0 ? 0.0 : g.uniform(0.0, 1.5);
-      const double jn = s == 0 ? 0.0 : g.uniform(0.0, 5.0);
+      // The last two: a mass well above 1, then well below, and a sliding speed between
+      // mu jn / m and mu jn: the cone compares the impulse m |v_t|, not the speed.
+      const double m = s == 16   ? g.uniform(2.0, 5.0)
+                       : s == 17 ? g.uniform(0.1, 0.5)
+                                 : g.uniform(0.1, 5.0);
+      const double mu = s == 0 ? 0.0 : s >= 16 ? g.uniform(0.3, 1.5) : g.uniform(0.0, 1.5);
+      const double jn = s == 0 ? 0.0 : s >= 16 ? g.uniform(0.5, 5.0) : g.uniform(0.0, 5.0);
       // Tangential speed: none, inside the cone, or outside it.
-      const double vt = s < 2 ? 0.0
-                              : g.sign() *
-                                    (g.coin() ? g.uniform(0.0, 0.95) : g.uniform(1.05, 4.0)) *
-                                    (mu * jn / m + (s % 3 == 0 ? g.uniform(0.0, 1.0) : 0.0));
+      const double between = mu * jn *
+                             (m > 1 ? 1.0 / m + g.uniform(0.2, 0.8) * (1.0 - 1.0 / m)
+                                    : 1.0 + g.uniform(0.2, 0.8) * (1.0 / m - 1.0));
+      const double vt = s < 2     ? 0.0
+                        : s >= 16 ? g.sign() * between
+                                  : g.sign() *
+                                        (g.coin() ? g.uniform(0.0, 0.95) : g.uniform(1.05, 4.0)) *
+                                        (mu * jn / m + (s % 3 == 0 ? g.uniform(0.0, 1.0) : 0.0));
       const Vec2 v0 = g.uniform(-3, 3) * n + vt * t;
       const Vec2 vtv = v0 - v0.dot(n) * n;
       Vec2 ve = v0;

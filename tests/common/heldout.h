@@ -14,8 +14,9 @@
 //
 // The seed: WB_HELDOUT_SEED (decimal or 0x hex; the grader sets it, given with --seed or
 // derived from the autograder's secret and the submission), else a fresh random one.
-// WB_HELDOUT_SEEDS=N checks N consecutive seeds from it in one process (tools/mutants
-// --heldout-seeds: the measurement that no correct implementation ever fails).
+// WB_HELDOUT_SEEDS=N checks N consecutive seeds from it in one process, the test case run once
+// per seed (tools/mutants --heldout-seeds: the measurement that no correct implementation ever
+// fails, and that every catalogued mistake is caught on every seed).
 // Each task draws from its own stream (the seed mixed with the task's id), so adding a draw to
 // one task changes no other task's inputs.
 #pragma once
@@ -27,6 +28,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <catch2/catch.hpp>
 
 #include "wb/types.h"
 
@@ -136,37 +139,14 @@ class HeldOut {
   std::mt19937_64 gen_;
 };
 
-// The generators of this run for one task: one per seed (one seed unless WB_HELDOUT_SEEDS).
+// The generator of this run for one task. With WB_HELDOUT_SEEDS=N the test case runs N times,
+// once per seed (Catch's GENERATE): a seed that fails does not stop the next, and each failure
+// names its seed (g.replay()), so that tools/mutants counts the seeds that catch a mistake.
 inline std::vector<HeldOut> held_out(const std::string& task) {
   const HeldOutSeeds s = heldout_seeds();
-  std::vector<HeldOut> out;
-  for (long k = 0; k < s.count; ++k) out.emplace_back(task, s.first + std::uint64_t(k));
-  return out;
-}
-
-// The generator of a public test that needs secret randomness (which segments of a kernel's
-// run to replay): the run's seed, one stream per name.
-inline HeldOut run_generator(const std::string& name) {
-  return HeldOut(name, heldout_seeds().first);
-}
-
-// A kernel (tests/<lab>/kernels) runs beside the lab's code, in the worker: what it returns is
-// hostile. It returns checkpoints (the state every `every` steps); the test judges values it
-// computes from them, after checking that they are the orbit of the lab's own step: `segments`
-// segments drawn at random after the run (the run's seed) are replayed from their first
-// checkpoint by `replay(c)`, which steps `every` times one call at a time (through the worker,
-// in the grader) and compares the result with checkpoint c + 1. A run that skipped steps or
-// made up its states fails unless it gets every replayed segment right.
-template <class Replay>
-void check_segments(const std::string& name, long checkpoints, int segments, Replay replay) {
-  HeldOut g = run_generator(name + " segments");
-  for (int k = 0; k < segments && checkpoints > 1; ++k) {
-    const long c = g.integer(0, checkpoints - 2);
-    INFO(name << ": the run's states between checkpoints " << c << " and " << c + 1
-              << ", replayed one step at a time, must be the states the run returned "
-                 "(a run must take every step with the lab's own step function)");
-    replay(c);
-  }
+  const long count = s.count;
+  const long k = count > 1 ? GENERATE_COPY(Catch::Generators::range(0L, count)) : 0L;
+  return {HeldOut(task, s.first + std::uint64_t(k))};
 }
 
 }  // namespace

@@ -23,10 +23,22 @@
 namespace wbtest {
 namespace {
 
-// |a - b| <= abs_tol + rel_tol * max(|a|, |b|)
+// |a - b| <= abs_tol + rel_tol * max(|a|, |b|) for finite a and b. A value that is not finite is
+// near only the same value (+inf only +inf, NaN only NaN): the one comparison every test uses
+// (docs/grading.md, "Every value from the worker is hostile"). Without that rule an infinity
+// passed every relative tolerance: |inf - b| <= abs_tol + rel_tol * inf is inf <= inf.
+inline bool same_non_finite(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
 inline bool near(double a, double b, double abs_tol, double rel_tol = 0.0) {
+  if (!std::isfinite(a) || !std::isfinite(b)) return same_non_finite(a, b);
   return std::abs(a - b) <= abs_tol + rel_tol * std::max(std::abs(a), std::abs(b));
 }
+// x when it is finite, else NaN: every comparison with the result fails when x is not finite
+// (an ordering comparison of a raw value lets one infinity through: +inf > bound, -inf < bound).
+// tools/pattern nanfree wants it (or another NaN-sticky helper below) in every ordering
+// comparison an assertion makes.
+inline double finite(double x) { return std::isfinite(x) ? x : std::nan(""); }
 
 // A number as a failure message prints it: the shortest text that reads back as the same
 // double (0.1, not 0.10000000000000001; 1.0000000000000002, not 1), so that two values that
@@ -86,12 +98,23 @@ inline void require_near(const wb::Mat2X& got, const wb::Mat2X& expected, double
   }
 }
 
+// A running maximum that a NaN or an infinity cannot hide from: once x is not finite the
+// result is NaN for good (std::max(acc, NaN) returns acc, and the NaN is lost).
+inline double worst_of(double acc, double x) {
+  return std::isfinite(x) && !std::isnan(acc) ? std::max(acc, x) : std::nan("");
+}
+// The same for a running minimum.
+inline double least_of(double acc, double x) {
+  return std::isfinite(x) && !std::isnan(acc) ? std::min(acc, x) : std::nan("");
+}
+
 // The one NaN-safe way to measure a difference (docs/grading.md, "Every value from the worker
 // is hostile"): a value that came back from the lab's code may be NaN or infinite anywhere,
 // and Eigen's maxCoeff() may skip a NaN that is not the first entry, so that
-// "(got - expected).cwiseAbs().maxCoeff() <= tol" passes. These return NaN when any entry of
-// either side is not finite, or when the shapes differ: every comparison with NaN is false,
-// so "<= tol", "> tol" and "== 0" all fail (an infinity would still pass "> tol").
+// "(got - expected).cwiseAbs().maxCoeff() <= tol" passes. These return NaN when an entry of
+// either side is not finite (unless both sides hold the same non-finite value there, as near
+// does), or when the shapes differ: every comparison with NaN is false, so "<= tol", "> tol"
+// and "== 0" all fail.
 template <class A, class B>
 double max_abs_diff(const Eigen::DenseBase<A>& a, const Eigen::DenseBase<B>& b) {
   if (a.rows() != b.rows() || a.cols() != b.cols()) return std::nan("");
@@ -99,8 +122,9 @@ double max_abs_diff(const Eigen::DenseBase<A>& a, const Eigen::DenseBase<B>& b) 
   for (Eigen::Index j = 0; j < a.cols(); ++j) {
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
       const double x = double(a(i, j)), y = double(b(i, j));
+      if ((!std::isfinite(x) || !std::isfinite(y)) && same_non_finite(x, y)) continue;
       if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(x - y)) return std::nan("");
-      worst = std::max(worst, std::abs(x - y));
+      worst = worst_of(worst, std::abs(x - y));
     }
   }
   return worst;
@@ -114,20 +138,10 @@ double max_abs(const Eigen::DenseBase<A>& a) {
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
       const double v = double(a(i, j));
       if (!std::isfinite(v)) return std::nan("");
-      worst = std::max(worst, std::abs(v));
+      worst = worst_of(worst, std::abs(v));
     }
   }
   return worst;
-}
-
-// A running maximum that a NaN or an infinity cannot hide from: once x is not finite the
-// result is NaN for good (std::max(acc, NaN) returns acc, and the NaN is lost).
-inline double worst_of(double acc, double x) {
-  return std::isfinite(x) && !std::isnan(acc) ? std::max(acc, x) : std::nan("");
-}
-// The same for a running minimum.
-inline double least_of(double acc, double x) {
-  return std::isfinite(x) && !std::isnan(acc) ? std::min(acc, x) : std::nan("");
 }
 
 inline void require_finite(const wb::Mat2X& m, const std::string& what) {

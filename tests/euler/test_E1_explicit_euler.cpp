@@ -172,8 +172,8 @@ TEST_CASE("E1 long run: 10^6 steps follow E_n = (1 + (h w)^2)^n E_0", "[euler][E
   const double E0 = oscillator_energy(r.x, r.v, m, k);
   Mat2X xs, vs;  // one call for the whole loop, its states every 1000 steps (euler_kernels.h)
   euler_oscillator_run(0, w, h, N, every, r.x, r.v, xs, vs);
-  check_long_run(explicit_euler_step, w, h, x0, v0, N, every, r.x, r.v, xs, vs,
-                 "explicit Euler, 10^6 steps", [&](long c, const Mat2X& x, const Mat2X& v) {
+  check_long_run(false, w, h, x0, v0, N, every, r.x, r.v, xs, vs, "explicit Euler, 10^6 steps",
+                 [&](long c, const Mat2X& x, const Mat2X& v) {
                    require_near(oscillator_energy(x, v, m, k) / E0,
                                 std::pow(1.0 + hw * hw, double(c * every)), 0.0,
                                 "explicit Euler energy E_n = (1 + (h w)^2)^n E_0", kLongRunTol);

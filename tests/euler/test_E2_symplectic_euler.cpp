@@ -89,7 +89,7 @@ TEST_CASE("E2 harmonic oscillator: modified energy conserved and energy bounded 
     // hence a quarter of the range).
     INFO("energy range max/min - 1 = " << Emax / Emin - 1.0 << ", predicted "
                                        << predicted_wobble(hw));
-    REQUIRE(Emax / Emin - 1.0 >= 0.25 * predicted_wobble(hw));
+    REQUIRE(wbtest::finite(Emax / Emin - 1.0) >= 0.25 * predicted_wobble(hw));
   }
 }
 
@@ -239,7 +239,7 @@ TEST_CASE("E2 eccentric orbit: angular momentum conserved and energy error does 
   INFO("largest |E - E0| in orbit 1: " << first << ", in orbit " << orbits << ": " << last);
   // No drift: the last orbit's error is no larger than the first's (50% margin
   // for where the samples fall on the orbit).
-  REQUIRE(last <= 1.5 * first);
+  REQUIRE(wbtest::finite(last) <= 1.5 * wbtest::finite(first));
 }
 
 TEST_CASE("E2 long run: 10^6 steps conserve the modified energy", "[euler][E2][2pts]") {
@@ -255,7 +255,7 @@ TEST_CASE("E2 long run: 10^6 steps conserve the modified energy", "[euler][E2][2
   // The loop, as one call (euler_kernels.h), its states every 97 steps.
   Mat2X xs, vs;
   euler_oscillator_run(1, w, h, N, every, r.x, r.v, xs, vs);
-  check_long_run(symplectic_euler_step, w, h, x0, v0, N, every, r.x, r.v, xs, vs,
+  check_long_run(true, w, h, x0, v0, N, every, r.x, r.v, xs, vs,
                  "semi-implicit Euler, 10^6 steps", [&](long, const Mat2X& x, const Mat2X& v) {
                    require_near(Q(x, v), Q0, 0.0, "the modified energy Q is conserved",
                                 kLongRunTol);
@@ -270,7 +270,7 @@ TEST_CASE("E2 long run: 10^6 steps conserve the modified energy", "[euler][E2][2
     Emax = wbtest::worst_of(Emax, E);
   }
   INFO("energy range max/min - 1 = " << Emax / Emin - 1.0);
-  REQUIRE(Emax / Emin - 1.0 >= 0.5 * predicted_wobble(hw));
+  REQUIRE(wbtest::finite(Emax / Emin - 1.0) >= 0.5 * predicted_wobble(hw));
 }
 
 TEST_CASE("E2 held-out: every step of random systems is v' = v + h a then x' = x + h v'",

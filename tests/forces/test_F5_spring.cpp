@@ -78,7 +78,7 @@ TEST_CASE("F5 spring: the spring force is minus the gradient of 1/2 k (L - rest)
   INFO("the test itself checked " << checked
                                   << " of its 6 springs, expected at least 3 (a broken fixture, "
                                      "not your code)");
-  REQUIRE(checked >= 3);
+  REQUIRE(checked >= 3);  // nanfree: integers
 }
 
 TEST_CASE("F5 spring: the damper acts only along the spring", "[forces][F5][3pts]") {

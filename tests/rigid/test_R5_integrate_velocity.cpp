@@ -111,7 +111,7 @@ TEST_CASE(
                  "explicit gyroscopic term: energy gain per step = h^2/2 (w x Iw).I^-1 (w x Iw)");
   }
   INFO("explicit: E0 = " << E0 << ", after 2000 steps E = " << spin_energy(b));
-  REQUIRE(spin_energy(b) > E0 * (1 + 1e-3));
+  REQUIRE(wbtest::finite(spin_energy(b)) > E0 * (1 + 1e-3));
 
   // Implicit: never a gain, over 2000 s (it loses some instead: the body drifts
   // towards its major axis), yet the body still spins after the first 20 s.
@@ -121,11 +121,11 @@ TEST_CASE(
     free_step(c, h, integrate_velocity_implicit);
     if (!(spin_energy(c) <= E * (1 + 1e-13))) {
       INFO("implicit step " << k << ": E before " << E << ", after " << spin_energy(c));
-      REQUIRE(spin_energy(c) <= E * (1 + 1e-13));
+      REQUIRE(wbtest::finite(spin_energy(c)) <= wbtest::finite(E) * (1 + 1e-13));
     }
     if (k == 1999) {
       INFO("implicit: E0 = " << E0 << ", after 20 s E = " << spin_energy(c));
-      REQUIRE(spin_energy(c) > 0.5 * E0);
+      REQUIRE(wbtest::finite(spin_energy(c)) > 0.5 * E0);
     }
   }
   // The same on a thin rod (inertia ratio 1:10^4) tumbling while it spins: the
@@ -141,12 +141,12 @@ TEST_CASE(
     if (!(spin_energy(rod_e) >= Ee * (1 - 1e-13) && spin_energy(rod_i) <= Ei * (1 + 1e-13))) {
       INFO("thin rod, step " << k << ": explicit E " << Ee << " -> " << spin_energy(rod_e)
                              << ", implicit E " << Ei << " -> " << spin_energy(rod_i));
-      REQUIRE(spin_energy(rod_e) >= Ee * (1 - 1e-13));
-      REQUIRE(spin_energy(rod_i) <= Ei * (1 + 1e-13));
+      REQUIRE(wbtest::finite(spin_energy(rod_e)) >= wbtest::finite(Ee) * (1 - 1e-13));
+      REQUIRE(wbtest::finite(spin_energy(rod_i)) <= wbtest::finite(Ei) * (1 + 1e-13));
     }
   }
   INFO("thin rod: E0 = " << rod_E0 << ", explicit after 10 s " << spin_energy(rod_e));
-  REQUIRE(spin_energy(rod_e) > rod_E0 * (1 + 1e-3));
+  REQUIRE(wbtest::finite(spin_energy(rod_e)) > rod_E0 * (1 + 1e-3));
 }
 
 TEST_CASE("R5 torque-free: angular momentum stays fixed in the world to first order in h",
@@ -168,12 +168,12 @@ TEST_CASE("R5 torque-free: angular momentum stays fixed in the world to first or
       }
       drift[i] = worst;
       INFO("h = " << h << ": max |L - L0| / |L0| over 10 s = " << worst);
-      REQUIRE(worst <= kLDriftPerH * h);
+      REQUIRE(wbtest::finite(worst) <= kLDriftPerH * h);
     }
     INFO("drift at h = 1e-3: " << drift[0] << ", at h = 5e-4: " << drift[1]
                                << ", expected a ratio near 2 (first order)");
-    REQUIRE(drift[0] / drift[1] >= 1.6);
-    REQUIRE(drift[0] / drift[1] <= 2.5);
+    REQUIRE(wbtest::finite(drift[0] / drift[1]) >= 1.6);
+    REQUIRE(wbtest::finite(drift[0] / drift[1]) <= 2.5);
   }
 }
 
@@ -229,11 +229,11 @@ TEST_CASE(
       INFO("largest perturbation " << max_perturbation << " (started at " << eps * std::sqrt(2.0)
                                    << "), smallest spin component " << min_spin);
       if (axis == 1) {
-        REQUIRE(max_perturbation > 0.5 * w);  // grew by a factor > 500
-        REQUIRE(min_spin < -0.5 * w);         // the spin flipped
+        REQUIRE(wbtest::finite(max_perturbation) > 0.5 * w);  // grew by a factor > 500
+        REQUIRE(wbtest::finite(min_spin) < -0.5 * w);         // the spin flipped
       } else {
-        REQUIRE(max_perturbation < 4.0 * eps);
-        REQUIRE(min_spin > 0.99 * w);
+        REQUIRE(wbtest::finite(max_perturbation) < 4.0 * eps);
+        REQUIRE(wbtest::finite(min_spin) > 0.99 * w);
       }
     }
   }

@@ -111,8 +111,8 @@ TEST_CASE("R7 drift correction: beta/h of the drift is removed and a long run st
     worst = wbtest::worst_of(worst, p.drift());
   }
   INFO("largest drift of the pin over 100 s: " << worst << " m");
-  REQUIRE(worst <= 4 * h * h * 30.0 * 0.5 / beta);
-  REQUIRE(p.b.x.norm() <= 0.5 + 1e-3);  // still hanging from the pin
+  REQUIRE(wbtest::finite(worst) <= 4 * h * h * 30.0 * 0.5 / beta);
+  REQUIRE(wbtest::finite(p.b.x.norm()) <= 0.5 + 1e-3);  // still hanging from the pin
 }
 
 namespace {
@@ -228,9 +228,9 @@ TEST_CASE("R7 revolute pendulum: period 2 pi sqrt(I_a / (m g d)) and the axis st
   }
   INFO("largest angle between the body's axis and the hinge axis "
        << worst_angle << " rad, largest drift of the pin " << worst_drift << " m over 10 s");
-  REQUIRE(worst_angle <= kAngleTol);
-  REQUIRE(worst_drift <= kAnchorTol);
-  REQUIRE(crossings.size() >= 4);
+  REQUIRE(wbtest::finite(worst_angle) <= kAngleTol);
+  REQUIRE(wbtest::finite(worst_drift) <= kAnchorTol);
+  REQUIRE(crossings.size() >= 4);  // nanfree: integers
   const double T = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
   require_near(T, T0, 0.0, "period about the hinge axis, I_a = I_c + m d^2", kPeriodTol);
 }

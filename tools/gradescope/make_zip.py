@@ -33,12 +33,14 @@ def labs_with_tests(root):
                   if os.path.isdir(os.path.join(tests, d)) and d not in ("common", "mutants"))
 
 
-def wanted(rel, lab):
-    # The lab's tests and probes, and its catalogue (the diagnosis' numbers), never the mutants
-    # nor the tools' own unit tests (tools/grader/tests/).
+def wanted(rel, labs):
+    # The labs' tests and probes, and their catalogues (the diagnosis' numbers), never the
+    # mutants nor the tools' own unit tests (tools/grader/tests/).
     if rel.startswith("tools/") and "/tests/" in rel:
         return False
-    for e in ENTRIES + [f"tests/{lab}", f"tests/mutants/{lab}/signatures.json"]:
+    labs = [labs] if isinstance(labs, str) else labs
+    for e in ENTRIES + [x for lab in labs for x in (f"tests/{lab}",
+                                                    f"tests/mutants/{lab}/signatures.json")]:
         if rel == e or rel.startswith(e + "/"):
             return True
     return False
@@ -54,8 +56,10 @@ def add(z, path, arcname):
 
 
 def build(lab, out, root=ROOT):
-    """Writes the zip of `lab` from the commit HEAD of the checkout `root`; returns the number
-    of files. ValueError (one line): an unknown lab, or no commit to make it from."""
+    """Writes the zip of `lab` (or of each lab of a list: the hostile suite grades the cases of
+    every lab in one zip, set up once; Gradescope gets one lab per assignment) from the commit
+    HEAD of the checkout `root`; returns the number of files. ValueError (one line): an unknown
+    lab, or no commit to make it from."""
     with tempfile.TemporaryDirectory(prefix="wb-zip-") as tmp:
         try:
             head = committed.export_head(root, os.path.join(tmp, "head"))
@@ -66,11 +70,13 @@ def build(lab, out, root=ROOT):
 
 def _build(lab, out, root):
     labs = labs_with_tests(root)
-    if lab not in labs:
-        raise ValueError(f"unknown lab '{lab}' (labs with tests: {', '.join(labs)})")
+    graded = [lab] if isinstance(lab, str) else list(lab)
+    for one in graded:
+        if one not in labs:
+            raise ValueError(f"unknown lab '{one}' (labs with tests: {', '.join(labs)})")
     every = sorted(os.path.relpath(os.path.join(d, n), root).replace(os.sep, "/")
                    for d, _, names in os.walk(root) for n in names)  # HEAD's files, exported
-    files = [p for p in every if wanted(p, lab) and os.path.isfile(os.path.join(root, p))
+    files = [p for p in every if wanted(p, graded) and os.path.isfile(os.path.join(root, p))
              and not os.path.islink(os.path.join(root, p))]
     tmp = out + ".tmp"
     with zipfile.ZipFile(tmp, "w") as z:

@@ -4,7 +4,8 @@ than its honest maximum, leaves a process or a file behind, leaks a planted
 secret, or changes anything outside its scratch build.
 
 Each case (tests/hostile/<case>/case.json) is the solution of a lab with one
-student file replaced by a hostile one. Its honest maximum is the lab's 100
+student file replaced by a hostile one, or ("generate") every file of the lab made for the
+case, for each lab it names ("labs"). Its honest maximum is the lab's 100
 points less those of the tests tagged with the tasks the hostile file touches
 ("touches"). Every case runs through Gradescope's run_autograder as
 submitted (screening on); a case with "no_screen": true runs a second time
@@ -123,7 +124,9 @@ def load_cases(names):
         with open(path, encoding="utf-8") as f:
             c = json.load(f)
         c["name"] = name
-        cases.append(c)
+        # A case of every lab ("labs"): one run per lab, the submission made for each.
+        for lab in c.pop("labs", None) or [c["lab"]]:
+            cases.append(dict(c, lab=lab))
     missing = set(names) - {c["name"] for c in cases}
     if missing:
         raise SystemExit(f"hostile: unknown case {', '.join(sorted(missing))} (tests/hostile/)")
@@ -131,17 +134,20 @@ def load_cases(names):
 
 
 class Run:
-    def __init__(self, scratch, lab):
-        self.scratch, self.lab = scratch, lab
+    def __init__(self, scratch, labs):
+        self.scratch, self.labs = scratch, labs
         self.ag = os.path.join(scratch, "autograder")
         self.token = secrets.token_hex(8)  # what a leak must not show, in any part
         self.secret = "wb-secret-" + self.token
 
     def setup(self):
-        """The zip of `tools/pack --gradescope LAB`, unpacked and set up as on Gradescope."""
-        zip_path = os.path.join(self.scratch, f"{self.lab}-autograder.zip")
-        subprocess.run([os.path.join(REPO, "tools", "pack"), "--gradescope", self.lab,
-                        "--out", zip_path], check=True, stdout=subprocess.DEVNULL)
+        """The zip `tools/pack --gradescope LAB` builds (tools/gradescope/make_zip.py), of every
+        lab the cases need (one set-up for all: each lab's zip alone set up its own build),
+        unpacked and set up as on Gradescope."""
+        zip_path = os.path.join(self.scratch, "autograder.zip")
+        sys.path.insert(0, os.path.join(REPO, "tools", "gradescope"))
+        import make_zip
+        make_zip.build(self.labs, zip_path, REPO)
         src = os.path.join(self.ag, "source")
         if os.path.isdir(src):
             shutil.rmtree(src)
@@ -167,9 +173,9 @@ class Run:
             raise SystemExit("hostile: setup.sh of the autograder zip failed")
         log(f"hostile: autograder zip built and set up in {time.monotonic() - t0:.0f} s")
 
-    def honest_max(self, touches):
+    def honest_max(self, lab, touches):
         with open(os.path.join(self.ag, "grade-build", "tests.json"), encoding="utf-8") as f:
-            tests = json.load(f)["labs"][self.lab]
+            tests = json.load(f)["labs"][lab]
         return sum(t["points"] for t in tests
                    if not any(f"[{task}]".lower() == tag.lower() for task in touches
                               for tag in t["tags"]))
@@ -179,6 +185,12 @@ class Run:
         if os.path.lexists(sub):
             shutil.rmtree(sub)
         os.makedirs(sub)
+        if case.get("generate"):  # every file of the lab made for the case (nonfinite.py)
+            from wbtools import nonfinite
+            for name, text in nonfinite.submission(REPO, case["lab"], case["generate"]).items():
+                with open(os.path.join(sub, name), "w", encoding="utf-8") as f:
+                    f.write(text)
+            return
         sol = os.path.join(REPO, "solutions", case["lab"])
         for f in sorted(os.listdir(sol)):
             shutil.copy(os.path.join(sol, f), os.path.join(sub, f))
@@ -375,15 +387,15 @@ def main(argv):
     # it; the planted secret's folder stays private.
     os.chmod(scratch, 0o711)
     try:
+        run = Run(scratch, labs)
+        run.setup()
         for lab in labs:
-            run = Run(scratch, lab)
-            run.setup()
             for case in (c for c in cases if c["lab"] == lab):
                 modes = [False] + ([True] if case.get("no_screen") and not args.screen_only else [])
                 for no_screen in modes:
                     t1 = time.monotonic()
                     score, reasons, problems = run.run_case(case, no_screen)
-                    limit = min(run.honest_max(case["touches"]), case.get("honest_max", 100))
+                    limit = min(run.honest_max(lab, case["touches"]), case.get("honest_max", 100))
                     if score is not None and score > limit:
                         problems.append(f"scored {score}, more than the honest {limit}")
                     how = reasons[0] if reasons else ""
@@ -392,16 +404,19 @@ def main(argv):
                     bad += not ok
                     layer = case.get("stopped_by", "").split(" | ")
                     layer = layer[-1] if no_screen else layer[0]
-                    rows.append((case["name"], mode, score, limit, "held" if ok else "GOT THROUGH",
+                    rows.append((case["name"] if case["lab"] == "euler" else
+                                 f"{case['name']} ({lab})", mode, score, limit,
+                                 "held" if ok else "GOT THROUGH",
                                  layer, problems))
-                    log(f"hostile: {case['name']} ({mode}): {score}/{limit} "
+                    log(f"hostile: {case['name']} ({lab}, {mode}): {score}/{limit} "
                         f"{'held' if ok else 'GOT THROUGH'} in {time.monotonic() - t1:.0f} s: "
                         f"{how[:110]}")
                     for p in problems:
                         log(f"    problem: {p}")
-            if not args.case:
+            loop = [c for c in cases if c["name"] == "infinite-loop" and c["lab"] == lab]
+            if not args.case and loop:
                 t1 = time.monotonic()
-                problems = kill_grader(run, next(c for c in cases if c["name"] == "infinite-loop"))
+                problems = kill_grader(run, loop[0])
                 bad += bool(problems)
                 rows.append(("(grader SIGKILLed)", "as submitted", None, 0,
                              "GOT THROUGH" if problems else "held",
@@ -417,9 +432,9 @@ def main(argv):
         else:
             shutil.rmtree(scratch, ignore_errors=True)
     print()
-    print(f"{'case':<24} {'run':<13} {'score':>5} {'max':>4}  verdict      designed to be stopped by")
+    print(f"{'case':<30} {'run':<13} {'score':>5} {'max':>4}  verdict      designed to be stopped by")
     for name, mode, score, limit, verdict, how, _ in rows:
-        print(f"{name:<24} {mode:<13} {score if score is not None else '-':>5} {limit:>4}  "
+        print(f"{name:<30} {mode:<13} {score if score is not None else '-':>5} {limit:>4}  "
               f"{verdict:<12} {how[:90]}")
     print(f"\nhostile: {len(rows) - bad} of {len(rows)} runs held, in {time.monotonic() - t0:.0f} s")
     return 1 if bad else 0

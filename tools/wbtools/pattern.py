@@ -17,9 +17,11 @@ tests/<lab>/), so a new lab is checked without anyone remembering it:
             (<!-- not-a-claim: ... -->)
   asserts   every REQUIRE/CHECK in tests/<lab>/*.cpp carries words a student can act on: a
             wbtest::require_* helper with a message, or an INFO/CAPTURE in scope before it
-  nanfree   no comparison in tests/<lab>/ can be passed by a NaN: no maxCoeff()/minCoeff()
-            compared with a tolerance or inside an assertion (wbtest::max_abs_diff, max_abs),
-            no running maximum or minimum by std::max/std::min (wbtest::worst_of, least_of);
+  nanfree   no comparison in tests/<lab>/ can be passed by a NaN or an infinity: no
+            maxCoeff()/minCoeff() compared with a tolerance or inside an assertion
+            (wbtest::max_abs_diff, max_abs), no running maximum or minimum by std::max/std::min
+            (wbtest::worst_of, least_of), no ordering comparison of raw values in an assertion
+            (wbtest::finite, or '// nanfree: integers' when every side is an integer);
             and every task has a [held-out] test (tests/common/heldout.h)
   answers   no provided source of the pack of all labs computes what a task's solution
             computes (tools/wbtools/answers.py: the fast path ships compiled only)
@@ -479,6 +481,13 @@ NAN_COMPARE = re.compile(r"\.(max|min)Coeff\([^()]*\)\s*" + _CMP + "|" + _CMP +
 NAN_ACCUMULATE = re.compile(r"\b(\w+)\s*=\s*std::(max|min)\(\s*\1\s*,")
 
 
+# Ordering comparisons (and !=) inside an assertion; template arguments blanked first.
+ORDERING = re.compile(r"<=|>=|!=|(?<![<>-])[<>](?![<>=])")
+TEMPLATE_ARGS = re.compile(r"\b\w+\s*<[\w:,\s]*>")
+# The helpers that turn a value that is not finite into NaN, which fails every comparison.
+NAN_STICKY = re.compile(r"\b(finite|max_abs_diff|max_abs|worst_of|least_of)\s*\(")
+
+
 def lint_nanfree(path):
     with open(path, encoding="utf-8") as f:
         raw = f.read()
@@ -498,6 +507,24 @@ def lint_nanfree(path):
             findings.append((raw.count("\n", 0, m.start()) + 1,
                              "a maxCoeff()/minCoeff() inside an assertion: use "
                              "wbtest::max_abs_diff or wbtest::max_abs (NaN-safe)"))
+    for m in ASSERT.finditer(src):  # an ordering comparison lets one infinity through
+        depth, i = 1, m.end()
+        while i < len(src) and depth:
+            depth += {"(": 1, ")": -1}.get(src[i], 0)
+            i += 1
+        body = re.sub(TEMPLATE_ARGS, "T", src[m.end():i - 1])
+        if not ORDERING.search(body) or NAN_STICKY.search(body):
+            continue
+        end = raw.find("\n", i)
+        if re.search(r"//\s*nanfree:\s*\S", raw[m.start():end if end >= 0 else len(raw)]):
+            continue  # a reason given (integers, values the test computed itself)
+        findings.append((raw.count("\n", 0, m.start()) + 1,
+                         "an ordering comparison (<, <=, >, >=, !=) of raw values inside an "
+                         "assertion: +inf passes '> bound', -inf passes '< bound', NaN passes "
+                         "'!='; wrap the value that came from the lab's code in "
+                         "wbtest::finite(...) (NaN unless finite), or compare through "
+                         "max_abs_diff, max_abs, worst_of, least_of; if every side is an "
+                         "integer or the test's own, say so: '// nanfree: integers'"))
     for m in NAN_ACCUMULATE.finditer(src):
         findings.append((raw.count("\n", 0, m.start()) + 1,
                          f"a running {m.group(2)}imum by std::{m.group(2)}: a NaN is dropped "
@@ -524,6 +551,8 @@ def stage_nanfree(build, out, verbose):
         findings += [f"tests/{lab}/: task {t} has no test tagged [held-out]: its points could be "
                      "earned by replaying the public tests' answers (tests/common/heldout.h, "
                      "docs/grading.md \"Held-out checks\")" for t in sorted(tasks - held)]
+    for path in sorted(glob.glob(os.path.join(ROOT, "tests", "common", "*.h"))):
+        findings += [f"{rel(path)}:{line}: {what}" for line, what in lint_nanfree(path)]
     return findings
 
 

@@ -13,7 +13,6 @@
 #include "plane_contact.h"
 #include "wb/budget.h"
 #include "wb/run.h"
-#include "world_inertia.h"
 
 namespace rigid {
 
@@ -525,26 +524,29 @@ namespace {
 // each point's penetration. After the position update the body is moved by h vp and
 // turned by h wp, omega turned with it (step): the push moves the body out and changes
 // neither its velocities nor its kinetic energy.
+// The impulses are the lab's own (R6): the pseudo-velocity is a copy of the body moving at
+// (vp, wp), each contact a copy of the one the lab prepared (its r, K and mass_n) with no
+// totals and the push as its target, given to the lab's solve_contact without friction.
 void push_out(const Body& b, const std::vector<Contact>& contacts,
               const std::vector<double>& depth, const Vec3& n, double h, int iterations, Vec3& vp,
               Vec3& wp) {
-  // The lab's own world inverse inertia (R2), and each contact's effective mass along n as
-  // the lab's prepare_contact (R6) left it in the contact.
-  const Mat3 I_inv = world_inverse_inertia(b.q.toRotationMatrix(), b.I_body);
-  std::vector<double> total(contacts.size(), 0.0);
-  for (int it = 0; it < iterations; ++it) {
-    for (std::size_t k = 0; k < contacts.size(); ++k) {
-      if (!(depth[k] > 0)) continue;
-      const Vec3& r = contacts[k].r;
-      const double inv_mass = 1.0 / contacts[k].mass_n;
-      const double un = (vp + wp.cross(r)).dot(n);
-      const double next = std::max(total[k] + (kPushBeta / h * depth[k] - un) / inv_mass, 0.0);
-      const Vec3 J = (next - total[k]) * n;
-      total[k] = next;
-      vp += J / b.m;
-      wp += I_inv * r.cross(J);
-    }
+  Body pseudo = b;
+  pseudo.v = vp;
+  pseudo.omega = wp;
+  std::vector<Contact> push;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    if (!(depth[k] > 0)) continue;
+    Contact c = contacts[k];
+    c.Pn = 0;
+    c.Pt.setZero();
+    c.bias = kPushBeta / h * depth[k];
+    push.push_back(c);
   }
+  for (int it = 0; it < iterations; ++it) {
+    for (Contact& c : push) solve_contact(pseudo, c, n, 0.0);
+  }
+  vp = pseudo.v;
+  wp = pseudo.omega;
 }
 
 }  // namespace

@@ -4,11 +4,10 @@
 // (docs/grading.md "Batching"). In an ordinary build it is a plain function.
 //
 // It runs beside student code: in the grader everything it returns comes from the worker and
-// is hostile. So it returns the states it passed through (checkpoints), and the tests compute
-// what they judge (energies) from those on their own side, after replaying a few segments,
-// chosen at random after the run, through the lab's step called one step at a time
-// (wbtest::check_segments, tests/common/heldout.h): a run that skipped steps or made up its
-// states fails there.
+// is hostile. So it returns the states it passed through (checkpoints), and the tests check
+// every segment between two checkpoints with steps of the method they take themselves
+// (eulertest::check_long_run, euler_test_helpers.h), then compute what they judge (energies)
+// from those on their own side: a run that skipped steps or made up its states fails there.
 #pragma once
 #include "wb/types.h"
 

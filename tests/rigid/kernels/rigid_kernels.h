@@ -4,10 +4,9 @@
 // (docs/grading.md "Batching"). In an ordinary build it is a plain function.
 //
 // It runs beside student code: in the grader what it returns comes from the worker and is
-// hostile. So it also returns the body every `every` steps (checkpoints), and the test replays
-// a few segments chosen at random after the run with the lab's integrate_position called one
-// step at a time (wbtest::check_segments, tests/common/heldout.h): a run that skipped steps or
-// made up its result fails there.
+// hostile. So it also returns the body every `every` steps (checkpoints), and the test checks
+// every segment between two checkpoints with the header's update taken by the test itself
+// (test_R4_integrate_position.cpp): a run that skipped steps or made up its result fails there.
 #pragma once
 #include <vector>
 

@@ -134,3 +134,40 @@ def test_run_again_finds_a_variant_judged_differently():
     assert mutants.flaky_verdict([diff]).startswith(
         "FLAKY: judged differently when run again (1 test(s)), e.g. 't1': first failed: "
         "'expected # got nan', then passed")
+
+
+def test_a_mistake_that_loses_fewer_than_three_points_fails():
+    """Defect (issue 46): a mistake caught by one small public test while its task's held-out
+    check misses it loses 1 or 2 points: the check passed it as caught."""
+    row = mutants.Row("euler", "m.patch", "< 100")
+    results = [("E1 one step", ["[E1]"], False, "expected 1 got 2"), ("E1 other", ["[E1]"], True, "")]
+    mutants.judge(row, ("", 98, 100, results), "< 100", ["hint: h", "caught-by: [E1]"])
+    assert row.verdict.startswith("LOSES ONLY 2 POINTS") and not row.ok
+    row = mutants.Row("euler", "m.patch", "< 100")
+    mutants.judge(row, ("", 80, 100, results), "< 100", ["hint: h", "caught-by: [E1]"])
+    assert row.ok and "loses 20" in row.verdict
+
+
+def info(seed):
+    return f"<Info>held-out inputs of E1 from seed {seed:#x} (replay: ...)</Info>"
+
+
+def test_caught_seeds_reads_each_failure_seed():
+    """Defect (issue 42): the held-out measurement counted a mutant caught when one seed of
+    many caught it; each seed must be counted (GENERATE runs the test once per seed)."""
+    report = ("<TestCase name='E1 held-out'>" + info(11) + "<Expression success=\"false\">" +
+              info(13) + "<Exception>boom</Exception>" + "<OverallResult success=\"false\"/>")
+    assert mutants.caught_seeds(report, 10, 5) == ({11, 13}, None)
+    assert mutants.caught_seeds("<OverallResult success=\"true\"/>", 10, 5) == (set(), None)
+
+
+def test_caught_seeds_a_failure_before_the_seed_loop_fails_every_seed():
+    """Defect: a failure that names no seed (a check before the loop over seeds) read as
+    catching none."""
+    assert mutants.caught_seeds("<Expression success=\"false\">", 10, 3) == ({10, 11, 12}, None)
+
+
+def test_caught_seeds_a_crash_names_where_to_go_on():
+    """Defect: a crash on one seed ends the process; the seeds after it were never tried."""
+    report = info(7) + "<Expression success=\"false\">" + info(8) + "<FatalErrorCondition>"
+    assert mutants.caught_seeds(report, 5, 10) == ({7, 8}, 8)

@@ -207,3 +207,39 @@ def test_points_lists_are_the_tests_tags_held_out_included():
 def test_every_handout_lists_its_tests_points():
     """The repository's handouts agree with their tests' tags (tools/pattern points)."""
     assert pattern.stage_points(None, None, False) == []
+
+
+# nanfree: a comparison an infinity or a NaN passes (docs/grading.md, "Every value from the
+# worker is hostile").
+
+def nanfree_findings(tmp_path, body):
+    p = tmp_path / "test_F5_spring.cpp"
+    p.write_text(body)
+    return pattern.lint_nanfree(str(p))
+
+
+@pytest.mark.parametrize("assertion", [
+    "REQUIRE(energy > E0);",            # +inf passes
+    "REQUIRE(turn * omega < 0);",       # -inf passes
+    "CHECK(x != x0);",                  # NaN passes
+    "REQUIRE(static_cast<double>(r) >= 1.0);",
+])
+def test_an_ordering_comparison_of_raw_values_is_refused(tmp_path, assertion):
+    """Defect: a submission returning +inf (or -inf, or NaN) passes an assertion that orders
+    a raw value against a bound (issue 42: a forces submission of infinities scored 66)."""
+    out = nanfree_findings(tmp_path, f'TEST_CASE("F5 x", "[F5]") {{\n  {assertion}\n}}\n')
+    assert len(out) == 1 and out[0][0] == 2 and "wbtest::finite" in out[0][1]
+
+
+@pytest.mark.parametrize("assertion", [
+    "REQUIRE(wbtest::finite(energy) > E0);",
+    "REQUIRE(wbtest::max_abs_diff(a, b) <= tol);",
+    "REQUIRE(wbtest::worst_of(w, x) < 1);",
+    "REQUIRE(k < A.nonZeros());  // nanfree: integers",
+    "REQUIRE(near(a, b, 1e-9));",
+    "REQUIRE(std::vector<int>(3).size() == 3);",
+])
+def test_guarded_or_explained_comparisons_pass(tmp_path, assertion):
+    """Defect: the check refuses a comparison that no infinity can pass (a check that fails
+    right code), or one whose sides are all integers and says so."""
+    assert nanfree_findings(tmp_path, f'TEST_CASE("F5 x", "[F5]") {{\n  {assertion}\n}}\n') == []
