@@ -61,25 +61,6 @@ void append_stats_row(std::string& buf, long step, double t, const Totals& s) {
   buf += '\n';
 }
 
-// The floor of the run's energy scale (wb::energy_scale): the work gravity
-// and the point forces would do across the scene, sum of (m |g| + |F|) times
-// the scene size (the extent of the centres or their largest distance from
-// the origin; 1 m when both are 0).
-double work_scale(const Scene& scene, const std::vector<Body>& bodies) {
-  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
-  double far = 0, force = 0;
-  for (const Body& b : bodies) {
-    lo = lo.cwiseMin(b.x);
-    hi = hi.cwiseMax(b.x);
-    far = std::max(far, b.x.norm());
-    force += b.m * scene.g.norm();
-  }
-  for (const PointForce& f : scene.point_forces) force += f.F.norm();
-  double S = bodies.empty() ? 0.0 : std::max((hi - lo).norm(), far);
-  if (!(std::isfinite(S) && S > 0)) S = 1.0;
-  return std::isfinite(force * S) ? force * S : 0.0;
-}
-
 ordered_json vec_json(const Vec3& v) {
   auto n = [](double x) { return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr); };
   return {n(v.x()), n(v.y()), n(v.z())};

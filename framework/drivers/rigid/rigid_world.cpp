@@ -595,6 +595,21 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
   return drift;
 }
 
+double work_scale(const Scene& scene, const std::vector<Body>& bodies) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
+  double far = 0, force = 0;
+  for (const Body& b : bodies) {
+    lo = lo.cwiseMin(b.x);
+    hi = hi.cwiseMax(b.x);
+    far = std::max(far, b.x.norm());
+    force += b.m * scene.g.norm();
+  }
+  for (const PointForce& f : scene.point_forces) force += f.F.norm();
+  double S = bodies.empty() ? 0.0 : std::max((hi - lo).norm(), far);
+  if (!(std::isfinite(S) && S > 0)) S = 1.0;
+  return std::isfinite(force * S) ? force * S : 0.0;
+}
+
 Totals totals(const Scene& scene, const std::vector<Body>& bodies) {
   Totals t;
   for (const Body& b : bodies) {

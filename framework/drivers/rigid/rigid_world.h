@@ -133,6 +133,11 @@ struct Totals {
 };
 Totals totals(const Scene& scene, const std::vector<Body>& bodies);
 
+// The floor of a run's energy scale (wb::energy_scale): the work gravity and the point
+// forces would do across the scene, sum of (m |g| + |F|) times the scene size (the
+// extent of the centres or their largest distance from the origin; 1 m when both are 0).
+double work_scale(const Scene& scene, const std::vector<Body>& bodies);
+
 // The contact candidates of a body against a plane (world points).
 std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane& plane);
 

@@ -1,4 +1,4 @@
-// tools/view's page, part 4 of 5: the curves against time, with the playhead's cursor.
+// tools/view's page, part 5 of 6: the curves against time, with the playhead's cursor.
 // ---------------------------------------------------------------- charts
 const charts = [];
 function Chart(title, series, opts) {

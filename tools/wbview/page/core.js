@@ -1,4 +1,4 @@
-// tools/view's page, part 1 of 5 (page.py joins them in one function, in this order):
+// tools/view's page, part 2 of 6 (page.py joins them in one function, in this order):
 // the data, the state, formatting, the page's text and the canvas helpers.
 const T0 = performance.now();
 const META = JSON.parse(document.getElementById("wb-meta").textContent);
@@ -188,10 +188,4 @@ function resize() {
 function gridLabel(v, step) {  // a grid label: multiples of the step, without rounding noise
   const k = Math.round(v / step);
   return fmt(k * step, Math.max(1, Math.ceil(Math.log10(Math.abs(k) + 1)) + 2));
-}
-function niceStep(span, target) {  // a 1-2-5 step giving about `target` intervals
-  const raw = span / Math.max(target, 1);
-  const p = Math.pow(10, Math.floor(Math.log10(raw)));
-  const m = raw / p;
-  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
 }

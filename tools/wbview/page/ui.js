@@ -1,4 +1,4 @@
-// tools/view's page, part 5 of 5: the frame budget, the picked particle, the playhead,
+// tools/view's page, part 6 of 6: the frame budget, the picked particle, the playhead,
 // playing, the controls, the test hooks and the start.
 // ---------------------------------------------------------------- budget and inspector
 function budget() {

@@ -1,4 +1,4 @@
-// tools/view's page, part 2 of 5: the particle labs' view, in 2D.
+// tools/view's page, part 3 of 6: the particle labs' view, in 2D.
 // ---------------------------------------------------------------- 2D view
 function fit2(frameOnly) {
   let lo, hi;
@@ -187,22 +187,6 @@ function drawParticles2(run, k, fill, hollow) {  // N <= MANY: anti-aliased disc
 // path of 10^4 arcs takes tens of milliseconds in a software canvas, stamping about one.
 const MANY = 1000;
 let BG = null, BUF = null;
-const STAMPS = {};
-function stampOffsets(R, ring) {
-  const key = R + (ring ? "r" : "d");
-  if (STAMPS[key]) return STAMPS[key];
-  const out = [];
-  for (let dy = -R - 1; dy <= R + 1; dy++) for (let dx = -R - 1; dx <= R + 1; dx++) {
-    const d2 = dx * dx + dy * dy;
-    const inRing = d2 <= (R + 0.5) * (R + 0.5) && d2 >= (R - 1) * (R - 1);
-    if (ring ? inRing : d2 <= R * R + 0.8 * R) out.push(dx, dy);
-  }
-  return (STAMPS[key] = new Int32Array(out));
-}
-function rgba32(hex) {  // ImageData's bytes R, G, B, A as one little-endian word
-  const v = parseInt(hex.slice(1), 16);
-  return ((255 << 24) | ((v & 255) << 16) | (v & 0xff00) | ((v >> 16) & 255)) >>> 0;
-}
 function background2() {
   const v = S.view2;
   const key = [W, H, DPR, v.cx, v.cy, v.s].join();

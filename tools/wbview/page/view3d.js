@@ -1,13 +1,6 @@
-// tools/view's page, part 3 of 5: the rigid lab's view, in 3D (flat-shaded faces, far to
+// tools/view's page, part 4 of 6: the rigid lab's view, in 3D (flat-shaded faces, far to
 // near).
 // ---------------------------------------------------------------- 3D view
-function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
-function add3(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
-function mul3(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
-function dot3(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-function cross3(a, b) {
-  return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-}
 function pathThrough(pts) {  // a closed path through screen points [x, y, ...]
   pts.forEach(function (p, j) {
     if (j === 0) ctx.moveTo(p[0], p[1]); else ctx.lineTo(p[0], p[1]);
@@ -16,25 +9,6 @@ function pathThrough(pts) {  // a closed path through screen points [x, y, ...]
 }
 function fillDot(c, r) {  // a filled dot of radius r at screen point c
   ctx.beginPath(); ctx.arc(c[0], c[1], r, 0, 2 * Math.PI); ctx.fill();
-}
-function norm3(a) { const n = Math.hypot(a[0], a[1], a[2]); return n > 0 ? mul3(a, 1 / n) : a; }
-function rot(q) {  // rotation matrix (rows) of a quaternion [w, x, y, z], normalised
-  const n = Math.hypot(q[0], q[1], q[2], q[3]);
-  if (!(n > 0) || !isFinite(n)) return null;
-  const w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
-  return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]];
-}
-function apply(R, p) {
-  return [R[0][0] * p[0] + R[0][1] * p[1] + R[0][2] * p[2],
-    R[1][0] * p[0] + R[1][1] * p[1] + R[1][2] * p[2],
-    R[2][0] * p[0] + R[2][1] * p[1] + R[2][2] * p[2]];
-}
-function applyT(R, p) {
-  return [R[0][0] * p[0] + R[1][0] * p[1] + R[2][0] * p[2],
-    R[0][1] * p[0] + R[1][1] * p[1] + R[2][1] * p[2],
-    R[0][2] * p[0] + R[1][2] * p[1] + R[2][2] * p[2]];
 }
 function pose(run, k, i) {
   const x = [value(run, k, i, 0), value(run, k, i, 1), value(run, k, i, 2)];
@@ -104,50 +78,8 @@ function project(cam, p) {
   if (!(z > 1e-6 * cam.F / 1000 + 1e-9)) return null;
   return [W / 2 + cam.F * dot3(d, cam.r) / z, H / 2 - cam.F * dot3(d, cam.u) / z, z];
 }
-function shade(hex, k) {
-  const v = parseInt(hex.slice(1), 16);
-  const r = (v >> 16) & 255, g = (v >> 8) & 255, b = v & 255;
-  const c = function (x) { return Math.min(255, Math.round(x * k)); };
-  return "rgb(" + c(r) + "," + c(g) + "," + c(b) + ")";
-}
-function boxCorners(size) {
-  const out = [];
-  for (let k = 0; k < 8; k++) {  // bit 0: x, bit 1: y, bit 2: z (set: +), as the lab's
-    out.push([(k & 1 ? 0.5 : -0.5) * size[0], (k & 2 ? 0.5 : -0.5) * size[1],
-      (k & 4 ? 0.5 : -0.5) * size[2]]);
-  }
-  return out;
-}
-const BOX_FACES = [  // corners (counter-clockwise seen from outside) and the outward normal
-  [[0, 2, 6, 4], [-1, 0, 0]], [[1, 5, 7, 3], [1, 0, 0]], [[0, 4, 5, 1], [0, -1, 0]],
-  [[2, 3, 7, 6], [0, 1, 0]], [[0, 1, 3, 2], [0, 0, -1]], [[4, 6, 7, 5], [0, 0, 1]]];
-const CYL_N = 24;
 function bodyFaces(i, P) {  // [{pts: world points, n: world normal}]
-  const s = SCENE ? SCENE.shapes[i] : null;
-  const faces = [];
-  const W_ = function (p) { return add3(P.x, apply(P.R, p)); };
-  if (s && s.shape === "box") {
-    const c = boxCorners(s.size).map(W_);
-    BOX_FACES.forEach(function (f) {
-      faces.push({ pts: f[0].map(function (j) { return c[j]; }), n: apply(P.R, f[1]) });
-    });
-  } else if (s && s.shape === "cylinder") {
-    const h = s.length / 2, r = s.radius;
-    const top = [], bot = [];
-    for (let k = 0; k < CYL_N; k++) {
-      const a = 2 * Math.PI * k / CYL_N;
-      top.push(W_([r * Math.cos(a), r * Math.sin(a), h]));
-      bot.push(W_([r * Math.cos(a), r * Math.sin(a), -h]));
-    }
-    for (let k = 0; k < CYL_N; k++) {
-      const k1 = (k + 1) % CYL_N, a = 2 * Math.PI * (k + 0.5) / CYL_N;
-      faces.push({ pts: [bot[k], bot[k1], top[k1], top[k]],
-        n: apply(P.R, [Math.cos(a), Math.sin(a), 0]), seam: true });
-    }
-    faces.push({ pts: top.slice().reverse(), n: apply(P.R, [0, 0, 1]) });
-    faces.push({ pts: bot, n: apply(P.R, [0, 0, -1]) });
-  }
-  return faces;
+  return shapeFaces(SCENE ? SCENE.shapes[i] : null, P);
 }
 function contactPoints(i, P) {  // the rigid lab's candidates (framework/drivers/rigid)
   const s = SCENE.shapes[i], out = [];

@@ -1,0 +1,94 @@
+// tools/view's page, part 1 of 6, shared with the live pages (tools/wblive): pure
+// helpers with no state: 3-vectors, rotations, shapes' faces, colours, pixel stamps.
+function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
+function add3(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
+function mul3(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
+function dot3(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+function cross3(a, b) {
+  return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+}
+function norm3(a) { const n = Math.hypot(a[0], a[1], a[2]); return n > 0 ? mul3(a, 1 / n) : a; }
+function rot(q) {  // rotation matrix (rows) of a quaternion [w, x, y, z], normalised
+  const n = Math.hypot(q[0], q[1], q[2], q[3]);
+  if (!(n > 0) || !isFinite(n)) return null;
+  const w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+  return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]];
+}
+function apply(R, p) {
+  return [R[0][0] * p[0] + R[0][1] * p[1] + R[0][2] * p[2],
+    R[1][0] * p[0] + R[1][1] * p[1] + R[1][2] * p[2],
+    R[2][0] * p[0] + R[2][1] * p[1] + R[2][2] * p[2]];
+}
+function applyT(R, p) {
+  return [R[0][0] * p[0] + R[1][0] * p[1] + R[2][0] * p[2],
+    R[0][1] * p[0] + R[1][1] * p[1] + R[2][1] * p[2],
+    R[0][2] * p[0] + R[1][2] * p[1] + R[2][2] * p[2]];
+}
+function shade(hex, k) {
+  const v = parseInt(hex.slice(1), 16);
+  const r = (v >> 16) & 255, g = (v >> 8) & 255, b = v & 255;
+  const c = function (x) { return Math.min(255, Math.round(x * k)); };
+  return "rgb(" + c(r) + "," + c(g) + "," + c(b) + ")";
+}
+function boxCorners(size) {
+  const out = [];
+  for (let k = 0; k < 8; k++) {  // bit 0: x, bit 1: y, bit 2: z (set: +), as the lab's
+    out.push([(k & 1 ? 0.5 : -0.5) * size[0], (k & 2 ? 0.5 : -0.5) * size[1],
+      (k & 4 ? 0.5 : -0.5) * size[2]]);
+  }
+  return out;
+}
+const BOX_FACES = [  // corners (counter-clockwise seen from outside) and the outward normal
+  [[0, 2, 6, 4], [-1, 0, 0]], [[1, 5, 7, 3], [1, 0, 0]], [[0, 4, 5, 1], [0, -1, 0]],
+  [[2, 3, 7, 6], [0, 1, 0]], [[0, 1, 3, 2], [0, 0, -1]], [[4, 6, 7, 5], [0, 0, 1]]];
+const CYL_N = 24;
+function shapeFaces(s, P) {  // [{pts: world points, n: world normal}] of shape s at pose P
+  const faces = [];
+  const W_ = function (p) { return add3(P.x, apply(P.R, p)); };
+  if (s && s.shape === "box") {
+    const c = boxCorners(s.size).map(W_);
+    BOX_FACES.forEach(function (f) {
+      faces.push({ pts: f[0].map(function (j) { return c[j]; }), n: apply(P.R, f[1]) });
+    });
+  } else if (s && s.shape === "cylinder") {
+    const h = s.length / 2, r = s.radius;
+    const top = [], bot = [];
+    for (let k = 0; k < CYL_N; k++) {
+      const a = 2 * Math.PI * k / CYL_N;
+      top.push(W_([r * Math.cos(a), r * Math.sin(a), h]));
+      bot.push(W_([r * Math.cos(a), r * Math.sin(a), -h]));
+    }
+    for (let k = 0; k < CYL_N; k++) {
+      const k1 = (k + 1) % CYL_N, a = 2 * Math.PI * (k + 0.5) / CYL_N;
+      faces.push({ pts: [bot[k], bot[k1], top[k1], top[k]],
+        n: apply(P.R, [Math.cos(a), Math.sin(a), 0]), seam: true });
+    }
+    faces.push({ pts: top.slice().reverse(), n: apply(P.R, [0, 0, 1]) });
+    faces.push({ pts: bot, n: apply(P.R, [0, 0, -1]) });
+  }
+  return faces;
+}
+const STAMPS = {};
+function stampOffsets(R, ring) {
+  const key = R + (ring ? "r" : "d");
+  if (STAMPS[key]) return STAMPS[key];
+  const out = [];
+  for (let dy = -R - 1; dy <= R + 1; dy++) for (let dx = -R - 1; dx <= R + 1; dx++) {
+    const d2 = dx * dx + dy * dy;
+    const inRing = d2 <= (R + 0.5) * (R + 0.5) && d2 >= (R - 1) * (R - 1);
+    if (ring ? inRing : d2 <= R * R + 0.8 * R) out.push(dx, dy);
+  }
+  return (STAMPS[key] = new Int32Array(out));
+}
+function rgba32(hex) {  // ImageData's bytes R, G, B, A as one little-endian word
+  const v = parseInt(hex.slice(1), 16);
+  return ((255 << 24) | ((v & 255) << 16) | (v & 0xff00) | ((v >> 16) & 255)) >>> 0;
+}
+function niceStep(span, target) {  // a 1-2-5 step giving about `target` intervals
+  const raw = span / Math.max(target, 1);
+  const p = Math.pow(10, Math.floor(Math.log10(raw)));
+  const m = raw / p;
+  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
+}
