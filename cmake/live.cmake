@@ -40,11 +40,22 @@ include(cmake/prebuilt.cmake)
 set(WB_USE_PREBUILT FALSE)
 set(WB_TESTS OFF)
 add_compile_options(-Wall -Wextra)
-# C++ exceptions carry a bad scene or knob to the page as a message (InputError).
-add_compile_options(-fexceptions)
+# C++ exceptions carry a bad scene, a refused knob or a work overrun to the page as a
+# message (wb::InputError). Emscripten's exceptions are JavaScript's: a function compiled
+# to catch them calls every callee through JavaScript, which would make the step several
+# times slower. So only the files that catch are compiled to (the page's entry points,
+# and the JSON reader, which words the parser's errors); a throw from any other file
+# unwinds through it to the entry point's catch (its destructors do not run: the run that
+# threw is loaded again before it steps again). The link takes the runtime that catches.
 add_link_options(-fexceptions)
 
 add_subdirectory(framework)
+# (Without the precompiled header: it was compiled not to catch.)
+set_source_files_properties(${CMAKE_SOURCE_DIR}/framework/src/input.cpp
+                            DIRECTORY ${CMAKE_SOURCE_DIR}/framework
+                            PROPERTIES COMPILE_OPTIONS -fexceptions SKIP_PRECOMPILE_HEADERS ON)
+set_source_files_properties(${CMAKE_SOURCE_DIR}/framework/live/exports.cpp
+                            PROPERTIES COMPILE_OPTIONS -fexceptions SKIP_PRECOMPILE_HEADERS ON)
 
 # The live layer shared by every lab: the registry, the run contract's bookkeeping of
 # a live run, and the functions the page calls (objects: nothing in the lab calls them,

@@ -41,6 +41,9 @@ enum Readout {
 // it is stable at any step.
 constexpr double kGrabHz = 5.0;
 constexpr double kGrabDamping = 0.7;
+// A grabbed particle is pulled as if it carried up to this many times its mass (the
+// particles hanging on it: particle_live.cpp).
+constexpr double kGrabLoad = 50.0;
 
 // One scene being stepped. Errors in a scene or a change are wb::InputError.
 class Sim {

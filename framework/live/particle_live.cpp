@@ -3,6 +3,7 @@
 // by the lab's integrators and after-step phase, under the run contract's divergence
 // rule. In a live build this file's run_particle_lab takes the place of the run
 // contract's (framework/src/particle_lab.cpp): it keeps the lab's LabInfo.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -215,12 +216,15 @@ class ParticleSim : public Sim {
     if (it.check) it.check(it, world_->dynamics());
   }
 
-  // The cursor's soft constraint on the grabbed particle, after the step (live.h).
+  // The cursor's soft constraint on the grabbed particle, after the step (live.h). Its
+  // stiffness is that of a mass that carries what may hang on the particle (a rope's
+  // other beads), up to 50 times its own: pulled by its own mass alone, the end of a
+  // hanging rope would sag far below the cursor.
   void pull(double h) {
     const Eigen::Index i = grabbed_;
     const double m = scene_->m[i];
     double gamma = 0, beta = 0;
-    grab_coefficients(h, m, gamma, beta);
+    grab_coefficients(h, std::max(m, std::min(scene_->m.sum(), kGrabLoad * m)), gamma, beta);
     const Vec2 C = Vec2(x_.col(i)) - target_;
     const Vec2 P = -(Vec2(v_.col(i)) + beta * C) / (1.0 / m + gamma);
     v_.col(i) += P / m;

@@ -46,6 +46,10 @@ def parser():
                    help="the page to write (default RUN-view.html beside RUN.csv)")
     p.add_argument("--no-setup", action="store_true",
                    help="install nothing first (tools/lib/start-python)")
+    p.add_argument("--live", action="store_true",
+                   help="a lab's live page instead: your code compiled to WebAssembly, running "
+                        "in the browser (tools/view --live --lab LAB; --live --help lists its "
+                        "flags; docs/live.md)")
     return p
 
 

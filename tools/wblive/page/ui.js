@@ -70,10 +70,15 @@ function setCompare(kind) {
   syncRuns();
   S.panes.forEach(function (q) { q.resize(); });
   if (RIGID) fit3(); else fit2();
+  if (S.scene.model) legend();
 }
 // Both runs from their initial state, together.
 function syncRuns() {
   S.panes.forEach(function (p) {
+    if (p.kind === "live" && p.error) {  // the lab's code threw mid-step: a new world
+      const err = p.sim.load(S.scene.file, S.docText) || p.sim.setIntegrator(p.integrator);
+      p.error = err;
+    }
     if (p.kind === "live") { p.sim.reset(); refresh(p); }
     p.history = []; p.trail = []; p.segment = null;
   });
@@ -116,8 +121,14 @@ function sample(p) {
   if (!p.ro) return;
   const r = p.ro;
   const L = RIGID ? Math.hypot(r[R.LX], r[R.LY], r[R.LZ]) : r[R.LZ];
-  p.history.push([r[R.T], r[R.E], r[R.K], r[R.V], Math.hypot(r[R.PX], r[R.PY], r[R.PZ]), L,
-    r[R.EXACT]]);
+  const row = [r[R.T], r[R.E], r[R.K], r[R.V], Math.hypot(r[R.PX], r[R.PY], r[R.PZ]), L,
+    r[R.EXACT]];
+  if (RIGID) {  // body 0's angular velocity seen from the body: R^T omega (the flip shows)
+    const P = p.pose(0), s = p.state;
+    const w = P && p.kind === "live" ? applyT(P.R, [s[10], s[11], s[12]]) : [NaN, NaN, NaN];
+    row.push(w[0], w[1], w[2]);
+  }
+  p.history.push(row);
   if (p.history.length > 3000) p.history = p.history.filter(function (_, i) { return i % 2 === 0; });
   if (S.trails && p.kind === "live") {
     const n = p.n(), ids = [];
@@ -130,7 +141,10 @@ function sample(p) {
 }
 
 // ---------------------------------------------------------------- stepping in real time
-const BUDGET_MS = 12;  // of a 16.7 ms frame, for the steps (the rest draws)
+// Of a 16.7 ms frame, what the steps may take: what drawing leaves, at least 4 ms (so that
+// a heavy scene still steps, at 30 frames a second or more).
+const BUDGET_MS = 14, MIN_BUDGET_MS = 4;
+function stepBudget() { return Math.max(MIN_BUDGET_MS, BUDGET_MS - (S.drawMs || 0)); }
 function stepRuns(n) {  // n steps of every live run; the most any took
   let most = 0;
   S.panes.forEach(function (p) {
@@ -149,9 +163,11 @@ function advance(wallS) {
   S.debt += Math.min(wallS, 0.1) * S.speed;
   const want = Math.floor(S.debt / S.h + 1e-9);
   if (want <= 0) return;
-  const t0 = performance.now();
-  let done = 0, chunk = Math.max(1, Math.min(want, S.chunk || 1));
-  while (done < want && performance.now() - t0 < BUDGET_MS) {
+  const t0 = performance.now(), budget = stepBudget();
+  let done = 0, chunk = Math.max(1, Math.min(want, S.chunk || 1)), per = stepCostMs() || 0;
+  // Chunks of about 2 ms, so that the budget is checked often but the calls are few; the
+  // next chunk only when it fits what is left (always one step a frame, at least).
+  while (done < want && (done === 0 || performance.now() - t0 + chunk * per <= budget)) {
     const k = Math.min(chunk, want - done);
     const c0 = performance.now();
     const took = stepRuns(k);
@@ -159,7 +175,7 @@ function advance(wallS) {
     if (took === 0) { done = want; break; }  // every run diverged or stopped
     done += k;
     S.cost.window.push([ms, k]);
-    // Chunks of about 2 ms, so that the budget is checked often but the calls are few.
+    per = ms / k;
     chunk = Math.max(1, Math.round(k * 2 / Math.max(ms, 0.05)));
   }
   S.chunk = chunk;
@@ -167,10 +183,40 @@ function advance(wallS) {
   S.realtime = { behind: done < want, ratio: want > 0 ? done / want : 1 };
   S.debt = done < want ? 0 : S.debt - done * S.h;  // behind: no debt piles up
 }
-function stepCostMs() {  // ms of one step of every live run, over the recent chunks
+// ms of one step of every live run. The browser's clock resolves 0.1 ms, so the recent
+// chunks tell only when they add up to some milliseconds; cheaper steps are timed on a
+// copy of each run (the same scene, integrator and h, from the scene's start), stepped
+// until the clock can tell.
+function stepCostMs() {
   let ms = 0, k = 0;
   S.cost.window.forEach(function (c) { ms += c[0]; k += c[1]; });
-  return k > 0 ? ms / k : null;
+  if (ms >= 5 && k > 0) { S.costFrom = "the run"; return ms / k; }
+  let sum = 0, any = false;
+  S.panes.forEach(function (p) {
+    if (p.kind !== "live") return;
+    const c = calibrate(p);
+    if (c !== null) { sum += c; any = true; }
+  });
+  S.costFrom = "a copy of the run";
+  return any ? sum : (k > 0 ? ms / k : null);
+}
+function calibrate(p) {
+  const key = [p.side, S.docText, p.integrator, S.h].join("|");
+  S.calib = S.calib || {};
+  if (key in S.calib) return S.calib[key];
+  S.calibSims = S.calibSims || {};
+  const sim = S.calibSims[p.side] || (S.calibSims[p.side] = new Sim(S.modules[p.side], p.side));
+  let out = null;
+  if (!sim.load(S.scene.file, S.docText) && !sim.setIntegrator(p.integrator)) {
+    for (let n = 16; n <= 65536; n *= 4) {
+      sim.reset();
+      const t0 = performance.now(), k = sim.step(S.h, n), ms = performance.now() - t0;
+      if (k < n) break;  // it diverged: no figure
+      if (ms >= 3 || n === 65536) { out = ms / n; break; }
+    }
+  }
+  S.calib[key] = out;
+  return out;
 }
 
 // ---------------------------------------------------------------- the loop
@@ -187,10 +233,14 @@ function frame(now) {
   S.panes.forEach(refresh);
   refreshTrace();
   S.panes.forEach(sample);
+  if (!RIGID && !S.grab && !S.dragging && !S.userView) extend2();
+  const d0 = performance.now();
   S.panes.forEach(function (p) {
     if (p.idx === 1 && S.compare === "none") return;
     if (RIGID) draw3(p); else draw2(p);
   });
+  const dms = performance.now() - d0;
+  S.drawMs = S.drawMs === undefined ? dms : 0.9 * S.drawMs + 0.1 * dms;
   S.frames++;
   if (S.frames % 3 === 0) { readouts(); charts(); budget(); banner(); }
 }
@@ -241,8 +291,10 @@ function theory() {
 function chartSeries() {
   const list = [
     { title: "energy (J)", cols: [[1, "E"], [2, "K"], [3, "V"]] },
-    { title: RIGID ? "|p| (kg m/s) and |L| (kg m²/s)" : "|p| (kg m/s) and L (kg m²/s)",
-      cols: [[4, "|p|"], [5, RIGID ? "|L|" : "L"]] }];
+    RIGID ? { title: "|L| (kg m²/s, solid) and |p| (kg m/s, dashed)", cols: [[5, "|L|"], [4, "|p|"]] }
+      : { title: "|p| (kg m/s, solid) and L (kg m²/s, dashed)", cols: [[4, "|p|"], [5, "L"]] }];
+  if (RIGID) list.push({ title: "body 0: ω in its own frame (rad/s): x, y, z",
+    cols: [[7, "ωx"], [8, "ωy"], [9, "ωz"]], all: true });
   if (S.panes[0].history.some(function (h) { return isFinite(h[6]); })) {
     list.push({ title: "distance from the exact motion (m)", cols: [[6, "d"]] });
   }
@@ -270,7 +322,7 @@ function charts() {
     S.panes.forEach(function (p) {
       if (!p.history.length) return;
       c.cols.forEach(function (col, j) {
-        if (p.idx === 1 && j > 0) return;  // the second run: its first curve only
+        if (p.idx === 1 && j > 0 && !c.all) return;  // the second run: its first curve only
         const pts = [];
         p.history.forEach(function (h) {
           const y = tr(h[col[0]]);
@@ -279,7 +331,8 @@ function charts() {
           t0 = Math.min(t0, h[0]); t1 = Math.max(t1, h[0]);
           lo = Math.min(lo, y); hi = Math.max(hi, y);
         });
-        lines.push({ pts: pts, color: COLORS[p.idx], width: j === 0 ? 2 : 1, dash: j > 0, name: col[1] });
+        lines.push({ pts: pts, color: c.all ? AXIS_COLORS[j] : COLORS[p.idx],
+          width: j === 0 || c.all ? 2 : 1, dash: c.all ? p.idx === 1 : j > 0, name: col[1] });
       });
     });
     if (!isFinite(lo)) return;
@@ -317,13 +370,16 @@ function budget() {
     const share = per60 / FRAME_MS;
     lines.push('<div class="bar"><div class="' + (share > 1 ? "over" : "") + '" style="width:' +
       Math.min(100, 100 * share).toFixed(1) + '%"></div></div>');
-    lines.push("<p>one step (every run beside the other) costs " + fmt(ms, 3) + " ms here; " +
+    lines.push("<p>one step (every run beside the other) costs " + fmt(ms, 3) + " ms here (timed on " +
+      S.costFrom + "); " +
       "1/60 s of simulated time is " + fmt(1 / 60 / S.h, 4) + " steps of h: " + fmt(per60, 3) +
-      " ms, " + Math.round(100 * share) + " % of a 16.7 ms frame.</p>");
+      " ms, " + Math.round(100 * share) + " % of a 16.7 ms frame. Drawing takes " +
+      fmt(S.drawMs, 2) + " ms a frame.</p>");
   }
   if (S.realtime.behind && S.playing) {
     lines.push('<p class="bad">Not real time: ×' + S.realtime.ratio.toFixed(2) +
-      " (the page steps for at most " + BUDGET_MS + " ms a frame; at h = " + fmt(S.h) +
+      " (the page steps for at most " + fmt(stepBudget(), 2) + " ms a frame, what drawing leaves of " +
+      BUDGET_MS + " ms; at h = " + fmt(S.h) +
       " s real time needs " + fmt(1 / S.h, 4) + " steps a second" +
       (ms !== null ? ", " + fmt(ms / S.h, 4) + " ms of stepping a second" : "") + ").</p>");
   }
@@ -378,7 +434,24 @@ function loadScene(name) {
       esc(c[1]) + "</option>";
   }).join("");
   setCompare(S.compare);
+  S.trails = p.n() <= 5;  // a few particles or bodies: their paths show by default
+  el("c-trails").checked = S.trails;
+  legend();
   knobs();
+}
+function legend() {
+  S.panes.forEach(function (p) {
+    const items = ['<span class="sw" style="color:' + COLORS[p.idx] + '">●</span>' +
+      (p.idx === 0 ? "this run" : "the run beside it")];
+    if (p.idx === 0 && S.compare === "trace") items.push('<span class="sw" style="color:' +
+      COLORS[1] + '">○</span>the solution\'s recorded run, at the same t');
+    if (!RIGID && S.scene.model.pinned.length) items.push('<span class="sw">▲</span>pinned');
+    if (p.idx === 0 && S.panes[0].exact && S.panes[0].exact.length) {
+      items.push('<span class="sw">◯</span>the exact motion');
+    }
+    if (RIGID && S.scene.model.hinges.length) items.push('<span class="sw">◆</span>hinge');
+    el("legend-" + p.idx).innerHTML = items.join("<br>");
+  });
 }
 function setH(h) {
   S.h = h;
@@ -406,7 +479,8 @@ function knobList() {
       v.forEach(function (x, k) { walk(x, path.concat([k]), label + "[" + k + "]", resets || !!RESETS[key]); });
     } else if (v && typeof v === "object") {
       Object.keys(v).forEach(function (k) {
-        walk(v[k], path.concat([k]), label + (label ? "." : "") + k, resets || !!RESETS[k]);
+        const sep = !label || label.endsWith(":") ? " " : ".";
+        walk(v[k], path.concat([k]), label + sep + k, resets || !!RESETS[k]);
       });
     }
   };
@@ -527,7 +601,7 @@ function mouse(p) {
         }
       } else {
         const hit = pick2(p, m[0], m[1]);
-        if (hit && hit.mark) { drag = { kind: "mark", path: hit.mark.path }; return; }
+        if (hit && hit.mark) { drag = { kind: "mark", path: hit.mark.path }; S.dragging = true; return; }
         if (hit) {
           S.grab = { pane: p.idx, item: hit.item, at: [0, 0, 0], target: world2(p, m[0], m[1]) };
           p.sim.grab(hit.item, S.grab.target, S.grab.at);
@@ -559,6 +633,7 @@ function mouse(p) {
         S.cam.target = add3(S.cam.target, add3(mul3(cam.r, -dx * k), mul3(cam.u, dy * k)));
       } else S.panes.forEach(function (q) {
         if (q.view) { q.view.cx -= dx / q.view.s; q.view.cy += dy / q.view.s; q.bg = null; }
+        S.userView = true;  // the camera is the user's now, until fit
       });
       drag.from = m;
     }
@@ -569,12 +644,14 @@ function mouse(p) {
       S.grab = null;
     }
     drag = null;
+    S.dragging = false;
   });
   cv.addEventListener("wheel", function (e) {
     e.preventDefault();
     const k = Math.exp(-e.deltaY * 0.0015);
     if (RIGID) S.cam.dist /= k;
     else S.panes.forEach(function (q) { if (q.view) { q.view.s *= k; q.bg = null; } });
+    S.userView = true;
   }, { passive: false });
 }
 
@@ -710,16 +787,67 @@ window.wbLive = {
     const q = p.pos(item);
     return [r.left + sx(p, q[0]), r.top + sy(p, q[1])];
   },
-  grabbed: function () { return S.grab ? { item: S.grab.item, target: S.grab.target } : null; },
+  // What the cursor holds: the item, the target and where the held point is now.
+  // The item of pane i drawn nearest the middle of its canvas (one to drag).
+  central: function (i) {
+    const p = S.panes[i || 0], n = p.n();
+    let best = null, bd = Infinity;
+    for (let k = 0; k < n; k++) {
+      const q = this.screen(i, k), r = p.canvas.getBoundingClientRect();
+      if (!q) continue;
+      const d = Math.hypot(q[0] - (r.left + r.width / 2), q[1] - (r.top + r.height / 2));
+      if (d < bd) { bd = d; best = k; }
+    }
+    return best;
+  },
+  canvasRect: function (i) {
+    const r = S.panes[i || 0].canvas.getBoundingClientRect();
+    return [r.left, r.top, r.right, r.bottom];
+  },
+  grabbed: function () {
+    if (!S.grab) return null;
+    const p = S.panes[S.grab.pane];
+    let point = p.pos(S.grab.item);
+    if (RIGID) { const P = p.pose(S.grab.item); point = add3(P.x, apply(P.R, S.grab.at)); }
+    return { item: S.grab.item, target: Array.from(S.grab.target), point: Array.from(point) };
+  },
+  // The scene's movable points: label, path in the scene, world and page coordinates.
+  marks: function () {
+    if (RIGID) return [];
+    const p = S.panes[0], r = p.canvas.getBoundingClientRect();
+    return marks().map(function (m) {
+      return { label: m.label, path: m.path, at: m.at,
+        screen: [r.left + sx(p, m.at[0]), r.top + sy(p, m.at[1])] };
+    });
+  },
+  doc: function () { return JSON.parse(S.docText); },
+  frames: function () { return S.frames; },
+  integrators: function () { return integratorsOf(S.main); },
+  // The world point under page point [X, Y] in the first run's view (2D).
+  worldOf: function (P) {
+    const p = S.panes[0], r = p.canvas.getBoundingClientRect();
+    return world2(p, P[0] - r.left, P[1] - r.top);
+  },
+  // A knob turned as a user types into its box: false when the scene has no such number.
+  setKnob: function (path, value) {
+    const j = S.knobs.findIndex(function (k) { return JSON.stringify(k.path) === JSON.stringify(path); });
+    if (j < 0) return false;
+    const box = document.querySelector('#knobs input[type=number][data-j="' + j + '"]');
+    box.value = String(value);
+    box.dispatchEvent(new Event("change", { bubbles: true }));
+    return true;
+  },
+  knobs: function () { return S.knobs.map(function (k) { return { path: k.path, value: k.value }; }); },
   fps: function () {
     const t = S.frameTimes, k = t.length;
     return k > 10 ? 1000 * (k - 1) / (t[k - 1] - t[0]) : null;
   },
   stepMs: stepCostMs,
+  drawMs: function () { return S.drawMs; },
   realtime: function () { return S.realtime; },
   banner: function () { return el("banner").textContent; },
-  // Times n steps of the first run's scene in a fresh Sim of the main module (ms per
-  // step, the fastest of `repeats`): tools/live-check --bench against bench_live.
+  // Times n steps of a scene from its start in a fresh Sim of the main module, `repeats`
+  // times (wall ms per step, the fastest): tools/live-check --bench against bench_live.
   bench: function (scene, integrator, h, n, repeats) {
     const sim = new Sim(S.modules[S.main], S.main), sc = META.scenes.find(function (s) { return s.name === scene; });
     const err = sim.load(sc.file, sc.text) || (integrator ? sim.setIntegrator(integrator) : null);

@@ -51,6 +51,11 @@ function fit2(pane) {
   S.scene.model.anchored.forEach(function (a) { grow(a[1], a[2], 0); });
   S.scene.model.planes.forEach(function (p) { grow(p.point[0], p.point[1], 0); });
   if (!isFinite(lo[0])) { lo = [-1, -1]; hi = [1, 1]; }
+  S.fitBox = { lo: lo, hi: hi, size: Math.max(hi[0] - lo[0], hi[1] - lo[1], 1e-6) };
+  S.userView = false;
+  view2(lo, hi);
+}
+function view2(lo, hi) {  // both panes show the box lo..hi (with a margin)
   const span = Math.max(hi[0] - lo[0], hi[1] - lo[1], 1e-6);
   const pad = 0.12 * span;
   S.panes.forEach(function (p) {
@@ -58,6 +63,32 @@ function fit2(pane) {
     p.view = { cx: (lo[0] + hi[0]) / 2, cy: (lo[1] + hi[1]) / 2, s: s };
     p.bg = null;
   });
+}
+// The view grows to keep every particle in it (a swinging rope, a spiral, a splash), up to
+// ten times the scene's first box: beyond that (a run blowing up) arrows at the edge say
+// where the particles went.
+function extend2() {
+  const p0 = S.panes[0], f = S.fitBox;
+  if (!p0.view || !f) return;
+  const v = p0.view;
+  const lo = [v.cx - p0.W / 2 / v.s, v.cy - p0.H / 2 / v.s];
+  const hi = [v.cx + p0.W / 2 / v.s, v.cy + p0.H / 2 / v.s];
+  const lim = [[f.lo[0] - 10 * f.size, f.lo[1] - 10 * f.size], [f.hi[0] + 10 * f.size, f.hi[1] + 10 * f.size]];
+  let grow = false;
+  const nlo = lo.slice(), nhi = hi.slice();
+  S.panes.forEach(function (p) {
+    if (p.kind === "none" || (p.idx === 1 && S.compare === "none")) return;
+    const n = p.n();
+    for (let i = 0; i < n; i++) {
+      const q = p.pos(i);
+      for (let d = 0; d < 2; d++) {
+        if (!(q[d] >= lim[0][d] && q[d] <= lim[1][d])) continue;
+        if (q[d] < nlo[d]) { nlo[d] = q[d]; grow = true; }
+        if (q[d] > nhi[d]) { nhi[d] = q[d]; grow = true; }
+      }
+    }
+  });
+  if (grow) view2(nlo, nhi);
 }
 function sx(p, x) { return p.W / 2 + (x - p.view.cx) * p.view.s; }
 function sy(p, y) { return p.H / 2 - (y - p.view.cy) * p.view.s; }
@@ -117,7 +148,6 @@ function radiusPx(p, r, n) { return Math.max(r * p.view.s, n > MANY ? 1.5 : n > 
 
 function drawParticles2(p, color, hollow) {
   const ctx = p.ctx, n = p.n(), rr = radii();
-  if (n > MANY) { stamp2(p, color, hollow); return; }
   ctx.fillStyle = color; ctx.strokeStyle = color; ctx.lineWidth = 2;
   ctx.beginPath();
   for (let i = 0; i < n; i++) {
@@ -127,24 +157,41 @@ function drawParticles2(p, color, hollow) {
   }
   if (hollow) ctx.stroke(); else ctx.fill();
 }
-// Many particles: stamped into the canvas's pixels (a path of 10^4 discs takes tens of
-// milliseconds to fill in a browser without a GPU, stamping about one).
-function stamp2(p, color, ring) {
-  const ctx = p.ctx, cw = p.canvas.width, ch = p.canvas.height, n = p.n(), rr = radii();
-  const img = ctx.getImageData(0, 0, cw, ch), u = new Uint32Array(img.data.buffer);
+// Many particles: stamped into the pixels of a cached picture of the scene's fixed parts
+// (a path of 10^4 discs takes tens of milliseconds to fill in a browser without a GPU, and
+// reading the canvas back as many; stamping takes about one), as tools/view does.
+function background2(p) {
+  const key = [p.W, p.H, p.DPR, p.view.cx, p.view.cy, p.view.s, S.docText].join();
+  if (p.bg && p.bg.key === key) return;
+  p.ctx.setTransform(p.DPR, 0, 0, p.DPR, 0, 0);
+  drawFixed2(p);
+  const img = p.ctx.getImageData(0, 0, p.canvas.width, p.canvas.height);
+  p.bg = { key: key, img: img, pixels: new Uint32Array(img.data.buffer.slice(0)) };
+}
+function stamp2(p, u, q, color, ring) {  // q's particles into pixels u (p's canvas)
+  const cw = p.canvas.width, ch = p.canvas.height, n = q.n(), rr = radii();
   const col = rgba32(color);
   for (let i = 0; i < n; i++) {
-    const q = p.pos(i);
-    const X = Math.round(sx(p, q[0]) * p.DPR), Y = Math.round(sy(p, q[1]) * p.DPR);
+    const x = q.pos(i);
+    const X = Math.round(sx(p, x[0]) * p.DPR), Y = Math.round(sy(p, x[1]) * p.DPR);
     const Rr = Math.max(ring ? 2 : 1, Math.min(12, Math.round(radiusPx(p, rr[i] || 0, n) * p.DPR)));
     if (!isFinite(X + Y) || X < -Rr - 1 || Y < -Rr - 1 || X > cw + Rr || Y > ch + Rr) continue;
     const off = stampOffsets(Rr, ring);
+    const inside = X > Rr + 1 && Y > Rr + 1 && X < cw - Rr - 2 && Y < ch - Rr - 2;
     for (let k = 0; k < off.length; k += 2) {
       const a = X + off[k], b = Y + off[k + 1];
-      if (a >= 0 && b >= 0 && a < cw && b < ch) u[b * cw + a] = col;
+      if (inside || (a >= 0 && b >= 0 && a < cw && b < ch)) u[b * cw + a] = col;
     }
   }
-  ctx.putImageData(img, 0, 0);
+}
+function drawMany2(p, o) {  // the fixed parts and p's particles (o's as rings), as pixels
+  background2(p);
+  const u = new Uint32Array(p.bg.img.data.buffer);
+  u.set(p.bg.pixels);
+  stamp2(p, u, p, COLORS[p.idx], false);
+  if (o) stamp2(p, u, o, COLORS[1], true);
+  p.ctx.putImageData(p.bg.img, 0, 0);
+  p.ctx.setTransform(p.DPR, 0, 0, p.DPR, 0, 0);
 }
 
 function drawSprings2(p) {
@@ -218,22 +265,21 @@ function drawOffView2(p, color) {
 
 function draw2(p) {
   if (!p.view) fit2(p);
-  const ctx = p.ctx;
-  ctx.setTransform(p.DPR, 0, 0, p.DPR, 0, 0);
-  drawFixed2(p);
-  const color = COLORS[p.idx];
+  const ctx = p.ctx, color = COLORS[p.idx];
+  // The solution's recorded run over the first run, as rings.
+  const o = S.panes[1 - p.idx];
+  const over = p.idx === 0 && o && o.kind === "trace" && S.overlay ? o : null;
+  if (p.kind !== "none" && p.n() > MANY) drawMany2(p, over);
+  else {
+    ctx.setTransform(p.DPR, 0, 0, p.DPR, 0, 0);
+    drawFixed2(p);
+  }
   if (p.kind === "none") return;
   drawSprings2(p);
   drawTrails2(p, color);
-  ctx.setTransform(1, 0, 0, 1, 0, 0);
-  if (p.n() > MANY) stamp2(p, color, false);
-  ctx.setTransform(p.DPR, 0, 0, p.DPR, 0, 0);
-  if (p.n() <= MANY) drawParticles2(p, color, false);
-  // The other run over this one, as rings, when it is the solution's recorded run.
-  const o = S.panes[1 - p.idx];
-  if (p.idx === 0 && o && o.kind === "trace" && S.overlay) {
-    if (o.n() > MANY) { ctx.setTransform(1, 0, 0, 1, 0, 0); stamp2(o, COLORS[1], true);
-      ctx.setTransform(p.DPR, 0, 0, p.DPR, 0, 0); } else drawParticles2(o, COLORS[1], true);
+  if (p.n() <= MANY) {
+    drawParticles2(p, color, false);
+    if (over) drawParticles2(over, COLORS[1], true);
   }
   ctx.fillStyle = "#222";
   S.scene.model.pinned.forEach(function (i) {

@@ -90,9 +90,14 @@ function header() {
   const what = RIGID ? (N === 1 ? " body" : " bodies") : (N === 1 ? " particle" : " particles");
   let sub = N + what
     + " · " + R1.label + " (" + R1.path + ")";
+  if (R1.dt) sub += " · run at h = " + fmt(R1.dt, 6) + " s";
   if (R2) sub += " against " + R2.label + " (" + R2.path + ")";
   el("subtitle").textContent = sub;
-  el("desc").textContent = META.description || (META.scene ? "" :
+  // The scene's words are for its own dt: a run at another h is said to be one.
+  const other = R1.dt && META.scene_dt && Math.abs(R1.dt - META.scene_dt) > 1e-9 * META.scene_dt;
+  el("desc").textContent = (other ? "This run used h = " + fmt(R1.dt, 6) + " s, not the scene's "
+    + "dt = " + fmt(META.scene_dt, 6) + " s; the scene's description, for its own dt: " : "")
+    + (META.description || "") || (META.scene ? "" :
     "No --scene given: particles are drawn as dots (no radii, springs, planes); bodies as "
     + "their axes.");
   const notes = [];

@@ -1,5 +1,6 @@
 // tools/view's page, part 1 of 6, shared with the live pages (tools/wblive): pure
-// helpers with no state: 3-vectors, rotations, shapes' faces, colours, pixel stamps.
+// helpers with no state: 3-vectors, rotations, shapes' faces, colours, pixel stamps, and
+// the rule that draws a quantity constant to rounding flat (tools/wbplot/flat.py's).
 function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
 function add3(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
 function mul3(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
@@ -91,4 +92,20 @@ function niceStep(span, target) {  // a 1-2-5 step giving about `target` interva
   const p = Math.pow(10, Math.floor(Math.log10(raw)));
   const m = raw / p;
   return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
+}
+// tools/wbplot/flat.py's rule: values that differ by no more than rounding of their scale
+// (1e-9 of it, plus 1e-12 in SI units) are one constant. Returns the value to draw them at
+// (0 when it is 0 to rounding of `scale`), or null when they are not constant.
+const ROUNDING_REL = 1e-9, ROUNDING_ABS = 1e-12;
+function flatValue(values, scale) {
+  let lo = Infinity, hi = -Infinity, big = isFinite(scale) ? Math.abs(scale || 0) : 0;
+  for (let i = 0; i < values.length; i++) {
+    const v = values[i];
+    if (v === null || v === undefined || !isFinite(v)) continue;
+    lo = Math.min(lo, v); hi = Math.max(hi, v); big = Math.max(big, Math.abs(v));
+  }
+  if (!isFinite(lo) || hi - lo > ROUNDING_REL * big + ROUNDING_ABS) return null;
+  const mid = (lo + hi) / 2;
+  return Math.abs(mid) <= ROUNDING_REL * (isFinite(scale) ? Math.abs(scale || 0) : 0) +
+    ROUNDING_ABS ? 0 : mid;
 }

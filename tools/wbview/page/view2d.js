@@ -67,7 +67,9 @@ function drawGrid2() {
   }
   ctx.stroke();
   for (let x = Math.ceil(x0 / step) * step; x <= x1; x += step) {
-    ctx.fillText(gridLabel(x, step), sx(x) + 2, H - 4);
+    // None under the unit at the right end.
+    const label = gridLabel(x, step);
+    if (sx(x) + 2 + ctx.measureText(label).width < W - 20) ctx.fillText(label, sx(x) + 2, H - 4);
   }
   for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
     ctx.fillText(gridLabel(y, step), 3, sy(y) - 2);
@@ -302,8 +304,31 @@ function draw2() {
   drawOverlays2(k);
   S.lastDrawn = { frame: k, frame2: k2 };
 }
+// A particle outside the view is marked by a small arrow at the edge, pointing to it (at
+// most 40 arrows; the line above the view counts them all).
+function drawOffView2(k) {
+  let shown = 0, out = 0;
+  ctx.fillStyle = COLORS.run;
+  for (let i = 0; i < N; i++) {
+    const X = sx(value(R1, k, i, 0)), Y = sy(value(R1, k, i, 1));
+    if (!isFinite(X + Y) || (X >= 0 && X <= W && Y >= 0 && Y <= H)) continue;
+    out++;
+    if (shown >= 40) continue;
+    shown++;
+    const dx = X - W / 2, dy = Y - H / 2;
+    const s = Math.min((W / 2 - 8) / Math.abs(dx || 1e-9), (H / 2 - 8) / Math.abs(dy || 1e-9));
+    const ex = W / 2 + dx * s, ey = H / 2 + dy * s, a = Math.atan2(dy, dx);
+    ctx.beginPath();
+    ctx.moveTo(ex + 7 * Math.cos(a), ey + 7 * Math.sin(a));
+    ctx.lineTo(ex + 5 * Math.cos(a + 2.4), ey + 5 * Math.sin(a + 2.4));
+    ctx.lineTo(ex + 5 * Math.cos(a - 2.4), ey + 5 * Math.sin(a - 2.4));
+    ctx.closePath(); ctx.fill();
+  }
+  S.offView = out;
+}
 function drawOverlays2(k) {
   drawExact2(k);
+  drawOffView2(k);
   if (S.pick !== null) {
     const x = value(R1, k, S.pick, 0), y = value(R1, k, S.pick, 1);
     if (isFinite(x + y)) {
