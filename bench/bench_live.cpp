@@ -65,9 +65,9 @@ void run_case(benchmark::State& state, const Case& c) {
     }
   }
   // CPU milliseconds per step (a rate over the CPU time, inverted).
-  state.counters["ms_per_step"] = benchmark::Counter(
-      double(c.steps) * double(state.iterations()) / 1e3,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ms_per_step"] =
+      benchmark::Counter(double(c.steps) * double(state.iterations()) / 1e3,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 Case parse_case(const std::string& arg) {
@@ -82,7 +82,8 @@ Case parse_case(const std::string& arg) {
   std::stringstream s(path);
   for (std::string p; std::getline(s, p, '/');) parts.push_back(p);
   if (parts.size() < 2 || parts.size() > 3 || c.steps < 1) {
-    throw std::runtime_error("bench_live: got \"" + arg + "\", expected LAB/SCENE[/INTEGRATOR]:STEPS");
+    throw std::runtime_error("bench_live: got \"" + arg +
+                             "\", expected LAB/SCENE[/INTEGRATOR]:STEPS");
   }
   c.lab = parts[0];
   c.scene = parts[1];
@@ -115,8 +116,9 @@ int main(int argc, char** argv) {
   for (const Case& c : cases) {
     std::string name = "live/" + c.lab + "/" + c.scene;
     if (!c.integrator.empty()) name += "/" + c.integrator;
-    benchmark::RegisterBenchmark(name.c_str(), [c](benchmark::State& st) { run_case(st, c); })
-        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(name.c_str(), [c](benchmark::State& st) {
+      run_case(st, c);
+    })->Unit(benchmark::kMillisecond);
   }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -111,7 +111,8 @@ WB_EXPORT void wb_live_delete(int h) {
 }
 
 WB_EXPORT int wb_live_load(int h, const char* file, const char* text) {
-  const int rc = guarded(h, [&](Sim& s) { s.load(file, text); }, true);
+  const int rc = guarded(
+      h, [&](Sim& s) { s.load(file, text); }, true);
   if (Slot* s = slot(h, false)) s->loaded = s->loaded || rc == 0;
   return rc;
 }

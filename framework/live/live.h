@@ -1,6 +1,6 @@
 // The live pages' simulation (docs/live.md): one scene stepped on demand from a
 // page's knobs by the same lab code as the native executable, with the run
-// contract's divergence rule (wb/contract.h). The page (tools/wblive/page/) draws
+// contract's divergence rule (wb/contract.h). The page (tools/wbview/live/page/) draws
 // and turns knobs; everything physical happens here and in the lab's files.
 //
 // A lab joins without a line of its own: a live build compiles the lab's main.cpp
@@ -19,15 +19,15 @@ namespace wb::live {
 
 // The numbers the page reads after every frame, in this order (Sim::readouts).
 enum Readout {
-  kT,            // simulated time (s)
-  kSteps,        // steps taken since the last reset
-  kKinetic,      // kinetic energy (J)
-  kPotential,    // potential energy (J)
-  kEnergy,       // their sum (J)
-  kPx,           // linear momentum (kg m/s), x y z (z 0 in 2D)
+  kT,          // simulated time (s)
+  kSteps,      // steps taken since the last reset
+  kKinetic,    // kinetic energy (J)
+  kPotential,  // potential energy (J)
+  kEnergy,     // their sum (J)
+  kPx,         // linear momentum (kg m/s), x y z (z 0 in 2D)
   kPy,
   kPz,
-  kLx,           // angular momentum about the origin (kg m^2/s), x y z (2D: z only)
+  kLx,  // angular momentum about the origin (kg m^2/s), x y z (2D: z only)
   kLy,
   kLz,
   kEvals,        // force evaluations since the last reset

@@ -41,7 +41,9 @@ class ParticleSim : public Sim {
     file_ = file;
     build(text);
     integ_ = 0;
-    if (scene_->integrator) integ_ = &find_integrator(info_, *scene_->integrator, file_ + ": integrator") - info_.integrators.data();
+    if (scene_->integrator)
+      integ_ = &find_integrator(info_, *scene_->integrator, file_ + ": integrator") -
+               info_.integrators.data();
     check_integrator(integ_);
     reset();
   }
@@ -192,7 +194,8 @@ class ParticleSim : public Sim {
   // (framework/src/particle_lab.cpp), and its World.
   void build(const std::string& text) {
     std::vector<std::string> keys = info_.scene_keys;
-    if (info_.sweep) keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
+    if (info_.sweep)
+      keys.insert(keys.end(), sweep_scene_keys().begin(), sweep_scene_keys().end());
     auto scene = std::make_unique<Scene>(
         scene_from_json(file_, parse_json(text, file_), std::nullopt, keys));
     if (info_.expand_scene) {

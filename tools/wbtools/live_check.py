@@ -31,7 +31,7 @@ import time
 from . import browser
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-UNIT_TESTS = ["tools/wblive/tests"]
+UNIT_TESTS = ["tools/wbview/live/tests"]
 GROWTH_TOL = 0.01      # the growth per step: (g - 1) within 1 % of h^2 w^2
 FPS_SMALL = 60.0       # frames per CPU second, scenes of up to 10^3 particles or 50 bodies
 FPS_LARGE = 30.0       # larger scenes (the 10^4-disc pile)
@@ -302,7 +302,7 @@ def about_axis(anchor, axis, p, q):
 
 # The scene each lab's drag is tried on (a free particle or body, not a pinned one).
 DRAG_SCENES = {"forces": ("flock", None), "euler": ("oscillator", 0),
-               "midpoint": ("oscillator", 0), "implicit": ("stiff-rope", 29),
+               "midpoint": ("oscillator", 0), "implicit": ("one-spring", 0),
                "collisions": ("billiards", None), "rigid": ("tumbling-box", 0)}
 
 
@@ -382,9 +382,49 @@ def controls(b, solution_page, skeleton_page, work):
             problems.append("control skeleton: the page of labs/euler (explicit Euler a stub) "
                             "passed the growth check: is labs/euler/explicit_euler.cpp still "
                             "the skeleton?")
+        problems += beside_the_student(b, skeleton_page)
     for s in shown:
         log(f"live-check: control failed as it must: {s[:300]}")
     return problems
+
+
+def beside_the_student(b, page):
+    """A student page of an instructor checkout: the solution live beside the student's
+    run (its explicit Euler's growth is 1 + h^2 w^2), and the solution's recorded run where
+    the checkout has a report to take it from."""
+    c = PageCheck(b, page, "euler-student", os.path.dirname(page))
+    if not c.open():
+        return c.problems
+    c.js("wbLive.load('oscillator')")
+    choices = c.js("Array.from(document.getElementById('compare').options).map(o => o.value)")
+    if "solution" not in choices:
+        c.fail("no 'the solution, live' beside the student's run in an instructor checkout")
+    else:
+        c.select("compare", "solution")
+        c.select("integ-0", "explicit-euler")
+        c.select("integ-1", "explicit-euler")
+        c.b.pump(1.2)
+        r = c.js("wbLive.run(1)")
+        w = 2 * math.pi  # scenes/euler/oscillator.json: k = 4 pi^2, m = 1
+        want = 1 + (r["h"] * w) ** 2
+        if r["side"] != "solution" or r["growth"] is None or \
+                not abs(r["growth"] - want) <= GROWTH_TOL * (want - 1):
+            c.fail(f"the solution beside the student's run: growth {r['growth']} (side "
+                   f"{r['side']}), explicit Euler's 1 + h^2 w^2 is {want:.8f}")
+        c.shot("beside-solution")
+    if "trace" in choices:
+        c.select("compare", "trace")
+        t0 = c.js("wbLive.run(1)")["t"]
+        c.b.pump(1.0)
+        r = c.js("wbLive.run(1)")
+        if not (r["kind"] == "trace" and r["n"] == 1 and r["t"] > t0):
+            c.fail(f"the solution's recorded run beside the student's does not follow it: {r}")
+        c.shot("beside-recorded")
+        log("live-check: the student page shows the solution's recorded run beside it")
+    else:
+        log("live-check: no recorded runs here (no build/report): that comparison is not tried")
+    c.errors("beside the student's run")
+    return c.problems
 
 
 def unit_tests():
@@ -397,7 +437,7 @@ def unit_tests():
     log(f"live-check: unit tests ({', '.join(UNIT_TESTS)}): {last} ({time.monotonic() - t0:.1f} s)")
     if p.returncode != 0:
         print(p.stdout[-3000:] + p.stderr[-1000:], flush=True)
-        return ["the live pages' unit tests failed (python3 -m pytest tools/wblive/tests)"]
+        return ["the live pages' unit tests failed (python3 -m pytest tools/wbview/live/tests)"]
     return []
 
 
@@ -427,7 +467,7 @@ def main(argv=None):
     p.add_argument("--no-setup", action="store_true", help="install nothing first")
     args = p.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "tools"))
-    from wblive import build as livebuild, cli as livecli
+    from wbview.live import build as livebuild, cli as livecli
     t_start = time.monotonic()
     if not livebuild.have_emscripten():
         print(f"tools/live-check: {livebuild.MISSING}", file=sys.stderr)

@@ -40,7 +40,7 @@ SHIPPED = ["CMakeLists.txt", "CMakePresets.json", ".clang-format", ".gitignore",
 NEVER = {"solutions", "mutants", "hostile", "badinput", "bench", "gradescope", "pack.d", ".ci",
          ".git", "__pycache__", "fuzz"}
 STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "wbplot", "wbview",
-                 "wblive", "wbgrade_hints.py"}  # the rest stays home
+                 "wbgrade_hints.py"}  # the rest stays home
 STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md", "live.md"}
 INSTRUCTOR_BLOCK = re.compile(r"<!--\s*instructor\s*-->.*?<!--\s*/instructor\s*-->\n?", re.S)
 CLAIM_MARKER = re.compile(r" ?<!--\s*(?:not-a-)?claim:.*?-->", re.S)  # claim markers
@@ -259,7 +259,7 @@ def copy_recorded(dest, labs, report_dir):
     pages (live/recorded/<lab>/<scene>.json, docs/live.md): from the report's runs, the
     handouts' figures' own. Returns how many were written."""
     sys.path.insert(0, os.path.join(ROOT, "tools"))
-    from wblive import recorded
+    from wbview.live import recorded
     from wbview.data import InputError
     count = 0
     for lab in sorted(labs):

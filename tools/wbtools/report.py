@@ -762,7 +762,7 @@ def live_pages(report, labs, build_dir):
     """A live page per lab, built from the solutions (docs/live.md), linked from the index:
     only where emscripten is installed (it is optional); else the index says so."""
     sys.path.insert(0, os.path.join(ROOT, "tools"))
-    from wblive import build as livebuild, cli as livecli
+    from wbview.live import build as livebuild, cli as livecli
     report.live = {}
     if not livebuild.have_emscripten():
         report.live_note = livebuild.MISSING

@@ -119,7 +119,7 @@ def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=
 
 def main(argv=None):
     if "--live" in (sys.argv[1:] if argv is None else argv):  # a live page: docs/live.md
-        from wblive.cli import main as live_main
+        from wbview.live.cli import main as live_main
         return live_main(argv)
     p = parser()
     try:

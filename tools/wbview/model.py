@@ -140,7 +140,7 @@ def pack_trace(trace, keep, origin, width=None):
     return pack_floats(out)
 
 
-def kept_columns(trace, others=(), budget=MAX_STORED_VALUES):
+def kept_columns(trace, others=(), budget=None):
     """How many columns of each row the page keeps: all (a particle's velocity with its
     position) unless that would thin the written steps of this run or the others, whose
     velocities would then be left out (positions only, as before)."""
@@ -148,7 +148,7 @@ def kept_columns(trace, others=(), budget=MAX_STORED_VALUES):
     if trace.kind != "particles":
         return c
     frames = sum(t.frames for t in (trace,) + tuple(others))
-    return c if frames * trace.n * c <= budget else 2
+    return c if frames * trace.n * c <= (budget or MAX_STORED_VALUES) else 2
 
 
 def step_numbers(times, stats, summary, doc):

@@ -4,7 +4,7 @@ script element of its own type (the browser does not parse it as code).
 
 The script is plain JavaScript on Canvas 2D, no library (docs/view.md, "Why plain
 Canvas"), in six files joined here into one function in this order (geom.js is shared with
-the live pages, tools/wblive)."""
+the live pages, tools/wbview/live)."""
 import html
 import json
 import os

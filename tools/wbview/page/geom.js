@@ -1,4 +1,4 @@
-// tools/view's page, part 1 of 6, shared with the live pages (tools/wblive): pure
+// tools/view's page, part 1 of 6, shared with the live pages (tools/wbview/live): pure
 // helpers with no state: 3-vectors, rotations, shapes' faces, colours, pixel stamps, and
 // the rule that draws a quantity constant to rounding flat (tools/wbplot/flat.py's).
 function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
@@ -108,4 +108,60 @@ function flatValue(values, scale) {
   const mid = (lo + hi) / 2;
   return Math.abs(mid) <= ROUNDING_REL * (isFinite(scale) ? Math.abs(scale || 0) : 0) +
     ROUNDING_ABS ? 0 : mid;
+}
+// An orbit camera {target, yaw, pitch, dist, fov} around the up direction `up` (e1, e2:
+// horizontal axes) for a canvas of height H: the eye, its frame (f forward, r right, u up),
+// the focal length in pixels and a light direction.
+function orbitCamera(c, up, e1, e2, H) {
+  const flat = add3(mul3(e1, Math.cos(c.yaw)), mul3(e2, Math.sin(c.yaw)));
+  const dir = add3(mul3(flat, Math.cos(c.pitch)), mul3(up, Math.sin(c.pitch)));
+  const eye = add3(c.target, mul3(dir, c.dist));
+  const f = norm3(sub3(c.target, eye));
+  let r = cross3(f, up);
+  r = Math.hypot(r[0], r[1], r[2]) > 1e-9 ? norm3(r) : e1;
+  const u = cross3(r, f);
+  return { eye: eye, f: f, r: r, u: u, F: (H / 2) / Math.tan(c.fov / 2),
+    light: norm3(add3(add3(up, mul3(f, -1.0)), mul3(r, 0.4))) };
+}
+// A plane drawn as a grid (and, seen from above, a tint) of half-size `half` around the
+// camera's target; `project` maps a world point to the screen (null behind the eye).
+function drawPlaneGrid(ctx, cam, pl, target, half, project) {
+  const n = pl.normal;
+  const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+  const u = norm3(sub3(a, mul3(n, dot3(a, n)))), w = cross3(n, u);
+  const centre = sub3(target, mul3(n, dot3(sub3(target, pl.point), n)));
+  const step = niceStep(2 * half, 10);
+  const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(function (q) {
+    return project(cam, add3(centre, add3(mul3(u, q[0] * half), mul3(w, q[1] * half))));
+  });
+  const above = dot3(sub3(cam.eye, pl.point), n) > 0;
+  if (corners.every(function (q) { return q; })) {
+    ctx.fillStyle = above ? "rgba(200,184,138,0.35)" : "rgba(200,184,138,0.12)";
+    ctx.beginPath();
+    corners.forEach(function (q, j) { if (j === 0) ctx.moveTo(q[0], q[1]); else ctx.lineTo(q[0], q[1]); });
+    ctx.closePath(); ctx.fill();
+  }
+  ctx.strokeStyle = "rgba(127,106,60,0.35)"; ctx.lineWidth = 1;
+  ctx.beginPath();
+  const m = Math.floor(half / step);
+  for (let j = -m; j <= m; j++) {
+    [[u, w], [w, u]].forEach(function (ax) {
+      const p0 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], -half))));
+      const p1 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], half))));
+      if (p0 && p1) { ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); }
+    });
+  }
+  ctx.stroke();
+}
+// A small arrow at the edge of a W x H view, pointing to the screen point (X, Y) outside
+// it (a particle that left the view).
+function edgeArrow(ctx, W, H, X, Y) {
+  const dx = X - W / 2, dy = Y - H / 2;
+  const s = Math.min((W / 2 - 8) / Math.abs(dx || 1e-9), (H / 2 - 8) / Math.abs(dy || 1e-9));
+  const ex = W / 2 + dx * s, ey = H / 2 + dy * s, a = Math.atan2(dy, dx);
+  ctx.beginPath();
+  ctx.moveTo(ex + 7 * Math.cos(a), ey + 7 * Math.sin(a));
+  ctx.lineTo(ex + 5 * Math.cos(a + 2.4), ey + 5 * Math.sin(a + 2.4));
+  ctx.lineTo(ex + 5 * Math.cos(a - 2.4), ey + 5 * Math.sin(a - 2.4));
+  ctx.closePath(); ctx.fill();
 }

@@ -315,14 +315,7 @@ function drawOffView2(k) {
     out++;
     if (shown >= 40) continue;
     shown++;
-    const dx = X - W / 2, dy = Y - H / 2;
-    const s = Math.min((W / 2 - 8) / Math.abs(dx || 1e-9), (H / 2 - 8) / Math.abs(dy || 1e-9));
-    const ex = W / 2 + dx * s, ey = H / 2 + dy * s, a = Math.atan2(dy, dx);
-    ctx.beginPath();
-    ctx.moveTo(ex + 7 * Math.cos(a), ey + 7 * Math.sin(a));
-    ctx.lineTo(ex + 5 * Math.cos(a + 2.4), ey + 5 * Math.sin(a + 2.4));
-    ctx.lineTo(ex + 5 * Math.cos(a - 2.4), ey + 5 * Math.sin(a - 2.4));
-    ctx.closePath(); ctx.fill();
+    edgeArrow(ctx, W, H, X, Y);
   }
   S.offView = out;
 }

@@ -59,19 +59,7 @@ function fit3(frameOnly) {
     dist: radius / Math.sin(fov / 2 * aspect) * 1.05, radius: radius };
   S.dirty = true;
 }
-function camera() {
-  const c = S.cam;
-  const flat = add3(mul3(E1, Math.cos(c.yaw)), mul3(E2, Math.sin(c.yaw)));
-  const dir = add3(mul3(flat, Math.cos(c.pitch)),
-    mul3(UP, Math.sin(c.pitch)));
-  const eye = add3(c.target, mul3(dir, c.dist));
-  const f = norm3(sub3(c.target, eye));
-  let r = cross3(f, UP);
-  r = Math.hypot(r[0], r[1], r[2]) > 1e-9 ? norm3(r) : E1;
-  const u = cross3(r, f);
-  return { eye: eye, f: f, r: r, u: u, F: (H / 2) / Math.tan(c.fov / 2),
-    light: norm3(add3(add3(UP, mul3(f, -1.0)), mul3(r, 0.4))) };
-}
+function camera() { return orbitCamera(S.cam, UP, E1, E2, H); }
 function project(cam, p) {
   const d = sub3(p, cam.eye);
   const z = dot3(d, cam.f);
@@ -105,34 +93,8 @@ function contactPoints(i, P) {  // the rigid lab's candidates (framework/drivers
 
 function drawFloor3(cam) {
   if (!SCENE) return;
-  const c = S.cam;
-  SCENE.planes.forEach(function (pl) {
-    const n = pl.normal;
-    const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
-    const u = norm3(sub3(a, mul3(n, dot3(a, n)))), w = cross3(n, u);
-    const centre = sub3(c.target, mul3(n, dot3(sub3(c.target, pl.point), n)));
-    const half = Math.max(c.radius * 1.6, BIG * 2);
-    const step = niceStep(2 * half, 10);
-    const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(function (q) {
-      return project(cam, add3(centre, add3(mul3(u, q[0] * half), mul3(w, q[1] * half))));
-    });
-    const above = dot3(sub3(cam.eye, pl.point), n) > 0;
-    if (corners.every(function (q) { return q; })) {
-      ctx.fillStyle = above ? "rgba(200,184,138,0.35)" : "rgba(200,184,138,0.12)";
-      ctx.beginPath(); pathThrough(corners); ctx.fill();
-    }
-    ctx.strokeStyle = "rgba(127,106,60,0.35)"; ctx.lineWidth = 1;
-    ctx.beginPath();
-    const m = Math.floor(half / step);
-    for (let j = -m; j <= m; j++) {
-      [[u, w], [w, u]].forEach(function (ax) {
-        const p0 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], -half))));
-        const p1 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], half))));
-        if (p0 && p1) { ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); }
-      });
-    }
-    ctx.stroke();
-  });
+  const half = Math.max(S.cam.radius * 1.6, BIG * 2);
+  SCENE.planes.forEach(function (pl) { drawPlaneGrid(ctx, cam, pl, S.cam.target, half, project); });
 }
 
 function draw3() {

@@ -78,8 +78,8 @@ class RigidSim : public wb::live::Sim {
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       const Body& b = bodies_[i];
       double* s = &out_[13 * i];
-      const double v[13] = {b.x.x(),   b.x.y(),   b.x.z(),     b.q.w(),     b.q.x(),
-                            b.q.y(),   b.q.z(),   b.v.x(),     b.v.y(),     b.v.z(),
+      const double v[13] = {b.x.x(),     b.x.y(),     b.x.z(),    b.q.w(), b.q.x(),
+                            b.q.y(),     b.q.z(),     b.v.x(),    b.v.y(), b.v.z(),
                             b.omega.x(), b.omega.y(), b.omega.z()};
       std::copy(v, v + 13, s);
     }
@@ -220,9 +220,8 @@ int run_rigid_lab(int /*argc*/, char** /*argv*/, const LabInfo& info) {
     j["integrators"].push_back(
         {{"name", it.name}, {"description", it.description}, {"order", 1}, {"evals", 1}});
   }
-  wb::live::add_lab({info.lab, info.side, j.dump(), [info] {
-                       return std::unique_ptr<wb::live::Sim>(new RigidSim(info));
-                     }});
+  wb::live::add_lab({info.lab, info.side, j.dump(),
+                     [info] { return std::unique_ptr<wb::live::Sim>(new RigidSim(info)); }});
   return 0;
 }
 

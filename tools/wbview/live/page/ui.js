@@ -19,10 +19,13 @@ function fail(msg) {  // a problem of the page itself: on the page and in the co
 }
 
 // ---------------------------------------------------------------- panes
+function recordedIntegrator() {  // the scene's, or the lab's default (its first)
+  return S.scene.reference.integrator || integratorsOf(S.main)[0];
+}
 function paneLabel(p) {
   if (p.kind === "trace") {
     const r = S.scene.reference;
-    return "the solution's recorded run (" + r.integrator + ", h = " + fmt(r.dt) + " s)";
+    return "the solution's recorded run (" + recordedIntegrator() + ", h = " + fmt(r.dt) + " s)";
   }
   const who = p.side === "student" ? "your code" : "the solution";
   return who + " (" + p.integrator + ")";
@@ -107,7 +110,7 @@ function refreshTrace() {
   p.frame = traceFrame(p);
   const E = ref.energy[p.frame];
   p.ro = [ref.t[p.frame], ref.steps[p.frame], NaN, NaN, E, NaN, NaN, NaN, NaN, NaN, NaN, NaN, NaN, NaN];
-  p.integrator = ref.integrator;
+  p.integrator = recordedIntegrator();
 }
 // Energy growth per step since the step size (or integrator) last changed: (E/E0)^(1/k).
 function growth(p) {
@@ -403,9 +406,9 @@ function banner() {
   if (S.realtime.behind && S.playing) notes.push({ html: "Not real time (×" +
     S.realtime.ratio.toFixed(2) + "): the steps of a frame take longer than the page allows " +
     "(frame budget, right)." });
-  if (S.compare === "trace" && (S.h !== S.scene.reference.dt ||
-      S.panes[0].integrator !== S.scene.reference.integrator)) {
-    notes.push({ html: "The recorded run used " + esc(S.scene.reference.integrator) + " at h = " +
+  if (S.compare === "trace" && (Math.abs(S.h - S.scene.reference.dt) > 1e-9 * S.h ||
+      S.panes[0].integrator !== recordedIntegrator())) {
+    notes.push({ html: "The recorded run used " + esc(recordedIntegrator()) + " at h = " +
       fmt(S.scene.reference.dt) + " s: compare at those for the same motion." });
   }
   const key = JSON.stringify(notes);

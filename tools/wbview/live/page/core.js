@@ -1,4 +1,4 @@
-// The live page, part 1 of 4 (tools/wblive/page.py joins them after tools/wbview's
+// The live page, part 1 of 4 (tools/wbview/live/page.py joins them after tools/wbview's
 // geom.js): the page's data, the WebAssembly modules and the simulations they hold, the
 // runs (panes) and formatting. Nothing physical is computed here: a Sim is the lab's
 // own C++ (framework/live/, docs/live.md).

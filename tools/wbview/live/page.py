@@ -1,5 +1,5 @@
 """One self-contained live page of a lab: the template, its script (tools/wbview's
-geom.js, then tools/wblive/page/*.js) and style, the lab's default scenes with what the
+geom.js, then tools/wbview/live/page/*.js) and style, the lab's default scenes with what the
 page draws of them, the solution's recorded runs where there are some, and the lab's
 WebAssembly modules (their JavaScript, the WebAssembly inside as base64), each in a
 script element of its own. Opens from disk: no server, no network."""
@@ -13,7 +13,7 @@ from wbplot.claims import strip_markers
 from wbview.data import InputError, particle_scene, rigid_scene
 
 HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "page")
-SHARED = os.path.join(os.path.dirname(HERE), "..", "wbview", "page", "geom.js")
+SHARED = os.path.join(os.path.dirname(os.path.dirname(HERE)), "page", "geom.js")
 SCRIPTS = ["core.js", "view2d.js", "view3d.js", "ui.js"]
 # The scene a lab's page opens on (another is a menu away); a lab not named here opens
 # on its first scene.
@@ -96,7 +96,7 @@ def render(lab, kind, scenes, modules, main, built):
     js = ("\"use strict\";\n(function () {\n" + _read(SHARED) + "\n"
           + "\n".join(_read(os.path.join(HERE, n)) for n in SCRIPTS) + "})();\n")
     if re.search(r"</script|<script|<!--", js, re.I):
-        raise AssertionError("tools/wblive/page/*.js hold '</script', '<script' or '<!--'")
+        raise AssertionError("tools/wbview/live/page/*.js hold '</script', '<script' or '<!--'")
     parts = {"TITLE": html.escape(f"{lab} — live"), "CSS": _read(os.path.join(HERE, "live.css")),
              "JS": js, "META": _json_in_script(meta),
              "MODULES": "\n".join(module_script(s, modules[s]) for s in meta["modules"])}

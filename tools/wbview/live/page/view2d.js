@@ -251,14 +251,7 @@ function drawOffView2(p, color) {
     out++;
     if (shown >= 40 || !isFinite(X + Y)) continue;
     shown++;
-    const cx = p.W / 2, cy = p.H / 2, dx = X - cx, dy = Y - cy;
-    const k = Math.min((p.W / 2 - 8) / Math.abs(dx || 1e-9), (p.H / 2 - 8) / Math.abs(dy || 1e-9));
-    const ex = cx + dx * k, ey = cy + dy * k, a = Math.atan2(dy, dx);
-    ctx.beginPath();
-    ctx.moveTo(ex + 7 * Math.cos(a), ey + 7 * Math.sin(a));
-    ctx.lineTo(ex + 5 * Math.cos(a + 2.4), ey + 5 * Math.sin(a + 2.4));
-    ctx.lineTo(ex + 5 * Math.cos(a - 2.4), ey + 5 * Math.sin(a - 2.4));
-    ctx.closePath(); ctx.fill();
+    edgeArrow(ctx, p.W, p.H, X, Y);
   }
   p.offView = out;
 }

@@ -1,4 +1,4 @@
-"""The live pages' Python side (tools/wblive: the build, the recorded runs, the page). Guards
+"""The live pages' Python side (tools/wbview/live: the build, the recorded runs, the page). Guards
 against a page a scene's text can break, a recorded run that shows other positions or steps
 than the run had, a student without emscripten told nothing useful, a build that cannot find
 Debian's node modules, and a page that needs the network. Each test names the defect it
@@ -9,10 +9,11 @@ import os
 import struct
 import sys
 
-TOOLS = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+TOOLS = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))))
 sys.path.insert(0, TOOLS)
 
-from wblive import build, cli, page, recorded  # noqa: E402
+from wbview.live import build, cli, page, recorded  # noqa: E402
 from wbview.data import read_stats, read_trace  # noqa: E402
 
 ROOT = os.path.dirname(TOOLS)

@@ -38,16 +38,9 @@ function fit3() {
     dist: radius / Math.sin(fov / 2 * 0.8) * 1.05 };
 }
 function camera(p) {
-  const c = S.cam, U = up3(), E = basis3();
-  const flat = add3(mul3(E[0], Math.cos(c.yaw)), mul3(E[1], Math.sin(c.yaw)));
-  const dir = add3(mul3(flat, Math.cos(c.pitch)), mul3(U, Math.sin(c.pitch)));
-  const eye = add3(c.target, mul3(dir, c.dist));
-  const f = norm3(sub3(c.target, eye));
-  let r = cross3(f, U);
-  r = Math.hypot(r[0], r[1], r[2]) > 1e-9 ? norm3(r) : E[0];
-  const u = cross3(r, f);
-  return { eye: eye, f: f, r: r, u: u, F: (p.H / 2) / Math.tan(c.fov / 2), W: p.W, H: p.H,
-    light: norm3(add3(add3(U, mul3(f, -1.0)), mul3(r, 0.4))) };
+  const E = basis3(), cam = orbitCamera(S.cam, up3(), E[0], E[1], p.H);
+  cam.W = p.W; cam.H = p.H;
+  return cam;
 }
 function project(cam, q) {
   const d = sub3(q, cam.eye), z = dot3(d, cam.f);
@@ -60,23 +53,9 @@ function ray(cam, X, Y) {  // the direction through screen point (X, Y)
 }
 
 function drawFloor3(p, cam) {
-  const ctx = p.ctx, c = S.cam;
+  const half = Math.max(S.cam.radius * 1.6, S.cam.big * 2);
   S.scene.model.planes.forEach(function (pl) {
-    const n = pl.normal, a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
-    const u = norm3(sub3(a, mul3(n, dot3(a, n)))), w = cross3(n, u);
-    const centre = sub3(c.target, mul3(n, dot3(sub3(c.target, pl.point), n)));
-    const half = Math.max(c.radius * 1.6, c.big * 2), step = niceStep(2 * half, 10);
-    ctx.strokeStyle = "rgba(127,106,60,0.35)"; ctx.lineWidth = 1;
-    ctx.beginPath();
-    const m = Math.floor(half / step);
-    for (let j = -m; j <= m; j++) {
-      [[u, w], [w, u]].forEach(function (ax) {
-        const p0 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], -half))));
-        const p1 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], half))));
-        if (p0 && p1) { ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); }
-      });
-    }
-    ctx.stroke();
+    drawPlaneGrid(p.ctx, cam, pl, S.cam.target, half, project);
   });
 }
 

@@ -6,7 +6,8 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))))
 # Debian's emscripten runs its JavaScript tools (acorn) with the machine's node: when
 # that node is not Debian's own, they are found only on Debian's modules folder.
 DEBIAN_NODE_MODULES = "/usr/share/nodejs"
