@@ -77,6 +77,7 @@ function setCompare(kind) {
 }
 // Both runs from their initial state, together.
 function syncRuns() {
+  S.cost.window = [];
   S.panes.forEach(function (p) {
     if (p.kind === "live" && p.error) {  // the lab's code threw mid-step: a new world
       const err = p.sim.load(S.scene.file, S.docText) || p.sim.setIntegrator(p.integrator);
@@ -192,7 +193,9 @@ function advance(wallS) {
 // until the clock can tell.
 function stepCostMs() {
   let ms = 0, k = 0;
-  S.cost.window.forEach(function (c) { ms += c[0]; k += c[1]; });
+  // Not the first chunks after a change: the browser compiles a function of the module
+  // the first time it runs, and those chunks would count the compiling.
+  S.cost.window.slice(10).forEach(function (c) { ms += c[0]; k += c[1]; });
   if (ms >= 5 && k > 0) { S.costFrom = "the run"; return ms / k; }
   let sum = 0, any = false;
   S.panes.forEach(function (p) {
@@ -577,6 +580,7 @@ function applyUpdate() {
     return;
   }
   S.knobError = null;
+  S.cost.window = [];
   S.docText = S.goodText = text;
   S.radii = null;
   S.panes.forEach(function (p) { p.bg = null; });
@@ -684,6 +688,7 @@ function controls() {
       const err = p.sim.setIntegrator(sel.value);
       if (err) { S.knobError = err; fillSelect(sel, integratorsOf(p.side), p.integrator); return; }
       S.knobError = null;
+      S.cost.window = [];
       p.integrator = sel.value;
       if (idx === 0 && S.compare !== "none") syncRuns(); else p.segment = null;
     };
@@ -769,6 +774,8 @@ window.wbLive = {
   lab: META.lab, kind: META.kind,
   scenes: META.scenes.map(function (s) { return s.name; }),
   load: function (name) { loadScene(name); },
+  // Play (true) or pause (false), as the play button does.
+  play: function (on) { S.playing = !!on; S.debt = 0; playLabel(); },
   run: function (i) {
     const p = S.panes[i || 0];
     if (!p || !p.ro) return null;
