@@ -14,6 +14,8 @@ events:
   - forces: the boids' goal, the attractor and the curl-noise obstacles move when dragged;
   - implicit: backward Euler on the stiff rope stays bounded at k = 10^6, beside
     semi-implicit Euler, which diverges.
+Every lab's page built from labs/ (the skeleton here) must open, load and step every scene
+and take every integrator with no console error and no error from the lab's code.
 Then it breaks pages on purpose (the skeleton's explicit Euler, a page whose runs never
 step, one whose drag pulls nothing, one whose script throws) and requires the checks above
 to fail on each. The live layer's unit tests (pytest) run first. --bench times the
@@ -94,13 +96,13 @@ class PageCheck:
                 time.monotonic() - t0)
 
     # -- every scene
-    def scenes(self):
+    def scenes(self, run_s=RUN_S, fps=True):
         kind = self.js("wbLive.kind")
         for name in self.js("wbLive.scenes"):
             self.js(f"wbLive.load({json.dumps(name)})")
             self.b.pump(0.3)  # the first frames: the module warms up, the camera fits
             r0 = self.js("wbLive.run(0)")
-            frames, cpu, wall = self.run_for(RUN_S)
+            frames, cpu, wall = self.run_for(run_s)
             r1 = self.js("wbLive.run(0)")
             n = r1["n"]
             small = n <= (SMALL_BODIES if kind == "rigid" else SMALL_PARTICLES)
@@ -116,9 +118,9 @@ class PageCheck:
             if r1["error"]:
                 self.fail(f"{where}: the lab's code stopped: {r1['error']}")
             if not r1["steps"] > r0["steps"] and not r1["status"].get("diverged"):
-                self.fail(f"{where}: the run did not step in {RUN_S} s (steps {r0['steps']} "
+                self.fail(f"{where}: the run did not step in {run_s} s (steps {r0['steps']} "
                           f"-> {r1['steps']})")
-            if not fps_cpu >= need:
+            if fps and not fps_cpu >= need:
                 self.fail(f"{where} ({n} {'bodies' if kind == 'rigid' else 'particles'}): "
                           f"{fps_cpu:.0f} frames per CPU second of the browser, expected at "
                           f"least {need:.0f}")
@@ -315,8 +317,25 @@ DRAG_SCENES = {"forces": ("flock", None), "euler": ("oscillator", 0),
 # implicit's one-spring is dragged at h = 1/128 s, not its own 1/16 s: the cursor's pull
 # (framework/live/live.cpp, grab_coefficients) is a spring-damper solved implicitly after
 # each step, whose stiffness is m w^2 / (1 + 2 zeta h w + (h w)^2): at h = 1/16 s a seventh
-# of its 5 Hz, and the particle rests ~0.2 m off the cursor against the scene's own
+# of its 5 Hz, and the particle rests 0.1 to 0.2 m off the cursor against the scene's own
 # k = 4 pi^2 spring (docs/live.md, "The mouse").
+
+
+def check_skeleton(b, path, lab, shots):
+    """A student's page before any TODO is done (labs/<lab>/): it opens, every scene loads
+    and steps (or stops as the run contract says) with no console error and no error from
+    the lab's code, and every integrator can be chosen. Nothing moves, which is right."""
+    c = PageCheck(b, path, f"{lab} (skeleton)", shots)
+    if not c.open():
+        return c
+    c.scenes(run_s=0.4, fps=False)
+    c.integrators()
+    c.js(f"wbLive.load({json.dumps(c.js('wbLive.scenes')[0])})")
+    c.b.pump(0.5)
+    if shots:
+        c.b.screenshot(os.path.join(shots, f"{lab}-skeleton-open.png"))
+    c.errors("at the end")
+    return c
 
 
 def check_lab(b, path, lab, shots):
@@ -477,6 +496,8 @@ def main(argv=None):
                         "(build/bin/bench_live, built here) on each lab's scene")
     p.add_argument("--no-controls", action="store_true",
                    help="skip the pages broken on purpose")
+    p.add_argument("--no-skeletons", action="store_true",
+                   help="skip the pages built from labs/ (the skeletons, in this checkout)")
     p.add_argument("--no-setup", action="store_true", help="install nothing first")
     args = p.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "tools"))
@@ -501,14 +522,26 @@ def main(argv=None):
             log(f"live-check: built {rel(out)}: {what}")
         except livebuild.BuildError as e:
             problems.append(f"{lab}: the live page could not be built: {e}")
+    skeletons = {}  # every lab's page built from labs/ (the skeleton, in this checkout)
+    if not args.no_skeletons:
+        for lab in args.lab or labs():
+            out = os.path.join(args.shots, f"{lab}-skeleton.html")
+            try:
+                livecli.make_page(lab, "student", out, args.build_dir)
+                skeletons[lab] = out
+                log(f"live-check: built {rel(out)} from labs/{lab}/")
+            except livebuild.BuildError as e:
+                problems.append(f"{lab}: the skeleton's live page could not be built: {e}")
     skeleton = None
     if not args.no_controls and "euler" in pages:
-        skeleton = os.path.join(args.shots, "control-skeleton-euler.html")
-        try:
-            livecli.make_page("euler", "student", skeleton, args.build_dir)
-        except livebuild.BuildError as e:
-            problems.append(f"the skeleton's euler page could not be built: {e}")
-            skeleton = None
+        skeleton = skeletons.get("euler")
+        if not skeleton:
+            skeleton = os.path.join(args.shots, "euler-skeleton.html")
+            try:
+                livecli.make_page("euler", "student", skeleton, args.build_dir)
+            except livebuild.BuildError as e:
+                problems.append(f"the skeleton's euler page could not be built: {e}")
+                skeleton = None
     log(f"live-check: {len(pages)} pages built in {time.monotonic() - t0:.0f} s")
     facts = {}
     with browser.Browser(width=1500, height=900) as b:
@@ -522,6 +555,16 @@ def main(argv=None):
             problems += c.problems
             facts[lab] = c.facts
             log(f"live-check: {lab}: {summary(c.facts)} ({time.monotonic() - t1:.0f} s)")
+        for lab, path in skeletons.items():
+            t1 = time.monotonic()
+            try:
+                c = check_skeleton(b, path, lab, args.shots)
+            except (browser.BrowserError, KeyError, TypeError, ValueError) as e:
+                problems.append(f"{lab} (skeleton): {type(e).__name__}: {e}")
+                continue
+            problems += c.problems
+            log(f"live-check: {lab} (skeleton): {len(c.facts['scenes'])} scenes open and step "
+                f"with no error ({time.monotonic() - t1:.0f} s)")
         if not args.no_controls and "euler" in pages:
             problems += controls(b, pages["euler"], skeleton, args.shots)
         if args.bench:
