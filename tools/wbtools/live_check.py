@@ -545,26 +545,22 @@ def main(argv=None):
     log(f"live-check: {len(pages)} pages built in {time.monotonic() - t0:.0f} s")
     facts = {}
     with browser.Browser(width=1500, height=900) as b:
-        for lab, path in pages.items():
-            t1 = time.monotonic()
-            try:
-                c = check_lab(b, path, lab, args.shots)
-            except (browser.BrowserError, KeyError, TypeError, ValueError) as e:
-                problems.append(f"{lab}: {type(e).__name__}: {e}")
-                continue
-            problems += c.problems
-            facts[lab] = c.facts
-            log(f"live-check: {lab}: {summary(c.facts)} ({time.monotonic() - t1:.0f} s)")
-        for lab, path in skeletons.items():
-            t1 = time.monotonic()
-            try:
-                c = check_skeleton(b, path, lab, args.shots)
-            except (browser.BrowserError, KeyError, TypeError, ValueError) as e:
-                problems.append(f"{lab} (skeleton): {type(e).__name__}: {e}")
-                continue
-            problems += c.problems
-            log(f"live-check: {lab} (skeleton): {len(c.facts['scenes'])} scenes open and step "
-                f"with no error ({time.monotonic() - t1:.0f} s)")
+        for check, which in ((check_lab, pages), (check_skeleton, skeletons)):
+            for lab, path in which.items():
+                t1 = time.monotonic()
+                name = lab if check is check_lab else f"{lab} (skeleton)"
+                try:
+                    c = check(b, path, lab, args.shots)
+                except (browser.BrowserError, KeyError, TypeError, ValueError) as e:
+                    problems.append(f"{name}: {type(e).__name__}: {e}")
+                    continue
+                problems += c.problems
+                if check is check_lab:
+                    facts[lab] = c.facts
+                    said = summary(c.facts)
+                else:
+                    said = f"{len(c.facts['scenes'])} scenes open and step with no error"
+                log(f"live-check: {name}: {said} ({time.monotonic() - t1:.0f} s)")
         if not args.no_controls and "euler" in pages:
             problems += controls(b, pages["euler"], skeleton, args.shots)
         if args.bench:
