@@ -214,11 +214,21 @@ function calibrate(p) {
   const sim = S.calibSims[p.side] || (S.calibSims[p.side] = new Sim(S.modules[p.side], p.side));
   let out = null;
   if (!sim.load(S.scene.file, S.docText) && !sim.setIntegrator(p.integrator)) {
-    for (let n = 16; n <= 65536; n *= 4) {
+    // The clock is the wall's: on a busy machine the page can be held up for milliseconds
+    // inside one run, so a run long enough to tell is timed three times, the fastest kept.
+    const time = function (n) {
       sim.reset();
-      const t0 = performance.now(), k = sim.step(S.h, n), ms = performance.now() - t0;
-      if (k < n) break;  // it diverged: no figure
-      if (ms >= 3 || n === 65536) { out = ms / n; break; }
+      const t0 = performance.now(), k = sim.step(S.h, n);
+      return k < n ? null : performance.now() - t0;
+    };
+    for (let n = 16; n <= 65536; n *= 4) {
+      let ms = time(n);
+      if (ms === null) break;  // it diverged: no figure
+      if (ms >= 3 || n === 65536) {
+        for (let r = 0; r < 2 && ms !== null; r++) { const t = time(n); ms = t === null ? null : Math.min(ms, t); }
+        if (ms === null) break;
+        if (ms >= 3 || n === 65536) { out = ms / n; break; }
+      }
     }
   }
   S.calib[key] = out;
