@@ -11,6 +11,7 @@
 
 #include <charconv>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -368,8 +369,15 @@ void CsvFile::commit() {
 
 void append_number(std::string& out, double x) {
   char buf[32];
+#ifdef __cpp_lib_to_chars
   auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
   out.append(buf, r.ptr);
+#else
+  // A library without to_chars for double (emscripten's libc++ 13, the live pages'
+  // build: docs/live.md): printf's %.17g is what to_chars(general, 17) is defined as.
+  const int n = std::snprintf(buf, sizeof buf, "%.17g", x);
+  out.append(buf, std::size_t(n));
+#endif
 }
 
 void append_int(std::string& out, long long x) {

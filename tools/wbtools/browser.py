@@ -181,6 +181,14 @@ class Browser:
             raise BrowserError(f"{expr[:80]}: {why}")
         return r.get("result", {}).get("value")
 
+    def mouse(self, kind, x, y, button="left"):
+        """A real mouse event at page point (x, y) (CSS pixels): kind "pressed", "moved"
+        or "released" (what a user's hand does; the page sees mousedown/move/up)."""
+        self.call("Input.dispatchMouseEvent",
+                  {"type": "mouse" + kind.capitalize(), "x": x, "y": y, "button": button,
+                   "buttons": 1 if kind != "released" else 0, "clickCount": 1},
+                  session=self.session)
+
     def screenshot(self, path):
         """Writes the whole page as a PNG file."""
         data = base64.b64decode(self.call("Page.captureScreenshot", {"format": "png"},

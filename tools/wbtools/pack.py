@@ -16,6 +16,7 @@
 # repository's own build) and leaves the rest to whoever builds the pack anyway
 # (tools/fresh-machine's student, with the commands --lab-commands writes).
 import argparse
+import glob
 import hashlib
 import json
 import os
@@ -44,7 +45,7 @@ NEVER = {"solutions", "mutants", "hostile", "badinput", "bench", "gradescope", "
          ".git", "__pycache__", "fuzz"}
 STUDENT_TOOLS = {"setup", "lib", "plot", "view", "grade", "grader", "diagnosis", "wbplot",
                  "wbview"}  # the rest stays home
-STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md"}
+STUDENT_DOCS = {"run-contract.md", "scenes.md", "sweep.md", "view.md", "live.md"}
 INSTRUCTOR_BLOCK = re.compile(r"<!--\s*instructor\s*-->.*?<!--\s*/instructor\s*-->\n?", re.S)
 CLAIM_MARKER = re.compile(r" ?<!--\s*(?:not-a-)?claim:.*?-->", re.S)  # claim markers
 # The delimiters of the points lists (tools/pattern points): the lists ship, not the markers.
@@ -263,6 +264,27 @@ def copy_tree(dest, labs, labs_all, order, report_dir, featured=None):
     with open(os.path.join(dest, "README.md"), "w", encoding="utf-8") as f:
         f.write(make_readme(labs, order, featured))
     return figures
+
+
+def copy_recorded(dest, labs, report_dir):
+    """The solution's recorded runs of the packed labs' default scenes, as data for the live
+    pages (live/recorded/<lab>/<scene>.json, docs/live.md): from the report's runs, the
+    handouts' figures' own. Returns how many were written."""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    from wbview.live import recorded
+    from wbview.data import InputError
+    count = 0
+    for lab in sorted(labs):
+        for path in sorted(glob.glob(os.path.join(ROOT, "scenes", lab, "*.json"))):
+            stem = os.path.basename(path)[:-5]
+            try:
+                block = recorded.from_report(report_dir, lab, stem)
+            except InputError as e:
+                raise PackError(f"a recorded run for the live pages: {e}") from None
+            if block is not None:
+                recorded.write(os.path.join(dest, "live", "recorded"), lab, stem, block)
+                count += 1
+    return count
 
 
 def copy_figures(dest, figures):
@@ -1032,6 +1054,9 @@ def main():
         if missing:
             raise PackError(f"{len(missing)} handout figure(s) missing after tools/report, e.g. "
                             f"{shown(missing[0])}: see the report's failures")
+        recorded_runs = copy_recorded(stage, labs, report_dir)
+        print(f"tools/pack: {recorded_runs} recorded runs of the solution for the live pages "
+              "(live/recorded/)", flush=True)
         repo_build = os.path.dirname(report_dir)
         if args.no_build and args.each_lab:  # before the prebuilt parts' minute of compiling
             check_repo_build(repo_build, order)

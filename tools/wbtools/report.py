@@ -45,6 +45,8 @@ class Report:
         self.labs = []       # LabSection
         self.facts = {}      # figure path -> what it shows (wbplot/figfacts.py)
         self.source = {}     # the commit drawn from (committed.source_stamp), set by main()
+        self.live = {}       # lab -> its live page (docs/live.md), from the index
+        self.live_note = None  # why there are none
 
     def fail(self, msg):
         self.failures.append(msg)
@@ -726,6 +728,7 @@ def write_html(report, path, elapsed):
     if report.failures:
         out.append('<div class="fail"><b>Failures</b><ul>'
                    + "".join(f"<li>{e(f)}</li>" for f in report.failures) + "</ul></div>")
+    out.append(live_links_html(report))
     out.append("<ul>" + "".join(f'<li><a href="#{e(s.lab)}">{e(s.lab)}</a>'
                                 + (f" (skipped: {e(s.status)})" if s.status else "") + "</li>"
                                 for s in report.labs) + "</ul>")
@@ -758,6 +761,39 @@ def write_html(report, path, elapsed):
 
 
 # ----------------------------------------------------------------------------
+
+
+def live_pages(report, labs, build_dir):
+    """A live page per lab, built from the solutions (docs/live.md), linked from the index:
+    only where emscripten is installed (it is optional); else the index says so."""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    from wbview.live import build as livebuild, cli as livecli
+    report.live = {}
+    if not livebuild.have_emscripten():
+        report.live_note = livebuild.MISSING
+        log(f"report: live pages not built: {livebuild.MISSING}")
+        return
+    os.makedirs(os.path.join(report.out_dir, "live"), exist_ok=True)
+    for lab in labs:
+        out = os.path.join(report.out_dir, "live", f"{lab}.html")
+        t0 = time.monotonic()
+        try:
+            livecli.make_page(lab, "solution", out, os.path.join(build_dir, "live"))
+        except livebuild.BuildError as e:
+            report.fail(f"{lab}: the live page could not be built: {e}")
+            continue
+        report.live[lab] = os.path.relpath(out, report.out_dir)
+        log(f"report: {lab}: live page {rel(out)} ({time.monotonic() - t0:.0f} s)")
+
+
+def live_links_html(report):
+    e = html.escape
+    if report.live:
+        return ("<p>Live pages, built from the solutions (docs/live.md): the lab's C++ in "
+                "WebAssembly, stepping in the browser while you turn h, the integrator and the "
+                "scene's numbers: " + ", ".join(f'<a href="{e(p)}">{e(lab)}</a>'
+                                               for lab, p in report.live.items()) + ".</p>")
+    return f"<p>Live pages: not built ({e(report.live_note)}).</p>" if report.live_note else ""
 
 
 def check_claims(report):
@@ -795,6 +831,8 @@ def main():
                "See docs/report.md.")
     p.add_argument("--no-setup", action="store_true", help="skip tools/setup")
     p.add_argument("--no-build", action="store_true", help="skip configuring and building")
+    p.add_argument("--no-live", action="store_true",
+                   help="skip the live pages (docs/live.md; built only where em++ is installed)")
     p.add_argument("--build-dir", default="build",
                    help="build folder (default build, the default preset's); executables in "
                         "<build-dir>/bin, the report in <build-dir>/report")
@@ -876,6 +914,8 @@ def main():
         save_section(report, report.labs[-1], report.failures[n_fail:])
         log(f"report: {lab} done in {time.monotonic() - t0:.1f} s")
     check_claims(report)
+    if not args.no_live:
+        live_pages(report, labs, build_dir)
     elapsed = time.monotonic() - start
     md = os.path.join(report.out_dir, "index.md")
     index = os.path.join(report.out_dir, "index.html")

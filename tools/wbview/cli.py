@@ -46,6 +46,10 @@ def parser():
                    help="the page to write (default RUN-view.html beside RUN.csv)")
     p.add_argument("--no-setup", action="store_true",
                    help="install nothing first (tools/lib/start-python)")
+    p.add_argument("--live", action="store_true",
+                   help="a lab's live page instead: your code compiled to WebAssembly, running "
+                        "in the browser (tools/view --live --lab LAB; --live --help lists its "
+                        "flags; docs/live.md)")
     return p
 
 
@@ -114,6 +118,9 @@ def make_view(run, out, stats=None, summary=None, scene=None, run2=None, stats2=
 
 
 def main(argv=None):
+    if "--live" in (sys.argv[1:] if argv is None else argv):  # a live page: docs/live.md
+        from wbview.live.cli import main as live_main
+        return live_main(argv)
     p = parser()
     try:
         args = p.parse_args(argv)

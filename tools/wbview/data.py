@@ -17,8 +17,9 @@ TRACE_3D = ["t", "id", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", 
 STATS_2D = ["step", "t", "energy", "kinetic", "potential", "px", "py"]
 STATS_3D = ["step", "t", "energy", "kinetic", "potential", "px", "py", "pz", "Lx", "Ly", "Lz"]
 
-# What the page keeps per particle or body and frame (docs/view.md, "Large runs").
-KEEP_2D = ["x", "y"]
+# What the page keeps per particle or body and frame (docs/view.md, "Large runs"): a
+# particle's velocity too, unless keeping it would thin the written steps (model.build).
+KEEP_2D = ["x", "y", "vx", "vy"]
 KEEP_3D = ["x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"]
 
 # The rigid lab's contact rule: candidate points closer to a plane than this touch it

@@ -119,22 +119,36 @@ def pack_floats(values):
     return base64.b64encode(a.tobytes()).decode("ascii")
 
 
-def pack_trace(trace, keep, origin):
-    """The kept frames' values, positions relative to `origin` (float64 in the page's
-    metadata), as float32 base64."""
+def pack_trace(trace, keep, origin, width=None):
+    """The kept frames' values (the first `width` columns of each row, all by default),
+    positions relative to `origin` (float64 in the page's metadata), as float32 base64."""
     c, n = len(trace.cols), trace.n
+    w = width or c
     dims = len(origin)
     out = array("d")
     v = trace.values
     for k in keep:
         chunk = v[k * n * c:(k + 1) * n * c]
+        if w < c:
+            chunk = array("d", (x for i in range(n) for x in chunk[i * c:i * c + w]))
         for d in range(dims):
             if origin[d]:
-                col = chunk[d::c]
-                chunk[d::c] = array("d", map(operator.sub, col,
+                col = chunk[d::w]
+                chunk[d::w] = array("d", map(operator.sub, col,
                                              itertools.repeat(origin[d], len(col))))
         out.extend(chunk)
     return pack_floats(out)
+
+
+def kept_columns(trace, others=(), budget=None):
+    """How many columns of each row the page keeps: all (a particle's velocity with its
+    position) unless that would thin the written steps of this run or the others, whose
+    velocities would then be left out (positions only, as before)."""
+    c = len(trace.cols)
+    if trace.kind != "particles":
+        return c
+    frames = sum(t.frames for t in (trace,) + tuple(others))
+    return c if frames * trace.n * c <= (budget or MAX_STORED_VALUES) else 2
 
 
 def step_numbers(times, stats, summary, doc):
@@ -305,7 +319,7 @@ def frame_budget(summary, doc, n, kind):
             "scaling": (f"n² ({', '.join(sorted(set(quadratic)))})" if quadratic else "n")}
 
 
-def run_block(trace, stats, summary, label, keep, every, origin):
+def run_block(trace, stats, summary, label, keep, every, origin, width=None):
     steps, dt, step_from = step_numbers([trace.t[k] for k in keep], stats, summary, None)
     div = None
     if summary and summary.get("status") == "diverged":
@@ -313,7 +327,7 @@ def run_block(trace, stats, summary, label, keep, every, origin):
                "why": str(summary.get("diverged", ""))}
     return {"label": label, "path": trace.path, "n": trace.n, "frames_written": trace.frames,
             "kept_every": every, "t": [trace.t[k] for k in keep], "steps": steps, "dt": dt,
-            "step_from": step_from, "data": pack_trace(trace, keep, origin),
+            "step_from": step_from, "data": pack_trace(trace, keep, origin, width),
             "stats": stats_curves(stats, trace.kind, [div["t"]] if div and div["t"] else ()),
             "summary": clean_all(summary or {}),
             "diverged": div}
@@ -322,7 +336,8 @@ def run_block(trace, stats, summary, label, keep, every, origin):
 def build(trace, stats, summary, doc, scene_path, run2=None, labels=("run", "run 2")):
     """The page's data: a dict for JSON (binary blocks as base64 strings)."""
     kind = trace.kind
-    per = len(trace.cols) * trace.n
+    width = kept_columns(trace, (run2[0],) if run2 is not None else ())
+    per = width * trace.n
     budget = MAX_STORED_VALUES // (2 if run2 else 1)
     keep, every = kept_frames(trace.frames, per, budget)
     box = fit_box(trace, diverged=bool(summary and summary.get("status") == "diverged"))
@@ -341,10 +356,11 @@ def build(trace, stats, summary, doc, scene_path, run2=None, labels=("run", "run
         if kind == "particles" and len(scene["springs"]) > MAX_SPRINGS:
             scene["springs_left_out"] = len(scene["springs"])
             scene["springs"] = []
-    r1 = run_block(trace, stats, summary, labels[0], keep, every, origin)
+    r1 = run_block(trace, stats, summary, labels[0], keep, every, origin, width)
     if doc and r1["steps"] is None:
         r1["steps"], r1["dt"], r1["step_from"] = step_numbers(r1["t"], None, None, doc)
-    out = {"version": 1, "kind": kind, "n": trace.n, "cols": trace.cols, "origin": origin,
+    out = {"version": 1, "kind": kind, "n": trace.n, "cols": trace.cols[:width], "origin": origin,
+           "scene_dt": (doc or {}).get("dt") if finite((doc or {}).get("dt")) else None,
            "box": box, "scene": scene, "runs": [r1],
            "name": (doc or {}).get("name") or None, "description": None,
            "scene_path": scene_path, "exact": None, "difference": None,
@@ -368,7 +384,7 @@ def build(trace, stats, summary, doc, scene_path, run2=None, labels=("run", "run
             raise InputError(f"{t2.path}: {t2.n} {what}, the first run ({trace.path}) has "
                              f"{trace.n}: a second run must be of the same scene")
         keep2, every2 = kept_frames(t2.frames, per, budget)
-        b2 = run_block(t2, s2, sum2, labels[1], keep2, every2, origin)
+        b2 = run_block(t2, s2, sum2, labels[1], keep2, every2, origin, width)
         if doc and b2["steps"] is None:
             b2["steps"], b2["dt"], b2["step_from"] = step_numbers(b2["t"], None, None, doc)
         out["runs"].append(b2)

@@ -3,14 +3,15 @@
 script element of its own type (the browser does not parse it as code).
 
 The script is plain JavaScript on Canvas 2D, no library (docs/view.md, "Why plain
-Canvas"), in five files joined here into one function in this order."""
+Canvas"), in six files joined here into one function in this order (geom.js is shared with
+the live pages, tools/wbview/live)."""
 import html
 import json
 import os
 import re
 
 HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "page")
-SCRIPTS = ["core.js", "view2d.js", "view3d.js", "charts.js", "ui.js"]
+SCRIPTS = ["geom.js", "core.js", "view2d.js", "view3d.js", "charts.js", "ui.js"]
 
 
 def _read(name):

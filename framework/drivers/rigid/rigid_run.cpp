@@ -62,12 +62,6 @@ void append_stats_row(std::string& buf, long step, double t, const Totals& s) {
   buf += '\n';
 }
 
-// The floor of the run's energy scale (wb::energy_scale): the work gravity and the
-// point forces would do across the scene (rigid::work_scale_of), finite by the loader.
-double work_scale(const Scene& scene, const std::vector<Body>& /*bodies*/) {
-  return work_scale_of(scene);
-}
-
 ordered_json vec_json(const Vec3& v) {
   auto n = [](double x) { return std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr); };
   return {n(v.x()), n(v.y()), n(v.z())};

@@ -658,6 +658,10 @@ double step(const Scene& scene, const Integrator& integ, double h, std::vector<B
   return drift;
 }
 
+double work_scale(const Scene& scene, const std::vector<Body>& /*bodies*/) {
+  return work_scale_of(scene);
+}
+
 Totals totals(const Scene& scene, const std::vector<Body>& bodies) {
   Totals t;
   for (const Body& b : bodies) {

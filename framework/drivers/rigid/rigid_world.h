@@ -139,6 +139,11 @@ struct Totals {
 };
 Totals totals(const Scene& scene, const std::vector<Body>& bodies);
 
+// The floor of a run's energy scale (wb::energy_scale): the work gravity and the point
+// forces would do across the scene (work_scale_of, finite by the loader); the run's
+// and the live page's divergence rule both read it.
+double work_scale(const Scene& scene, const std::vector<Body>& bodies);
+
 // The contact candidates of a body against a plane (world points).
 std::vector<Vec3> contact_points(const BodyDef& def, const Body& b, const Plane& plane);
 

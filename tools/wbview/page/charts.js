@@ -1,4 +1,4 @@
-// tools/view's page, part 4 of 5: the curves against time, with the playhead's cursor.
+// tools/view's page, part 5 of 6: the curves against time, with the playhead's cursor.
 // ---------------------------------------------------------------- charts
 const charts = [];
 function Chart(title, series, opts) {
@@ -67,6 +67,19 @@ Chart.prototype.paint = function () {
   });
   const drawable = isFinite(lo);
   if (!drawable) { lo = 0; hi = 1; }
+  // Every curve constant to rounding (a stub's energy of 1e-29 J, a momentum of 0): drawn
+  // flat at its value, as tools/plot draws it (tools/wbplot/flat.py), with the value said.
+  this.flat = null;
+  if (drawable && !this.log) {
+    const all = [];
+    this.series.forEach(function (s) { all.push.apply(all, s.v); });
+    const f = flatValue(all, this.opts.scale || 0);
+    if (f !== null) {
+      this.flat = f;
+      const half = f === 0 ? 1 : 0.1 * Math.abs(f);
+      lo = f - half; hi = f + half;
+    }
+  }
   if (hi - lo < 1e-12 * Math.max(Math.abs(hi), 1e-300)) {
     const d = Math.max(Math.abs(hi) * 1e-6, 1e-12); lo -= d; hi += d;
   }
@@ -91,6 +104,11 @@ Chart.prototype.paint = function () {
   }
   c.stroke();
   c.fillText("t (s)", w - m.r - 24, h - 5);
+  if (this.flat !== null) {
+    c.fillStyle = "#444"; c.font = "11px sans-serif";
+    c.fillText(this.flat === 0 ? "= 0 (to rounding)" : "= " + fmt(this.flat, 6) +
+      " (constant to rounding)", m.l + 8, m.t + 12);
+  }
   if (!drawable) {
     c.fillStyle = "#444"; c.font = "12px sans-serif";
     c.fillText(this.opts.empty || "no finite value to draw", m.l + 10, m.t + 40);
@@ -201,7 +219,9 @@ function makeCharts() {
     xyz.forEach(function (a) { P.push(curve("p" + a[0], a[1])); });
     if (RIGID) xyz.forEach(function (a) { L.push(curve("L" + a[0], a[1])); });
   });
-  if (E.length) new Chart("Energy (J)", E, { log: anyDiv, id: "energy" });
+  const e0 = RUNS[0].summary || {};
+  const escale = Math.max(Math.abs(e0.energy0 || 0), Math.abs(e0.energy || 0));
+  if (E.length) new Chart("Energy (J)", E, { log: anyDiv, id: "energy", scale: escale });
   if (P.length) new Chart("Momentum (kg m/s)", P, { log: anyDiv, id: "momentum" });
   if (L.length) {
     new Chart("Angular momentum about the origin (kg m²/s)", L, { log: anyDiv, id: "angular" });

@@ -1,4 +1,4 @@
-// tools/view's page, part 1 of 5 (page.py joins them in one function, in this order):
+// tools/view's page, part 2 of 6 (page.py joins them in one function, in this order):
 // the data, the state, formatting, the page's text and the canvas helpers.
 const T0 = performance.now();
 const META = JSON.parse(document.getElementById("wb-meta").textContent);
@@ -90,9 +90,14 @@ function header() {
   const what = RIGID ? (N === 1 ? " body" : " bodies") : (N === 1 ? " particle" : " particles");
   let sub = N + what
     + " · " + R1.label + " (" + R1.path + ")";
+  if (R1.dt) sub += " · run at h = " + fmt(R1.dt, 6) + " s";
   if (R2) sub += " against " + R2.label + " (" + R2.path + ")";
   el("subtitle").textContent = sub;
-  el("desc").textContent = META.description || (META.scene ? "" :
+  // The scene's words are for its own dt: a run at another h is said to be one.
+  const other = R1.dt && META.scene_dt && Math.abs(R1.dt - META.scene_dt) > 1e-9 * META.scene_dt;
+  el("desc").textContent = (other ? "This run used h = " + fmt(R1.dt, 6) + " s, not the scene's "
+    + "dt = " + fmt(META.scene_dt, 6) + " s; the scene's description, for its own dt: " : "")
+    + (META.description || "") || (META.scene ? "" :
     "No --scene given: particles are drawn as dots (no radii, springs, planes); bodies as "
     + "their axes.");
   const notes = [];
@@ -188,10 +193,4 @@ function resize() {
 function gridLabel(v, step) {  // a grid label: multiples of the step, without rounding noise
   const k = Math.round(v / step);
   return fmt(k * step, Math.max(1, Math.ceil(Math.log10(Math.abs(k) + 1)) + 2));
-}
-function niceStep(span, target) {  // a 1-2-5 step giving about `target` intervals
-  const raw = span / Math.max(target, 1);
-  const p = Math.pow(10, Math.floor(Math.log10(raw)));
-  const m = raw / p;
-  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
 }

@@ -1,8 +1,13 @@
-// tools/view's page, part 5 of 5: the frame budget, the picked particle, the playhead,
+// tools/view's page, part 6 of 6: the frame budget, the picked particle, the playhead,
 // playing, the controls, the test hooks and the start.
 // ---------------------------------------------------------------- budget and inspector
 function budget() {
   const b = META.budget, box = el("budget");
+  if (R1.summary.stub) {  // a stub's cost is not the lab's: nothing to claim
+    box.innerHTML = '<p class="muted">Not given: this run ran stubs (its summary\'s warnings, ' +
+      "above), so its cost is not what the lab's step costs.</p>";
+    return;
+  }
   if (!b.available) {
     box.innerHTML = '<p class="muted">Not available: ' + esc(b.why) + ".</p>";
     return;
@@ -51,6 +56,11 @@ function inspect() {  // the picked particle's or body's numbers at the playhead
   } else {
     const x = value(R1, k, i, 0), y = value(R1, k, i, 1);
     rows.push(row("x, y", fmt(x, 7) + ", " + fmt(y, 7)));
+    if (C >= 4) {  // the velocity, where the page kept it (docs/view.md, "Large runs")
+      const vx = value(R1, k, i, 2), vy = value(R1, k, i, 3);
+      rows.push(row("vx, vy", fmt(vx, 7) + ", " + fmt(vy, 7) + " (|v| " +
+        fmt(Math.hypot(vx, vy), 5) + " m/s)"));
+    } else rows.push(row("vx, vy", "not kept: with them the page would hold fewer written steps"));
     if (SCENE) rows.push(row("radius", fmt(SCENE.radii[i], 6)));
     if (k2 !== null) {
       const x2 = value(R2, k2, i, 0), y2 = value(R2, k2, i, 1);
@@ -92,6 +102,7 @@ function hud() {
     if (R2.diverged && k2 === R2.frames - 1 && R1.t[k] >= R2.t[k2]) s += " (ended: diverged)";
   }
   s += S.playing ? "   ▶ " + (S.everyFrame ? "every written step" : "×" + fmt(S.speed, 3)) : "";
+  if (S.offView) s += "   " + S.offView + " out of view (arrows at the edge)";
   el("hud").textContent = s;
 }
 function setFrame(k) {

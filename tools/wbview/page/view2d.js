@@ -1,4 +1,4 @@
-// tools/view's page, part 2 of 5: the particle labs' view, in 2D.
+// tools/view's page, part 3 of 6: the particle labs' view, in 2D.
 // ---------------------------------------------------------------- 2D view
 function fit2(frameOnly) {
   let lo, hi;
@@ -67,7 +67,9 @@ function drawGrid2() {
   }
   ctx.stroke();
   for (let x = Math.ceil(x0 / step) * step; x <= x1; x += step) {
-    ctx.fillText(gridLabel(x, step), sx(x) + 2, H - 4);
+    // None under the unit at the right end.
+    const label = gridLabel(x, step);
+    if (sx(x) + 2 + ctx.measureText(label).width < W - 20) ctx.fillText(label, sx(x) + 2, H - 4);
   }
   for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
     ctx.fillText(gridLabel(y, step), 3, sy(y) - 2);
@@ -187,22 +189,6 @@ function drawParticles2(run, k, fill, hollow) {  // N <= MANY: anti-aliased disc
 // path of 10^4 arcs takes tens of milliseconds in a software canvas, stamping about one.
 const MANY = 1000;
 let BG = null, BUF = null;
-const STAMPS = {};
-function stampOffsets(R, ring) {
-  const key = R + (ring ? "r" : "d");
-  if (STAMPS[key]) return STAMPS[key];
-  const out = [];
-  for (let dy = -R - 1; dy <= R + 1; dy++) for (let dx = -R - 1; dx <= R + 1; dx++) {
-    const d2 = dx * dx + dy * dy;
-    const inRing = d2 <= (R + 0.5) * (R + 0.5) && d2 >= (R - 1) * (R - 1);
-    if (ring ? inRing : d2 <= R * R + 0.8 * R) out.push(dx, dy);
-  }
-  return (STAMPS[key] = new Int32Array(out));
-}
-function rgba32(hex) {  // ImageData's bytes R, G, B, A as one little-endian word
-  const v = parseInt(hex.slice(1), 16);
-  return ((255 << 24) | ((v & 255) << 16) | (v & 0xff00) | ((v >> 16) & 255)) >>> 0;
-}
 function background2() {
   const v = S.view2;
   const key = [W, H, DPR, v.cx, v.cy, v.s].join();
@@ -318,8 +304,24 @@ function draw2() {
   drawOverlays2(k);
   S.lastDrawn = { frame: k, frame2: k2 };
 }
+// A particle outside the view is marked by a small arrow at the edge, pointing to it (at
+// most 40 arrows; the line above the view counts them all).
+function drawOffView2(k) {
+  let shown = 0, out = 0;
+  ctx.fillStyle = COLORS.run;
+  for (let i = 0; i < N; i++) {
+    const X = sx(value(R1, k, i, 0)), Y = sy(value(R1, k, i, 1));
+    if (!isFinite(X + Y) || (X >= 0 && X <= W && Y >= 0 && Y <= H)) continue;
+    out++;
+    if (shown >= 40) continue;
+    shown++;
+    edgeArrow(ctx, W, H, X, Y);
+  }
+  S.offView = out;
+}
 function drawOverlays2(k) {
   drawExact2(k);
+  drawOffView2(k);
   if (S.pick !== null) {
     const x = value(R1, k, S.pick, 0), y = value(R1, k, S.pick, 1);
     if (isFinite(x + y)) {

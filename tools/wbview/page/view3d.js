@@ -1,13 +1,6 @@
-// tools/view's page, part 3 of 5: the rigid lab's view, in 3D (flat-shaded faces, far to
+// tools/view's page, part 4 of 6: the rigid lab's view, in 3D (flat-shaded faces, far to
 // near).
 // ---------------------------------------------------------------- 3D view
-function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
-function add3(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
-function mul3(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
-function dot3(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-function cross3(a, b) {
-  return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-}
 function pathThrough(pts) {  // a closed path through screen points [x, y, ...]
   pts.forEach(function (p, j) {
     if (j === 0) ctx.moveTo(p[0], p[1]); else ctx.lineTo(p[0], p[1]);
@@ -16,25 +9,6 @@ function pathThrough(pts) {  // a closed path through screen points [x, y, ...]
 }
 function fillDot(c, r) {  // a filled dot of radius r at screen point c
   ctx.beginPath(); ctx.arc(c[0], c[1], r, 0, 2 * Math.PI); ctx.fill();
-}
-function norm3(a) { const n = Math.hypot(a[0], a[1], a[2]); return n > 0 ? mul3(a, 1 / n) : a; }
-function rot(q) {  // rotation matrix (rows) of a quaternion [w, x, y, z], normalised
-  const n = Math.hypot(q[0], q[1], q[2], q[3]);
-  if (!(n > 0) || !isFinite(n)) return null;
-  const w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
-  return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]];
-}
-function apply(R, p) {
-  return [R[0][0] * p[0] + R[0][1] * p[1] + R[0][2] * p[2],
-    R[1][0] * p[0] + R[1][1] * p[1] + R[1][2] * p[2],
-    R[2][0] * p[0] + R[2][1] * p[1] + R[2][2] * p[2]];
-}
-function applyT(R, p) {
-  return [R[0][0] * p[0] + R[1][0] * p[1] + R[2][0] * p[2],
-    R[0][1] * p[0] + R[1][1] * p[1] + R[2][1] * p[2],
-    R[0][2] * p[0] + R[1][2] * p[1] + R[2][2] * p[2]];
 }
 function pose(run, k, i) {
   const x = [value(run, k, i, 0), value(run, k, i, 1), value(run, k, i, 2)];
@@ -85,69 +59,15 @@ function fit3(frameOnly) {
     dist: radius / Math.sin(fov / 2 * aspect) * 1.05, radius: radius };
   S.dirty = true;
 }
-function camera() {
-  const c = S.cam;
-  const flat = add3(mul3(E1, Math.cos(c.yaw)), mul3(E2, Math.sin(c.yaw)));
-  const dir = add3(mul3(flat, Math.cos(c.pitch)),
-    mul3(UP, Math.sin(c.pitch)));
-  const eye = add3(c.target, mul3(dir, c.dist));
-  const f = norm3(sub3(c.target, eye));
-  let r = cross3(f, UP);
-  r = Math.hypot(r[0], r[1], r[2]) > 1e-9 ? norm3(r) : E1;
-  const u = cross3(r, f);
-  return { eye: eye, f: f, r: r, u: u, F: (H / 2) / Math.tan(c.fov / 2),
-    light: norm3(add3(add3(UP, mul3(f, -1.0)), mul3(r, 0.4))) };
-}
+function camera() { return orbitCamera(S.cam, UP, E1, E2, H); }
 function project(cam, p) {
   const d = sub3(p, cam.eye);
   const z = dot3(d, cam.f);
   if (!(z > 1e-6 * cam.F / 1000 + 1e-9)) return null;
   return [W / 2 + cam.F * dot3(d, cam.r) / z, H / 2 - cam.F * dot3(d, cam.u) / z, z];
 }
-function shade(hex, k) {
-  const v = parseInt(hex.slice(1), 16);
-  const r = (v >> 16) & 255, g = (v >> 8) & 255, b = v & 255;
-  const c = function (x) { return Math.min(255, Math.round(x * k)); };
-  return "rgb(" + c(r) + "," + c(g) + "," + c(b) + ")";
-}
-function boxCorners(size) {
-  const out = [];
-  for (let k = 0; k < 8; k++) {  // bit 0: x, bit 1: y, bit 2: z (set: +), as the lab's
-    out.push([(k & 1 ? 0.5 : -0.5) * size[0], (k & 2 ? 0.5 : -0.5) * size[1],
-      (k & 4 ? 0.5 : -0.5) * size[2]]);
-  }
-  return out;
-}
-const BOX_FACES = [  // corners (counter-clockwise seen from outside) and the outward normal
-  [[0, 2, 6, 4], [-1, 0, 0]], [[1, 5, 7, 3], [1, 0, 0]], [[0, 4, 5, 1], [0, -1, 0]],
-  [[2, 3, 7, 6], [0, 1, 0]], [[0, 1, 3, 2], [0, 0, -1]], [[4, 6, 7, 5], [0, 0, 1]]];
-const CYL_N = 24;
 function bodyFaces(i, P) {  // [{pts: world points, n: world normal}]
-  const s = SCENE ? SCENE.shapes[i] : null;
-  const faces = [];
-  const W_ = function (p) { return add3(P.x, apply(P.R, p)); };
-  if (s && s.shape === "box") {
-    const c = boxCorners(s.size).map(W_);
-    BOX_FACES.forEach(function (f) {
-      faces.push({ pts: f[0].map(function (j) { return c[j]; }), n: apply(P.R, f[1]) });
-    });
-  } else if (s && s.shape === "cylinder") {
-    const h = s.length / 2, r = s.radius;
-    const top = [], bot = [];
-    for (let k = 0; k < CYL_N; k++) {
-      const a = 2 * Math.PI * k / CYL_N;
-      top.push(W_([r * Math.cos(a), r * Math.sin(a), h]));
-      bot.push(W_([r * Math.cos(a), r * Math.sin(a), -h]));
-    }
-    for (let k = 0; k < CYL_N; k++) {
-      const k1 = (k + 1) % CYL_N, a = 2 * Math.PI * (k + 0.5) / CYL_N;
-      faces.push({ pts: [bot[k], bot[k1], top[k1], top[k]],
-        n: apply(P.R, [Math.cos(a), Math.sin(a), 0]), seam: true });
-    }
-    faces.push({ pts: top.slice().reverse(), n: apply(P.R, [0, 0, 1]) });
-    faces.push({ pts: bot, n: apply(P.R, [0, 0, -1]) });
-  }
-  return faces;
+  return shapeFaces(SCENE ? SCENE.shapes[i] : null, P);
 }
 function contactPoints(i, P) {  // the rigid lab's candidates (framework/drivers/rigid)
   const s = SCENE.shapes[i], out = [];
@@ -173,34 +93,8 @@ function contactPoints(i, P) {  // the rigid lab's candidates (framework/drivers
 
 function drawFloor3(cam) {
   if (!SCENE) return;
-  const c = S.cam;
-  SCENE.planes.forEach(function (pl) {
-    const n = pl.normal;
-    const a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
-    const u = norm3(sub3(a, mul3(n, dot3(a, n)))), w = cross3(n, u);
-    const centre = sub3(c.target, mul3(n, dot3(sub3(c.target, pl.point), n)));
-    const half = Math.max(c.radius * 1.6, BIG * 2);
-    const step = niceStep(2 * half, 10);
-    const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(function (q) {
-      return project(cam, add3(centre, add3(mul3(u, q[0] * half), mul3(w, q[1] * half))));
-    });
-    const above = dot3(sub3(cam.eye, pl.point), n) > 0;
-    if (corners.every(function (q) { return q; })) {
-      ctx.fillStyle = above ? "rgba(200,184,138,0.35)" : "rgba(200,184,138,0.12)";
-      ctx.beginPath(); pathThrough(corners); ctx.fill();
-    }
-    ctx.strokeStyle = "rgba(127,106,60,0.35)"; ctx.lineWidth = 1;
-    ctx.beginPath();
-    const m = Math.floor(half / step);
-    for (let j = -m; j <= m; j++) {
-      [[u, w], [w, u]].forEach(function (ax) {
-        const p0 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], -half))));
-        const p1 = project(cam, add3(centre, add3(mul3(ax[0], j * step), mul3(ax[1], half))));
-        if (p0 && p1) { ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); }
-      });
-    }
-    ctx.stroke();
-  });
+  const half = Math.max(S.cam.radius * 1.6, BIG * 2);
+  SCENE.planes.forEach(function (pl) { drawPlaneGrid(ctx, cam, pl, S.cam.target, half, project); });
 }
 
 function draw3() {

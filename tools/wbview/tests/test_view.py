@@ -133,8 +133,27 @@ def test_packed_positions_round_trip(tmp_path):
     meta = model.build(t, None, None, None, None)
     got = floats(meta["runs"][0]["data"])
     ox, oy = meta["origin"]
-    assert abs(got[(2 * 2 + 0) * 2] + ox - (1e6 + 2e-3)) < 1e-9  # frame 2, id 0, x
-    assert abs(got[(2 * 2 + 1) * 2 + 1] + oy - 1) < 1e-9          # frame 2, id 1, y
+    c = len(meta["cols"])
+    assert abs(got[(2 * 2 + 0) * c] + ox - (1e6 + 2e-3)) < 1e-9  # frame 2, id 0, x
+    assert abs(got[(2 * 2 + 1) * c + 1] + oy - 1) < 1e-9          # frame 2, id 1, y
+
+
+def test_velocities_kept_unless_they_would_thin_the_steps(tmp_path):
+    """Defect: a picked particle with no velocity although the page could hold it, or a
+    large run that loses written steps to make room for velocities (positions come first)."""
+    rows = ["t,id,x,y,vx,vy"] + [f"{0.1 * k!r},{i},{k},{i},{2.5 + k},-1" for k in range(3)
+                                 for i in range(2)]
+    t = read_trace(write(tmp_path, "v.csv", "\n".join(rows) + "\n"))
+    meta = model.build(t, None, None, None, None)
+    got = floats(meta["runs"][0]["data"])
+    assert meta["cols"] == ["x", "y", "vx", "vy"] and got[(2 * 2 + 1) * 4 + 2] == 4.5
+    small = model.MAX_STORED_VALUES
+    try:
+        model.MAX_STORED_VALUES = 3 * 2 * 3  # room for positions only
+        meta = model.build(t, None, None, None, None)
+    finally:
+        model.MAX_STORED_VALUES = small
+    assert meta["cols"] == ["x", "y"] and meta["runs"][0]["kept_every"] == 1
 
 
 def test_step_numbers_from_stats_else_summary():
