@@ -272,7 +272,7 @@ void check_hinge(const JsonObject& o, const BodyDef& d, const Hinge& hg) {
 // the initial forces across the scene, sum of (m |g| + |F|) times the scene size: a
 // number formed from the scene's own, refused when it overflows (a body of 1e308 kg
 // under gravity), never turned into a scale of 0 that calls step 1 diverged.
-void check_work_scale(const JsonObject& top, const Scene& s) {
+void check_work_scale(const Scene& s) {
   const double w = work_scale_of(s);
   if (std::isfinite(w)) return;
   std::size_t heaviest = 0;
@@ -415,7 +415,7 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
                std::string(kMaxBodyQuantityText) + " (here " + wb::num(w) +
                ": its largest dimension is too large for its smallest)");
   }
-  check_work_scale(top, s);
+  check_work_scale(s);
   if (top.has("contact")) {
     JsonObject c = top.object("contact");
     c.only_keys({"restitution", "friction", "solver", "iterations", "resting_speed"});
