@@ -232,28 +232,43 @@ class PageCheck:
             return False
         return True
 
+    def drag_mark(self, k):
+        """Mark k pressed and dragged by DRAG_PX: (the mark before, the cursor's world
+        point, where the scene put the mark)."""
+        m = self.js("wbLive.marks()")[k]
+        s = m["screen"]
+        self.b.mouse("pressed", s[0], s[1])
+        for q in range(1, 6):
+            self.b.mouse("moved", s[0] + DRAG_PX[0] * q / 5, s[1] + DRAG_PX[1] * q / 5)
+            self.b.pump(0.03)
+        self.b.pump(0.1)
+        want = self.js(f"wbLive.worldOf({json.dumps([s[0] + DRAG_PX[0], s[1] + DRAG_PX[1]])})")
+        self.b.mouse("released", s[0] + DRAG_PX[0], s[1] + DRAG_PX[1])
+        self.b.pump(0.2)
+        at = self.js("wbLive.doc()")
+        for key in m["path"]:
+            at = at[key]
+        return m, want, at
+
     def marks(self, scene):
         """Every movable point of the scene dragged by DRAG_PX: the scene follows."""
         self.js(f"wbLive.load({json.dumps(scene)})")
         self.b.pump(0.3)
         moved = []
-        for k, m in enumerate(self.js("wbLive.marks()")):
-            m = self.js("wbLive.marks()")[k]
-            s = m["screen"]
-            self.b.mouse("pressed", s[0], s[1])
-            for q in range(1, 6):
-                self.b.mouse("moved", s[0] + DRAG_PX[0] * q / 5, s[1] + DRAG_PX[1] * q / 5)
-                self.b.pump(0.03)
-            self.b.pump(0.1)
-            want = self.js(f"wbLive.worldOf({json.dumps([s[0] + DRAG_PX[0], s[1] + DRAG_PX[1]])})")
-            self.b.mouse("released", s[0] + DRAG_PX[0], s[1] + DRAG_PX[1])
-            self.b.pump(0.2)
-            after = self.js("wbLive.doc()")
-            at = after
-            for key in m["path"]:
-                at = at[key]
-            if dist(at, want) > 0.05 * max(dist(m["at"], want), 1e-9):
-                self.fail(f"scene {scene}: the {m['label']} dragged to {want} is at {at}")
+        for k, _ in enumerate(self.js("wbLive.marks()")):
+            # One retry: once in about four loaded runs the smoke scene's obstacle stopped
+            # short of the cursor, not reproduced alone (issue 43's closing note); a page
+            # whose points do not follow fails both tries.
+            for attempt in (1, 2):
+                m, want, at = self.drag_mark(k)
+                if dist(at, want) <= 0.05 * max(dist(m["at"], want), 1e-9):
+                    break
+                if attempt == 2:
+                    self.fail(f"scene {scene}: the {m['label']} dragged to {want} is at {at} "
+                              "(twice)")
+                else:
+                    log(f"live-check: scene {scene}: the {m['label']} dragged to {want} is at "
+                        f"{at}; dragging it again")
             r = self.js("wbLive.run(0)")
             if r["error"]:
                 self.fail(f"scene {scene}: after moving the {m['label']}: {r['error']}")
