@@ -81,8 +81,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const char* l : kLabs) {
     if (head.rfind(l, 0) == 0) lab = l;
   }
-  const bool sweep = head.find("sweep") != std::string::npos && lab != "forces" &&
-                     lab != "collisions";
+  const bool sweep =
+      head.find("sweep") != std::string::npos && lab != "forces" && lab != "collisions";
   const bool out = head.find("out") != std::string::npos;
 
   const std::string dir = work_dir(), scene = dir + "/scene.json", runs = dir + "/out";
@@ -95,8 +95,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::snprintf(max_time, sizeof max_time, "%g", kMaxTime);
   std::snprintf(max_mib, sizeof max_mib, "%g", kMaxMib);
   const std::string exe = bin_dir() + "/" + lab + "-solution";
-  std::vector<std::string> args = {exe, "--scene", scene, "--max-time", max_time,
-                                   "--max-memory", max_mib};
+  std::vector<std::string> args = {exe,      "--scene",      scene,  "--max-time",
+                                   max_time, "--max-memory", max_mib};
   if (sweep) args.insert(args.end(), {"--sweep", runs + "/sweep.csv", "--repeats", "1"});
   if (out && !sweep) args.insert(args.end(), {"--out", runs + "/trace.csv"});
   std::vector<char*> argv;

@@ -32,14 +32,14 @@ constexpr double kPollSeconds = 0.01;
 
 // Set by start(), before the ticker runs; read by the ticker.
 double g_limit_s = 0, g_limit_b = 0;
-char g_prefix[720];   // "<exe>: error: <file>: ", one line of valid UTF-8
+char g_prefix[720];    // "<exe>: error: <file>: ", one line of valid UTF-8
 char g_time_flag[64];  // "--max-time 3"
 char g_mem_flag[64];   // "--max-memory 400"
 bool g_started = false, g_ticker = false;
 
 // Written by the running code, read by the ticker.
-std::atomic<double> g_total{0};     // steps of the plan; 0: not known yet
-std::atomic<long long> g_done{0};   // steps done
+std::atomic<double> g_total{0};      // steps of the plan; 0: not known yet
+std::atomic<long long> g_done{0};    // steps done
 std::atomic<double> g_loop_cpu{-1};  // CPU seconds when the step loops started; < 0: not yet
 
 // The watchdog's own state. g_state: 0 watching, 1 finished (the run is over, or said
@@ -254,9 +254,7 @@ void render_flag(char* out, std::size_t size, const char* flag, double x) {
 
 }  // namespace
 
-const char* phase_name(int p) {
-  return p >= 0 && p < kPhaseCount ? kPhaseNames[p] : "the run";
-}
+const char* phase_name(int p) { return p >= 0 && p < kPhaseCount ? kPhaseNames[p] : "the run"; }
 
 void start(const Limits& limits, const std::string& exe, const std::string& file) {
   const std::string prefix = one_line(exe + ": error: " + file + ": ", 600);

@@ -29,8 +29,9 @@ double parse_number(const std::string& flag, const std::string& text,
   const NumberText t = read_number(text);
   if (!t.valid) {
     throw flag_error(flag, "\"" + text + "\"",
-                     expected + " (written as in JSON: digits, an optional fraction and "
-                                "exponent; no blanks, no \"+\", no hex)");
+                     expected +
+                         " (written as in JSON: digits, an optional fraction and "
+                         "exponent; no blanks, no \"+\", no hex)");
   }
   if (t.overflow || t.underflow) {
     throw flag_error(flag, "\"" + text + "\"",
@@ -67,11 +68,13 @@ RunFlags read_run_flags(int argc, const char* const* argv, const FlagSpec& spec,
                                  "last always)");
   if (spec.seed)
     app.add_option("--seed", seed_in, "Emitter k uses seed S + k instead of its own");
-  app.add_option("--max-time", max_time_in,
-                 "CPU seconds a run (or sweep) may take: refused when estimated above, stopped when "
+  app.add_option(
+      "--max-time", max_time_in,
+      "CPU seconds a run (or sweep) may take: refused when estimated above, stopped when "
       "it gets there (default 3600)");
-  app.add_option("--max-memory", max_memory_in,
-                 "MiB of memory a run (or sweep) may hold: refused when estimated above, stopped when "
+  app.add_option(
+      "--max-memory", max_memory_in,
+      "MiB of memory a run (or sweep) may hold: refused when estimated above, stopped when "
       "it gets there (default 2048)");
   app.add_flag("--estimate", f.estimate,
                "Print the cost model's estimate as one JSON line and run nothing");

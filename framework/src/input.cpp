@@ -2,11 +2,11 @@
 #include "wb/input.h"
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <charconv>
 #include <fstream>
 #include <map>
 #include <optional>

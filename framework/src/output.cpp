@@ -57,10 +57,9 @@ extern "C" void remove_tmp_and_die(int sig, siginfo_t* info, void* context) {
 // Every signal whose default action ends the process and that a handler can catch.
 // SIGPROF is the budget's ticker when it runs (its stop removes the temporaries).
 void install_signal_handlers() {
-  std::vector<int> sigs = {SIGHUP,  SIGINT,  SIGQUIT, SIGILL,  SIGTRAP, SIGABRT,
-                           SIGBUS,  SIGFPE,  SIGUSR1, SIGSEGV, SIGUSR2, SIGPIPE,
-                           SIGALRM, SIGTERM, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGSYS,
-                           SIGPROF};
+  std::vector<int> sigs = {SIGHUP,  SIGINT,  SIGQUIT,   SIGILL,  SIGTRAP, SIGABRT, SIGBUS,
+                           SIGFPE,  SIGUSR1, SIGSEGV,   SIGUSR2, SIGPIPE, SIGALRM, SIGTERM,
+                           SIGXCPU, SIGXFSZ, SIGVTALRM, SIGSYS,  SIGPROF};
 #ifdef SIGSTKFLT
   sigs.push_back(SIGSTKFLT);
 #endif
@@ -76,7 +75,7 @@ void install_signal_handlers() {
   for (int sig : sigs) {
     struct sigaction old {};
     if (sig <= 0 || sig >= NSIG || ::sigaction(sig, nullptr, &old) != 0) continue;
-    if (old.sa_handler == SIG_IGN) continue;  // ignored stays ignored (nohup)
+    if (old.sa_handler == SIG_IGN) continue;                    // ignored stays ignored (nohup)
     if (sig == SIGPROF && old.sa_handler != SIG_DFL) continue;  // the budget's ticker
     g_previous[sig] = old;
     struct sigaction sa {};
@@ -179,14 +178,16 @@ void remove_stale_temporaries(const std::string& dir) {
         pid.find_first_not_of("0123456789") != std::string::npos) {
       continue;
     }
-    if (::kill(pid_t(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to ask)
+    if (::kill(pid_t(std::stol(pid)), 0) == 0 || errno != ESRCH)
+      continue;  // alive (or not ours to ask)
     const std::string path = dir + "/" + name;
     const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) continue;
     struct stat st {};
     char head[32];
-    bool stale = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == ::geteuid() &&
-                 ::flock(fd, LOCK_EX | LOCK_NB) == 0;  // no writer holds it (another pid namespace)
+    bool stale =
+        ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == ::geteuid() &&
+        ::flock(fd, LOCK_EX | LOCK_NB) == 0;  // no writer holds it (another pid namespace)
     if (stale) {
       const ssize_t n = ::read(fd, head, sizeof head);
       stale = n >= 0 && ours(head, std::size_t(n));

@@ -79,8 +79,9 @@ std::int64_t parse_whole(const std::string& flag, const std::string& text, std::
   std::int64_t v = 0;
   if (!whole_in(t, min, max, v)) {
     throw InputError(flag + ": got \"" + text + "\", expected " + expected +
-                     (t.valid ? "" : " (written as in JSON: digits, no blanks, no \"+\", no "
-                                     "leading zeros, no hex)"));
+                     (t.valid ? ""
+                              : " (written as in JSON: digits, no blanks, no \"+\", no "
+                                "leading zeros, no hex)"));
   }
   return v;
 }
@@ -136,9 +137,12 @@ void check_initial_state(const Scene& scene, const World& world) {
     bound.maxCoeff(&i);
     throw InputError(scene.file + ": " + particle_key(scene, i) +
                      ": initial state: the work the initial forces would do across the scene, "
-                     "sum of |f| times the scene's size " + num(S) + " m (the divergence "
+                     "sum of |f| times the scene's size " +
+                     num(S) +
+                     " m (the divergence "
                      "rule's energy scale, docs/run-contract.md), overflows (the largest force, "
-                     "on particle " + std::to_string(i) + ", is bounded by " + num(bound[i]) +
+                     "on particle " +
+                     std::to_string(i) + ", is bounded by " + num(bound[i]) +
                      " N), expected masses, forces and positions whose product is finite");
   }
   // Energy: kinetic, then each term's potential; the momentum.

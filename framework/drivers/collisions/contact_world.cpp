@@ -290,7 +290,8 @@ void check_effective_masses(const Scene& scene) {
     if (j < 0 || std::isfinite(1 / scene.m[a] + 1 / scene.m[j])) continue;
     const Eigen::Index light = scene.m[j] < scene.m[a] ? j : a, other = light == a ? j : a;
     throw InputError(scene.file + ": " + particle_key(scene, light) + ".m: got " +
-                     shortest(scene.m[light]) + ", expected masses whose sum of inverses "
+                     shortest(scene.m[light]) +
+                     ", expected masses whose sum of inverses "
                      "1/m_i + 1/m_j is finite for particles that can touch (with " +
                      particle_key(scene, other) + ", m = " + shortest(scene.m[other]) +
                      ", it overflows: their impulses would be 0)");

@@ -67,8 +67,7 @@ struct Graph {
 // over columns of count^2, the factorisation's multiply-adds, and nnz_l.
 // With `cap` > 0 the walk stops once the work passes it (and returns what it counted,
 // more than `cap`): a pattern that fills in is known to be too dear in O(cap) time.
-double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l,
-                   double cap = 0) {
+double factor_work(const Graph& g, const std::vector<int>& place, double& nnz_l, double cap = 0) {
   const int n = g.n();
   const std::size_t size = std::size_t(n);
   std::vector<int> old_of(size), parent(size, -1), tag(size, 0), count(size, 0);

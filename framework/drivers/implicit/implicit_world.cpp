@@ -572,8 +572,8 @@ void implicit_step_cost(const Scene& scene, const Integrator& it, StepCost& c) {
     const double cg_t = kTypicalCgIterations * kSecondsPerLabCgParticle * n;
     const double band_t = kSecondsPerBandFlop * 2.0 * n * std::pow(2.0 * band, 2.0);
     // "auto" takes the cheaper: CG where LDLT's band would cost more (and CG may run).
-    const bool cg = opt.solver == NewtonOptions::kCG ||
-                    (automatic && grid && opt.definite && cg_t < band_t);
+    const bool cg =
+        opt.solver == NewtonOptions::kCG || (automatic && grid && opt.definite && cg_t < band_t);
     if (cg) {
       t = cg_t;
       held = 0;
@@ -642,7 +642,8 @@ void newton_adapter(const char* name, bool trapezoid, bool one_iteration, const 
   opt.one_iteration = one_iteration;
   if (one_iteration && d.one_solve_cg_tol()) opt.cg_tol = kOneSolveCgTol;
   // The lab's step (the student's I3-I5): its solves are CG's iterations or LDLT's.
-  const budget::PhaseScope phase(opt.solver == NewtonOptions::kCG ? budget::kCg : budget::kNewton);
+  const budget::PhaseScope phase(opt.solver == NewtonOptions::kCG ? budget::kCg
+                                                                  : budget::kNewton);
   const NewtonReport r = trapezoid ? implicit_trapezoid_step(d.network(), s.a0, h, opt, x, v, ws)
                                    : backward_euler_step(d.network(), s.a0, h, opt, x, v, ws);
   d.record(name, r);

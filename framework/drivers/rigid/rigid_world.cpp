@@ -406,9 +406,10 @@ Scene scene_from_json(const std::string& file, const wb::json& doc) {
     const double w = 1 / d.body.m + 3 * (dmax * dmax) / I_min;
     if (within_body_limit(w)) continue;
     JsonObject o = top.element("bodies", i);
-    const char* key = d.shape == BodyDef::kBox ? "size" : d.shape == BodyDef::kSphere ? "radius"
-                      : dmax == d.length                                          ? "length"
-                                                                                   : "radius";
+    const char* key = d.shape == BodyDef::kBox      ? "size"
+                      : d.shape == BodyDef::kSphere ? "radius"
+                      : dmax == d.length            ? "length"
+                                                    : "radius";
     o.fail(key, &o.raw().at(key),
            "a body whose contacts with the planes can be solved: the effective inverse mass "
            "at its surface, 1/m + 3 d_max^2 / I_min with I_min = m d_min^2 / 6, at most " +

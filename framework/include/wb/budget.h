@@ -33,18 +33,18 @@ namespace wb::budget {
 
 // What the run is doing, for the message that stops it. Keep kPhaseCount last.
 enum Phase : int {
-  kLoad,        // reading and checking the scene file
-  kPrepare,     // building the run: the world, the initial checks, a solver's analysis
-  kStep,        // the integrator's own arithmetic
-  kForces,      // evaluating the force terms
-  kEnergy,      // the divergence rule's energy and the bookkeeping of each step
-  kPairs,       // the broad and narrow phases: candidate pairs and contacts found
-  kContacts,    // the contact impulses (collisions, rigid bodies)
-  kHinges,      // the rigid lab's hinges
-  kNewton,      // the implicit lab's Newton step: assembly and direct solves
-  kCg,          // conjugate gradient iterations
-  kOutput,      // writing the trace, the stats or the sweep table
-  kReference,   // a sweep's rk4 reference run
+  kLoad,       // reading and checking the scene file
+  kPrepare,    // building the run: the world, the initial checks, a solver's analysis
+  kStep,       // the integrator's own arithmetic
+  kForces,     // evaluating the force terms
+  kEnergy,     // the divergence rule's energy and the bookkeeping of each step
+  kPairs,      // the broad and narrow phases: candidate pairs and contacts found
+  kContacts,   // the contact impulses (collisions, rigid bodies)
+  kHinges,     // the rigid lab's hinges
+  kNewton,     // the implicit lab's Newton step: assembly and direct solves
+  kCg,         // conjugate gradient iterations
+  kOutput,     // writing the trace, the stats or the sweep table
+  kReference,  // a sweep's rk4 reference run
   kPhaseCount
 };
 

@@ -14,8 +14,8 @@ namespace wb {
 // destroyed before commit() (an error, a crash unwinding), a run stopped by any
 // catchable signal (SIGINT, SIGTERM, SIGXCPU, ...) or by its budget (wb/budget.h)
 // removes its temporary, and the next AtomicFile in that folder removes one that a
-// killed run left (remove_stale_temporaries). The file replaced keeps its permissions. Only a regular file (or a
-// new one) is replaced: a path that is a device or a FIFO (/dev/null, a pipe)
+// killed run left (remove_stale_temporaries). The file replaced keeps its permissions. Only a
+// regular file (or a new one) is replaced: a path that is a device or a FIFO (/dev/null, a pipe)
 // is written through, and a symbolic link's target is replaced, not the link.
 //
 // The temporary is "<name>.tmp-<pid>" beside the file, its name cut (at a
