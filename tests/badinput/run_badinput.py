@@ -22,7 +22,8 @@ address space. `budget`: a run that must stay within the limits it was given (it
 stopped by its budget (docs/scenes.md, "Cost"). `stop_signal`: the signal `stop_after`
 sends (default SIGTERM). `precreate`: [name, text] files made in {tmp} before the run
 (a killed run's temporaries). `readonly`: files made in {tmp} with mode 0444 that the
-run may not write; when the runner is root, the run is made as the user nobody. `{exe}` in an `expect` string is the executable's name;
+run may not write; when the runner is root, the run starts without root's
+CAP_DAC_OVERRIDE and CAP_DAC_READ_SEARCH. `{exe}` in an `expect` string is the executable's name;
 `{badutf8}` in an argument is the byte 0xFF, `{name250}` and `{name300}` file
 names of 250 and 300 bytes. Large
 scenes (deep nesting, a 17 MiB file, a file at the 16 MiB cap, generators at
@@ -31,6 +32,7 @@ their maximum) are generated into a temporary folder, not checked in.
   tests/badinput/run_badinput.py --bin build/bin [--side solution] [-k NAME]
 """
 import argparse
+import ctypes
 import glob
 import json
 import math
@@ -51,7 +53,9 @@ MAX_LINE = 1100  # messages are cut to 1000 bytes (kMaxMessageBytes) plus the "<
 TIME_LIMIT_S = 20.0  # each case is refused in well under a second; this is a hang detector
 MEMORY_LIMIT_BYTES = 2 << 30  # a refused scene must not allocate gigabytes first
 BUDGET_SLACK = 1.1  # a run stopped by its budget passes its limits by at most 10 % (issue 45)
-NOBODY = 65534  # the uid and gid a root runner gives a `readonly` case's run
+PR_CAPBSET_DROP, CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH = 24, 1, 2  # <linux/prctl.h>, capability.h
+# libc, loaded in the parent: a preexec_fn imports and loads nothing (the readers' threads)
+LIBC = ctypes.CDLL(None, use_errno=True)
 # How the run contract's warnings about a stub end (docs/run-contract.md, `warnings`).
 STUB_WARNING_ENDINGS = ("written yet?", "still a stub?", "still stubs?")
 
@@ -217,12 +221,15 @@ def limit_memory():
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT_BYTES, MEMORY_LIMIT_BYTES))
 
 
-def as_nobody():
-    """preexec_fn of a `readonly` case run by root: the run is the user nobody's."""
+def without_dac_override():
+    """preexec_fn of a `readonly` case run by root: the run keeps root's user (it must still
+    reach the repository, which may be root's own, as /root/workbook on a fresh machine) but
+    loses the two capabilities that let root write a file of mode 0444 (dropped from the
+    bounding set before exec: the program starts without them)."""
     limit_memory()
-    os.setgroups([])
-    os.setgid(NOBODY)
-    os.setuid(NOBODY)
+    for cap in (CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH):
+        if LIBC.prctl(PR_CAPBSET_DROP, cap, 0, 0, 0) != 0:
+            raise OSError(ctypes.get_errno(), "prctl(PR_CAPBSET_DROP)")
 
 
 def communicate(proc, timeout):
@@ -304,9 +311,8 @@ def run_case(case, args):
             with open(path, "w", encoding="utf-8") as f:
                 f.write("kept\n")
             os.chmod(path, 0o444)
-            if os.geteuid() == 0:  # root may write anything: the run is nobody's
-                os.chmod(tmp, 0o777)
-                preexec = as_nobody
+            if os.geteuid() == 0:  # root may write anything: not without these capabilities
+                preexec = without_dac_override
         start = time.monotonic()
         cpu_before = resource.getrusage(resource.RUSAGE_CHILDREN)
         # A valid but slow run ("kill_after": S) must warn before it starts: it

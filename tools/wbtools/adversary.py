@@ -313,6 +313,8 @@ def score(results):
 def main(argv):
     ap = argparse.ArgumentParser(prog="tools/adversary", description=__doc__.split("\n")[0])
     ap.add_argument("--lab", action="append", default=[], help="only this lab (repeatable)")
+    ap.add_argument("--no-setup", action="store_true",
+                    help="install nothing first (tools/lib/start-python reads it)")
     ap.add_argument("--time", type=float, default=60,
                     help="seconds for the mixed seeds after the inf and nan runs (default 60; "
                          "every test gets at least one)")
