@@ -21,7 +21,7 @@ from . import common
 from .common import (CACHE_VERSION, COMPILE_TAIL, FORBIDDEN_NAME_CHARS, LAB_BUDGET, LIST_TIMEOUT,
                      POINTS_TAG, SUBMISSION_BUDGET, Defect, LabReport, TestCase, TestResult, log, short)
 from .procs import kill_all, run_capped
-from .project import digest, pristine_files, student_files
+from .project import digest, pristine_files, student_files, sync_tree
 from .results import write_atomic
 from .procs import signal_name
 from .sandbox import BUILD_ADDRESS_SPACE, BUILD_CPU, BUILD_FSIZE, BUILD_UID, Sandbox
@@ -166,25 +166,8 @@ class Grader:
             log(msg)
 
     def sync(self, files):
-        """Makes src/ hold exactly `files`, rewriting only what changed (so the
-        build recompiles only what changed)."""
-        for rel, data in files.items():
-            path = os.path.join(self.src, rel)
-            try:
-                with open(path, "rb") as f:
-                    if f.read() == data:
-                        continue
-            except OSError:
-                os.makedirs(os.path.dirname(path), exist_ok=True)
-            with open(path, "wb") as f:
-                f.write(data)
-        for dirpath, dirnames, filenames in os.walk(self.src, topdown=False):
-            for name in filenames:
-                rel = os.path.relpath(os.path.join(dirpath, name), self.src)
-                if rel not in files:
-                    os.remove(os.path.join(dirpath, name))
-            if dirpath != self.src and not os.listdir(dirpath):
-                os.rmdir(dirpath)
+        """Makes src/ hold exactly `files`, rewriting only what changed (project.sync_tree)."""
+        sync_tree(self.src, files)
 
     def configure(self, labs):
         # Every known lab, whichever are graded: the configuration stays the same from one

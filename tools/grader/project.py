@@ -68,6 +68,27 @@ def pristine_files(repo):
     return files
 
 
+def sync_tree(src, files):
+    """Makes the folder src hold exactly `files` ({relative path: bytes}), rewriting only what
+    changed (so that a build recompiles only that) and removing what is not in it."""
+    for rel, data in files.items():
+        path = os.path.join(src, rel)
+        try:
+            with open(path, "rb") as f:
+                if f.read() == data:
+                    continue
+        except OSError:
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb") as f:
+            f.write(data)
+    for dirpath, _, filenames in os.walk(src, topdown=False):
+        for name in filenames:
+            if os.path.relpath(os.path.join(dirpath, name), src) not in files:
+                os.remove(os.path.join(dirpath, name))
+        if dirpath != src and not os.listdir(dirpath):
+            os.rmdir(dirpath)
+
+
 def digest(files):
     h = hashlib.sha256()
     for rel in sorted(files):

@@ -97,24 +97,6 @@ def adversary_files(repo, labs):
     return files
 
 
-def sync(src, files):
-    """src holds exactly `files` (only what changed is rewritten: the build recompiles that)."""
-    for rel, data in files.items():
-        path = os.path.join(src, rel)
-        try:
-            with open(path, "rb") as f:
-                if f.read() == data:
-                    continue
-        except OSError:
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, "wb") as f:
-            f.write(data)
-    for d, _, names in os.walk(src, topdown=False):
-        for name in names:
-            if os.path.relpath(os.path.join(d, name), src) not in files:
-                os.remove(os.path.join(d, name))
-
-
 def build(root, labs, sanitize, jobs, workers="adversary"):
     """The test binaries and adversaries of `labs` in root/build; {lab: (tests, adversary)}.
     workers="recorder": the recorders instead, the solutions as the labs' code."""
@@ -127,7 +109,7 @@ def build(root, labs, sanitize, jobs, workers="adversary"):
                     files[os.path.join("labs", lab, name)] = f.read()
     files.update(worker_files(REPO, project.known_labs(REPO)))
     files.update(adversary_files(REPO, project.known_labs(REPO)))  # every lab: one configure
-    sync(src, files)
+    project.sync_tree(src, files)
     args = [f"-DWB_LABS={';'.join(project.known_labs(REPO))}", "-DWB_SOLUTIONS=OFF",
             "-DWB_BENCH=OFF", "-DWB_TESTS=ON", "-DCMAKE_BUILD_TYPE=Release", "-DWB_HARDENED=ON",
             f"-DWB_WORKER_DIR={os.path.join(src, WORKER_DIR)}",
