@@ -69,4 +69,7 @@ def test_the_inputs_classifier_tells_apart_only_what_differs():
     held = [(0.0, rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(200)]
     acc, feature, _ = adversary.stump(public, held)
     assert acc == 1.0 and feature == "share of short decimals"
+    # a rule that is wrong on the other half as often as a good one is right tells them apart
+    assert adversary.told_apart(0.23) and adversary.told_apart(0.77)
+    assert not adversary.told_apart(0.5) and not adversary.told_apart(0.45)
     assert adversary.call_features("3 10 4 2.5 3") == pytest.approx((0.4, 2.0, 0.39794), 1e-4)
