@@ -210,6 +210,30 @@ inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.
       -0.7, 0.4, -0.1, 0.6;
 }
 
+// External forces on small_network's four particles: gravity on each mass (m g, g = 9.8),
+// with a sideways push (push true) or without (false).
+inline Mat2X small_network_load(bool push = true) {
+  Mat2X f(2, 4);
+  if (push)
+    f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  else
+    f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+  return f;
+}
+
+// Two particles (m 2 and 0.5), each on its own linear spring (k 50 and 8) to its anchor,
+// with drag 0.7, moving and pushed by f: the closed-form one-step cases of I4 and I5.
+inline void anchored_pair(SpringNetwork& net, Mat2X& x, Mat2X& v, Mat2X& f) {
+  net = anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
+  net.drag = 0.7;
+  x.resize(2, 2);
+  v.resize(2, 2);
+  f.resize(2, 2);
+  x << 1.1, 0.2, 0.4, -0.6;
+  v << -0.6, 1.5, 2.1, 0.8;
+  f << 0.5, 0.1, -19.6, -4.9;
+}
+
 // A network's workspace carried from step to step the way the grader carries it
 // (backward_euler.h, NewtonWorkspace): its data (the system, the warm start) kept,
 // its LDLT fresh at every step, so that a test reads the same here and through the
