@@ -8,6 +8,9 @@
 #include "euler_test_helpers.h"
 #include "symplectic_euler.h"
 
+// The checks E1 and E2 share are euler_test_helpers.h's; what stays alike in the two files is
+// each task's list of test cases, its names, tags and points (docs/contributor.md, "Repeated
+// code").
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
 // helpers in a namespace of its own.
 namespace symplectic_euler_test {

@@ -180,6 +180,17 @@ function drawMark(ctx, x, y, rPx, label, arm) {
   ctx.stroke();
   ctx.fillText(label, x + arm + 1, y - arm + 1);
 }
+const AXIS_COLORS = ["#d62728", "#2ca02c", "#1f77b4"];  // a body's x, y, z axes
+// A body's axes at pose P (its centre drawn at the screen point c), L metres long.
+function drawBodyAxes(ctx, cam, project, P, c, L) {
+  for (let d = 0; d < 3; d++) {
+    const e = [0, 0, 0]; e[d] = L;
+    const q = project(cam, add3(P.x, apply(P.R, e)));
+    if (!q) continue;
+    ctx.strokeStyle = AXIS_COLORS[d]; ctx.lineWidth = 2;
+    ctx.beginPath(); ctx.moveTo(c[0], c[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
+  }
+}
 // A revolute hinge's axis through its anchor, L metres each way, projected by the page's
 // project(cam, point) (null behind the camera: then nothing is drawn).
 function drawHingeAxis(ctx, cam, project, anchor, axis, L) {

@@ -213,14 +213,7 @@ function draw3() {
     const c = project(cam, P.x);
     drawn.push(c);
     if (!c) continue;
-    const L = 0.5 * shapeSize(i) + 0.15 * shapeSize(i);
-    for (let d = 0; d < 3; d++) {
-      const e = [0, 0, 0]; e[d] = L;
-      const q = project(cam, add3(P.x, apply(P.R, e)));
-      if (!q) continue;
-      ctx.strokeStyle = AXIS_COLORS[d]; ctx.lineWidth = 2;
-      ctx.beginPath(); ctx.moveTo(c[0], c[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
-    }
+    drawBodyAxes(ctx, cam, project, P, c, 0.5 * shapeSize(i) + 0.15 * shapeSize(i));
     ctx.fillStyle = COLORS.com;
     fillDot(c, 3.5);
     if (S.pick === i) {
