@@ -328,6 +328,19 @@ inline void dense_system(const SpringNetwork& net, const Mat2X& x0, const Mat2X&
   }
 }
 
+// Baraff and Witkin's one linear solve from (x0, v0), dense, all at the start:
+// (M - h D - h^2 K) dv = h (f + f_ext + h K v).
+inline Eigen::VectorXd one_solve_dv(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                                    const Mat2X& f_ext, double h) {
+  Eigen::MatrixXd K, D;
+  dense_jacobians(net, x0, v0, K, D);
+  Eigen::VectorXd M(2 * net.n());
+  for (Eigen::Index p = 0; p < net.n(); ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
+  const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
+  const Eigen::VectorXd b = h * (flat(forces(net, x0, v0) + f_ext) + h * K * flat(v0));
+  return A.partialPivLu().solve(b);
+}
+
 // Newton's method of backward_euler.h, written by the test with dense solves: the iterate
 // y after k solves (ys[k], k >= 1) and |G(y)| there (residuals[k]); ys[0] = the start v
 // (pinned 0). scale = |M v| + |b_0| + h |f_ext|.

@@ -259,14 +259,7 @@ TEST_CASE("I4 backward Euler: one_iteration is the single solve of Baraff and Wi
   Mat2X f = imtest::small_network_load();
   const double h = 0.1;
   // (M - h D - h^2 K) dv = h (f + f_ext + h K v), all at the start.
-  Eigen::MatrixXd K, D;
-  imtest::dense_jacobians(net, x0, v0, K, D);
-  Eigen::VectorXd M(8);
-  for (int p = 0; p < 4; ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
-  const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
-  const Eigen::VectorXd b =
-      h * (imtest::flat(imtest::forces(net, x0, v0) + f) + h * K * imtest::flat(v0));
-  const Eigen::VectorXd dv = A.partialPivLu().solve(b);
+  const Eigen::VectorXd dv = imtest::one_solve_dv(net, x0, v0, f, h);
   Mat2X ve = v0 + Eigen::Map<const Mat2X>(dv.data(), 2, 4);
   Mat2X xe = x0 + h * ve;
   NewtonOptions o = options();
@@ -565,14 +558,7 @@ TEST_CASE("I4 backward Euler: CG's first solve starts from the workspace's dv an
   }
   // 2. A tight tolerance: ws.dv is the first system's solution (the dense one's).
   {
-    Eigen::MatrixXd K, D;
-    imtest::dense_jacobians(net, x0, v0, K, D);
-    Eigen::VectorXd M(8);
-    for (int p = 0; p < 4; ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
-    const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
-    const Eigen::VectorXd b =
-        h * (imtest::flat(imtest::forces(net, x0, v0) + f) + h * K * imtest::flat(v0));
-    const Eigen::VectorXd dv = A.partialPivLu().solve(b);
+    const Eigen::VectorXd dv = imtest::one_solve_dv(net, x0, v0, f, h);
     NewtonWorkspace ws;
     ws.dv = guess;
     Mat2X x = x0, v = v0;
