@@ -48,6 +48,7 @@
 #include <string>
 
 #include "contact_world.h"
+#include "elastic_gas.h"
 #include "grid_pairs.h"
 #include "wb/scene.h"
 #include "wb/semi_implicit.h"
@@ -267,29 +268,9 @@ void BM_box2d_pile_step(benchmark::State& state) {
   state.counters["contacts"] = double(world.GetContactCount());
 }
 
-// The elastic gas of issue 34 (scene built in code, as tests/physics runs it).
+// The elastic gas of issue 34 (tests/physics/elastic_gas.h: the scene the physics test runs).
 wb::json gas_scene(const std::string& solver, int iterations) {
-  wb::json doc = {{"dt", 0.001}, {"t_end", 0.5}};
-  doc["emitters"] = {{{"count", 150},
-                      {"seed", 1},
-                      {"min", {-1.9, -1.9}},
-                      {"max", {1.9, 1.9}},
-                      {"speed", 2.0},
-                      {"m", 1.0},
-                      {"radius", 0.05}},
-                     {{"count", 150},
-                      {"seed", 2},
-                      {"min", {-1.9, -1.9}},
-                      {"max", {1.9, 1.9}},
-                      {"speed", 1.0},
-                      {"m", 4.0},
-                      {"radius", 0.05}}};
-  doc["planes"] = {{{"point", {-2, 0}}, {"normal", {1, 0}}},
-                   {{"point", {2, 0}}, {"normal", {-1, 0}}},
-                   {{"point", {0, -2}}, {"normal", {0, 1}}},
-                   {{"point", {0, 2}}, {"normal", {0, -1}}}};
-  doc["contact"] = {{"restitution", 1}, {"iterations", iterations}, {"solver", solver}};
-  return doc;
+  return wbgas::elastic_gas({{"restitution", 1}, {"iterations", iterations}, {"solver", solver}});
 }
 
 void BM_gas(benchmark::State& state, const std::string& solver) {

@@ -90,6 +90,20 @@ function(wb_side_dir side out)
   endif()
 endfunction()
 
+# The sides this build makes each lab for: the student's files (WB_STUDENT), the solution
+# (WB_SOLUTIONS, where the tree has solutions/). The native build and the live build
+# (cmake/live.cmake) both loop over them.
+function(wb_sides out)
+  set(sides)
+  if(WB_STUDENT)
+    list(APPEND sides student)
+  endif()
+  if(WB_SOLUTIONS AND EXISTS ${CMAKE_SOURCE_DIR}/solutions)
+    list(APPEND sides solution)
+  endif()
+  set(${out} ${sides} PARENT_SCOPE)
+endfunction()
+
 function(wb_suffix side out)
   if(side STREQUAL "student")
     set(${out} "" PARENT_SCOPE)

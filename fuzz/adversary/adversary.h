@@ -352,7 +352,7 @@ void observe(Observed& o, const std::vector<T, Al>& v) {
 }
 
 template <class R, class... A, std::size_t... I>
-void serve_recorded_impl(R (*fn)(A...), std::int32_t id, In& in, std::index_sequence<I...>) {
+void serve_recorded_impl(R (*fn)(A...), std::int32_t id, In& in, std::index_sequence<I...> seq) {
   std::tuple<typename Storage<A>::type...> args;
   (get(in, std::get<I>(args)), ...);
   Observed seen;
@@ -364,17 +364,7 @@ void serve_recorded_impl(R (*fn)(A...), std::int32_t id, In& in, std::index_sequ
       std::fclose(f);
     }
   }
-  Out o;
-  put(o, kResult);
-  if constexpr (std::is_void_v<R>) {
-    fn(std::get<I>(args)...);
-    (put_output<A>(o, std::get<I>(args)), ...);
-  } else {
-    const std::remove_cv_t<R> r = fn(std::get<I>(args)...);
-    (put_output<A>(o, std::get<I>(args)), ...);
-    put(o, r);
-  }
-  worker_channel().send(o);
+  answer(fn, args, seq);  // as the worker answers (worker.h)
 }
 template <class R, class... A>
 void serve_recorded(R (*fn)(A...), std::int32_t id, In& in) {

@@ -149,5 +149,24 @@ inline std::vector<HeldOut> held_out(const std::string& task) {
   return {HeldOut(task, s.first + std::uint64_t(k))};
 }
 
+// A random nonlinear a(x, v) of n particles, each its own, drawn from g: the held-out system
+// of the one-step methods' checks (the euler and midpoint labs'), written once so that their
+// draws stay the same:
+//   a_i = c0_i + c1_i x_i + c2_i v_i + c3_i * (x_i.y x_i.x, v_i.x v_i.y)   (* per coordinate)
+inline auto random_accel(HeldOut& g, Eigen::Index n) {
+  std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
+  const wb::Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4);
+    c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2);
+  }
+  return [=](const wb::Mat2X& x, const wb::Mat2X& v, wb::Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      a.col(i) = c0.col(i) + c1[std::size_t(i)] * x.col(i) + c2[std::size_t(i)] * v.col(i) +
+                 c3.col(i).cwiseProduct(wb::Vec2(x(1, i) * x(0, i), v(0, i) * v(1, i)));
+    }
+  };
+}
+
 }  // namespace
 }  // namespace wbtest

@@ -73,6 +73,23 @@ inline Mat2X cols(std::initializer_list<Vec2> list) {
   return m;
 }
 
+// The one-step case of E1 and E2: three particles under accelerations that depend on x and
+// v, different for every particle, one step of h from (x0, v0); a0 = a(x0, v0), the one
+// evaluation either method makes.
+struct OneStep {
+  wb::LambdaDynamics::Fn accel = [](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+    for (Eigen::Index i = 0; i < x.cols(); ++i) {
+      a.col(i) = Vec2(-3.0 * x(0, i) + 0.5 * v(1, i) + 1.0 + double(i),
+                      2.0 * x(1, i) * x(0, i) - 0.25 * v(0, i) - 0.5 * double(i));
+    }
+  };
+  Mat2X x0 = cols({{1.0, 2.0}, {-0.5, 0.25}, {3.0, -1.5}});
+  Mat2X v0 = cols({{0.5, -1.0}, {2.0, 0.75}, {-1.25, 0.125}});
+  double h = 0.25;
+  Mat2X a0 = Mat2X(2, 3);
+  OneStep() { accel(x0, v0, a0); }
+};
+
 // Checks that `step` makes exactly one force evaluation per step, at the state
 // (x_n, v_n) the step started from; `method` names it in failure messages.
 inline void check_one_evaluation_at_start(wb::StepFn step, const std::string& method) {
@@ -129,6 +146,62 @@ inline void check_independent_particles(wb::StepFn step,
   }
 }
 
+// Free fall, a = g, three particles, 1000 steps of h = 0.01: v_n = v0 + g t_n exactly, and
+// x_n = x0 + v0 t_n + 1/2 g t_n^2 -+ 1/2 g h t_n, the last term's sign the method's
+// (explicit, velocity_first false: -, semi-implicit: +; each test derives its own).
+inline void check_free_fall(wb::StepFn step, bool velocity_first, const std::string& method) {
+  const Vec2 g(0.3, -9.81);
+  auto accel = [g](const Mat2X& x, const Mat2X&, Mat2X& a) { a = g.replicate(1, x.cols()); };
+  const Mat2X x0 = cols({{0.0, 100.0}, {5.0, 0.0}, {-2.0, 40.0}});
+  const Mat2X v0 = cols({{1.0, 0.0}, {0.0, 20.0}, {-3.0, 7.5}});
+  const double h = 0.01;
+  const double half = velocity_first ? 0.5 : -0.5;  // the sign of the 1/2 g h t term
+  const std::string law =
+      method + " free fall x0 + v0 t + g t^2/2 " + (velocity_first ? "+" : "-") + " g h t/2";
+  Run r(accel, x0, v0);
+  for (int n = 1; n <= 1000; ++n) {
+    r.step(step, h);
+    const double t = n * h;
+    Mat2X xe = x0 + v0 * t;
+    xe.colwise() += (0.5 * t * t + half * h * t) * g;
+    Mat2X ve = v0;
+    ve.colwise() += t * g;
+    INFO("step " << n << ", t = " << t);
+    wbtest::require_near(r.x, xe, 1e-9, law, 1e-12);
+    wbtest::require_near(r.v, ve, 1e-9, "free fall velocity v0 + g t", 1e-12);
+  }
+}
+
+// Viscous damping, a_i = -(b / m_i) v_i, three particles of distinct masses, 60 steps:
+// v_n = r_i^n v0 with r_i = 1 - h b / m_i, and x_n = x0 + h v0 c (1 - r^n) / (1 - r), where
+// c = 1 for explicit Euler (velocity_first false: the old velocities v_0 ... v_{n-1}) and
+// c = r for semi-implicit Euler (the new ones, v_1 ... v_n).
+inline void check_damping(wb::StepFn step, bool velocity_first, const std::string& method) {
+  const double b = 0.3, h = 0.1;
+  const Eigen::Vector3d m(0.5, 2.0, 7.0);
+  auto accel = [&](const Mat2X&, const Mat2X& v, Mat2X& a) {
+    for (Eigen::Index i = 0; i < v.cols(); ++i) a.col(i) = -(b / m[i]) * v.col(i);
+  };
+  const Mat2X x0 = cols({{0.0, 0.0}, {1.0, -1.0}, {2.0, 3.0}});
+  const Mat2X v0 = cols({{4.0, -2.0}, {-1.0, 3.0}, {0.5, 6.0}});
+  Run r(accel, x0, v0);
+  const int N = 60;
+  for (int n = 1; n <= N; ++n) r.step(step, h);
+  for (int i = 0; i < 3; ++i) {
+    const double ri = 1.0 - h * b / m[i];
+    const double rn = std::pow(ri, N);
+    const double c = velocity_first ? h * ri : h;  // h c of the law above
+    INFO("particle " << i << " of mass " << m[i]);
+    wbtest::require_near(Vec2(r.v.col(i)), Vec2(rn * v0.col(i)), 1e-12,
+                         method + " damping v_n = (1 - h b/m)^n v0", 1e-12);
+    wbtest::require_near(Vec2(r.x.col(i)),
+                         Vec2(x0.col(i) + c * (1.0 - rn) / (1.0 - ri) * v0.col(i)), 1e-12,
+                         method + (velocity_first ? " damping x_n = x0 + h v0 r (1 - r^n)/(1 - r)"
+                                                  : " damping x_n = x0 + h v0 (1 - r^n)/(1 - r)"),
+                         1e-12);
+  }
+}
+
 // The held-out check of a one-step method (tests/common/heldout.h): systems the student has
 // never seen (1 to 7 particles, a random nonlinear a(x, v) of positions and velocities, a
 // random step size), a few steps each, every step compared with the method's definition
@@ -140,20 +213,7 @@ inline void check_random_steps(wbtest::HeldOut& g, wb::StepFn step, bool velocit
   for (Eigen::Index n :
        {Eigen::Index(g.integer(3, 7)), Eigen::Index(1), Eigen::Index(g.integer(2, 7))}) {
     // a_i = c0 + c1 x_i + c2 v_i + c3 (x_i.y x_i.x, v_i.x v_i.y): each particle its own.
-    std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
-    Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4),
-          g.uniform(-4, 4);
-      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2),
-          g.uniform(-2, 2);
-    }
-    auto accel = [=](const Mat2X& x, const Mat2X& v, Mat2X& a) {
-      for (Eigen::Index i = 0; i < x.cols(); ++i) {
-        a.col(i) = c0.col(i) + c1[std::size_t(i)] * x.col(i) + c2[std::size_t(i)] * v.col(i) +
-                   c3.col(i).cwiseProduct(Vec2(x(1, i) * x(0, i), v(0, i) * v(1, i)));
-      }
-    };
+    const auto accel = wbtest::random_accel(g, n);
     const double h = g.log_uniform(1e-3, 0.3);
     Run r(accel, g.points(n, -4.0, 4.0), g.points(n, -4.0, 4.0));
     r.record = true;

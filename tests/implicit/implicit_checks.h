@@ -210,6 +210,30 @@ inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.
       -0.7, 0.4, -0.1, 0.6;
 }
 
+// External forces on small_network's four particles: gravity on each mass (m g, g = 9.8),
+// with a sideways push (push true) or without (false).
+inline Mat2X small_network_load(bool push = true) {
+  Mat2X f(2, 4);
+  if (push)
+    f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  else
+    f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+  return f;
+}
+
+// Two particles (m 2 and 0.5), each on its own linear spring (k 50 and 8) to its anchor,
+// with drag 0.7, moving and pushed by f: the closed-form one-step cases of I4 and I5.
+inline void anchored_pair(SpringNetwork& net, Mat2X& x, Mat2X& v, Mat2X& f) {
+  net = anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
+  net.drag = 0.7;
+  x.resize(2, 2);
+  v.resize(2, 2);
+  f.resize(2, 2);
+  x << 1.1, 0.2, 0.4, -0.6;
+  v << -0.6, 1.5, 2.1, 0.8;
+  f << 0.5, 0.1, -19.6, -4.9;
+}
+
 // A network's workspace carried from step to step the way the grader carries it
 // (backward_euler.h, NewtonWorkspace): its data (the system, the warm start) kept,
 // its LDLT fresh at every step, so that a test reads the same here and through the
@@ -302,6 +326,19 @@ inline void dense_system(const SpringNetwork& net, const Mat2X& x0, const Mat2X&
     A.block<2, 2>(2 * p, 2 * p) = net.m[p] * Eigen::Matrix2d::Identity();
     b.segment<2>(2 * p).setZero();
   }
+}
+
+// Baraff and Witkin's one linear solve from (x0, v0), dense, all at the start:
+// (M - h D - h^2 K) dv = h (f + f_ext + h K v).
+inline Eigen::VectorXd one_solve_dv(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v0,
+                                    const Mat2X& f_ext, double h) {
+  Eigen::MatrixXd K, D;
+  dense_jacobians(net, x0, v0, K, D);
+  Eigen::VectorXd M(2 * net.n());
+  for (Eigen::Index p = 0; p < net.n(); ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
+  const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
+  const Eigen::VectorXd b = h * (flat(forces(net, x0, v0) + f_ext) + h * K * flat(v0));
+  return A.partialPivLu().solve(b);
 }
 
 // Newton's method of backward_euler.h, written by the test with dense solves: the iterate

@@ -91,14 +91,10 @@ void require_solves_be(const SpringNetwork& net, const Mat2X& x0, const Mat2X& v
 TEST_CASE("I4 backward Euler: one anchored linear spring takes the closed-form step",
           "[implicit][I4][2pts]") {
   for (auto solver : {NewtonOptions::kLDLT, NewtonOptions::kCG}) {
-    SpringNetwork net =
-        imtest::anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
-    net.drag = 0.7;
+    SpringNetwork net;
+    Mat2X x, v, f;
+    imtest::anchored_pair(net, x, v, f);
     const double h = 0.05;
-    Mat2X x(2, 2), v(2, 2), f(2, 2);
-    x << 1.1, 0.2, 0.4, -0.6;
-    v << -0.6, 1.5, 2.1, 0.8;
-    f << 0.5, 0.1, -19.6, -4.9;
     Mat2X xe(2, 2), ve(2, 2);
     for (Eigen::Index p = 0; p < 2; ++p) {
       const double m = net.m[p], k = net.springs[p].k, b = net.drag;
@@ -212,8 +208,7 @@ TEST_CASE("I4 backward Euler: a converged step solves the backward Euler equatio
     SpringNetwork net;
     Mat2X x0, v0;
     imtest::small_network(net, x0, v0, 1.2, 0.4);
-    Mat2X f(2, 4);
-    f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+    Mat2X f = imtest::small_network_load(false);  // gravity alone
     Mat2X x = x0, v = v0;
     const NewtonReport r = step(net, f, 0.1, options(solver), x, v);
     INFO("report: " << r.iterations << " solves, residual " << r.residual << ", converged "
@@ -230,8 +225,7 @@ TEST_CASE("I4 backward Euler: a pinned particle never moves", "[implicit][I4][2p
   imtest::small_network(net, x0, v0, 0.5, 0.1);
   net.pinned = {0, 0, 1, 0};  // particle 2 joins three springs
   // Its given velocity (0.8, -0.1) is ignored: a pinned particle has v = 0.
-  Mat2X f(2, 4);
-  f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+  Mat2X f = imtest::small_network_load(false);  // gravity alone
   Mat2X x = x0, v = v0;
   imtest::CarriedWorkspace ws;  // one per network, kept from step to step
   for (int step = 0; step < 5; ++step) {
@@ -262,18 +256,10 @@ TEST_CASE("I4 backward Euler: one_iteration is the single solve of Baraff and Wi
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.6, 0.2);
-  Mat2X f(2, 4);
-  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  Mat2X f = imtest::small_network_load();
   const double h = 0.1;
   // (M - h D - h^2 K) dv = h (f + f_ext + h K v), all at the start.
-  Eigen::MatrixXd K, D;
-  imtest::dense_jacobians(net, x0, v0, K, D);
-  Eigen::VectorXd M(8);
-  for (int p = 0; p < 4; ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
-  const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
-  const Eigen::VectorXd b =
-      h * (imtest::flat(imtest::forces(net, x0, v0) + f) + h * K * imtest::flat(v0));
-  const Eigen::VectorXd dv = A.partialPivLu().solve(b);
+  const Eigen::VectorXd dv = imtest::one_solve_dv(net, x0, v0, f, h);
   Mat2X ve = v0 + Eigen::Map<const Mat2X>(dv.data(), 2, 4);
   Mat2X xe = x0 + h * ve;
   NewtonOptions o = options();
@@ -332,8 +318,7 @@ TEST_CASE("I4 backward Euler: a capped step reports its solves and the residual 
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 1.2, 0.4);
-  Mat2X f(2, 4);
-  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  Mat2X f = imtest::small_network_load();
   const double h = 0.15;
   for (int cap = 1; cap <= 3; ++cap) {
     NewtonOptions o = options();
@@ -513,8 +498,7 @@ TEST_CASE("I4 backward Euler: one workspace carries a run step for step as an em
       Mat2X x, v;
       imtest::small_network(net, x, v, 0.5, 0.1);
       net.pinned = {0, 0, 1, 0};
-      Mat2X f(2, 4);
-      f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+      Mat2X f = imtest::small_network_load(false);  // gravity alone
       NewtonOptions o = options(solver);
       o.one_iteration = one;
       imtest::CarriedWorkspace ws;
@@ -548,8 +532,7 @@ TEST_CASE("I4 backward Euler: CG's first solve starts from the workspace's dv an
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.6, 0.2);
-  Mat2X f(2, 4);
-  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  Mat2X f = imtest::small_network_load();
   const double h = 0.1;
   NewtonOptions o = options(NewtonOptions::kCG);
   o.one_iteration = true;
@@ -575,14 +558,7 @@ TEST_CASE("I4 backward Euler: CG's first solve starts from the workspace's dv an
   }
   // 2. A tight tolerance: ws.dv is the first system's solution (the dense one's).
   {
-    Eigen::MatrixXd K, D;
-    imtest::dense_jacobians(net, x0, v0, K, D);
-    Eigen::VectorXd M(8);
-    for (int p = 0; p < 4; ++p) M.segment<2>(2 * p).setConstant(net.m[p]);
-    const Eigen::MatrixXd A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
-    const Eigen::VectorXd b =
-        h * (imtest::flat(imtest::forces(net, x0, v0) + f) + h * K * imtest::flat(v0));
-    const Eigen::VectorXd dv = A.partialPivLu().solve(b);
+    const Eigen::VectorXd dv = imtest::one_solve_dv(net, x0, v0, f, h);
     NewtonWorkspace ws;
     ws.dv = guess;
     Mat2X x = x0, v = v0;

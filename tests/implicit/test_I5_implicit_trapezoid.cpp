@@ -50,14 +50,10 @@ TEST_CASE("I5 implicit trapezoid: one step on a damped linear spring is the Cayl
           "[implicit][I5][3pts]") {
   // Per coordinate X = (x - c, v), X' = A X + F with A = [[0, 1], [-k/m, -b/m]],
   // F = (0, f/m): the rule gives X' = (I - hA/2)^-1 ((I + hA/2) X + h F).
-  SpringNetwork net =
-      imtest::anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
-  net.drag = 0.7;
+  SpringNetwork net;
+  Mat2X x, v, f;
+  imtest::anchored_pair(net, x, v, f);
   const double h = 0.2;
-  Mat2X x(2, 2), v(2, 2), f(2, 2);
-  x << 1.1, 0.2, 0.4, -0.6;
-  v << -0.6, 1.5, 2.1, 0.8;
-  f << 0.5, 0.1, -19.6, -4.9;
   Mat2X xe(2, 2), ve(2, 2);
   for (Eigen::Index p = 0; p < 2; ++p) {
     const double m = net.m[p], k = net.springs[p].k, b = net.drag;
@@ -111,8 +107,7 @@ TEST_CASE("I5 implicit trapezoid: a pinned particle never moves even one that ar
   net.pinned = {0, 0, 1, 0};
   // Its given velocity (0.8, -0.1) is ignored: a pinned particle has v = 0 (from
   // the start: the explicit half must not move it either).
-  Mat2X f(2, 4);
-  f << 0.0, 0.0, 0.0, 0.0, -9.8, -19.6, -4.9, -14.7;
+  Mat2X f = imtest::small_network_load(false);  // gravity alone
   Mat2X x = x0, v = v0;
   imtest::CarriedWorkspace ws;
   for (int step = 0; step < 5; ++step) {
@@ -138,8 +133,7 @@ TEST_CASE("I5 implicit trapezoid: returns the Newton report of its backward Eule
   SpringNetwork net;
   Mat2X x0, v0;
   imtest::small_network(net, x0, v0, 0.0, 0.4);
-  Mat2X f(2, 4);
-  f << 0.3, 0.0, -0.2, 0.1, -9.8, -19.6, -4.9, -14.7;
+  Mat2X f = imtest::small_network_load();
   const double h = 0.1;
   for (int cap : {1, 50}) {
     NewtonOptions o = options();

@@ -151,6 +151,23 @@ inline void check_linear_step(StepFn step, const std::string& method,
   wbtest::require_near(v, ve, kRoundTol, law + " (velocities)", kRoundTol);
 }
 
+// One particle on a damped spring (k = 4, c = 0.7), one step of h = 0.3 (check_linear_step).
+inline void check_damped_spring_step(StepFn step, const std::string& method) {
+  Mat2X x(2, 1), v(2, 1);
+  x << 0.6, -0.25;
+  v << -0.9, 1.3;
+  check_linear_step(step, method, {4.0}, {0.7}, 0.3, x, v);
+}
+
+// Three particles, each with its own spring and damper: particle i must come out as if it
+// were stepped alone (check_linear_step).
+inline void check_columns_apart(StepFn step, const std::string& method) {
+  Mat2X x(2, 3), v(2, 3);
+  x << 1.0, -0.5, 0.2, 0.3, 0.8, -1.4;
+  v << 0.0, 2.0, -0.6, -1.0, 0.1, 0.9;
+  check_linear_step(step, method, {1.0, 25.0, 4.0}, {0.0, 0.5, 2.0}, 0.1, x, v);
+}
+
 inline void check_energy_factor(StepFn step, const std::string& method) {
   const double w = 3.0;  // rad/s, so k = w^2 with m = 1
   for (double z : {0.1, 0.5, 1.0, 2.0}) {
@@ -258,20 +275,7 @@ inline void check_two_evaluations(StepFn step, const std::string& method) {
 inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
                                const std::string& method) {
   for (Eigen::Index n : {Eigen::Index(g.integer(3, 7)), Eigen::Index(1)}) {
-    std::vector<wb::Mat2> c1(static_cast<std::size_t>(n)), c2(static_cast<std::size_t>(n));
-    const Mat2X c0 = g.points(n, -3.0, 3.0), c3 = g.points(n, -0.5, 0.5);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      c1[std::size_t(i)] << g.uniform(-4, 4), g.uniform(-4, 4), g.uniform(-4, 4),
-          g.uniform(-4, 4);
-      c2[std::size_t(i)] << g.uniform(-2, 2), g.uniform(-2, 2), g.uniform(-2, 2),
-          g.uniform(-2, 2);
-    }
-    auto accel = [=](const Mat2X& x, const Mat2X& v, Mat2X& a) {
-      for (Eigen::Index i = 0; i < x.cols(); ++i) {
-        a.col(i) = c0.col(i) + c1[std::size_t(i)] * x.col(i) + c2[std::size_t(i)] * v.col(i) +
-                   c3.col(i).cwiseProduct(wb::Vec2(x(1, i) * x(0, i), v(0, i) * v(1, i)));
-      }
-    };
+    const auto accel = wbtest::random_accel(g, n);  // a random nonlinear a(x, v)
     std::vector<Mat2X> seen_x, seen_v;
     wb::LambdaDynamics dyn([&](const Mat2X& x, const Mat2X& v, Mat2X& a) {
       seen_x.push_back(x), seen_v.push_back(v);

@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "contact_world.h"
+#include "elastic_gas.h"
 #include "wb/scene.h"
 #include "wb/semi_implicit.h"
 
@@ -21,11 +22,10 @@ namespace {
 constexpr double kGasEnergyTol = 1e-6;  // relative, over the whole run (issue 34)
 constexpr int kGasSteps = 500;          // of 1 ms
 
-// Two emitters: 150 discs of 1 kg at 2 m/s and 150 of 4 kg at 1 m/s (600 J), radius 5 cm,
-// uniform in a 3.8 m square inside a 4 m box of elastic walls: about 90 pairs overlap at
-// t = 0. `lattice`: the same discs on a grid 21 cm apart instead (no overlap).
+// The elastic gas (elastic_gas.h) with the given "contact" block. `lattice`: the same discs
+// on a grid 21 cm apart instead (no overlap at t = 0).
 wb::json gas(bool lattice, const wb::json& contact) {
-  wb::json doc = {{"dt", 0.001}, {"t_end", 0.5}};
+  wb::json doc = wbgas::elastic_gas(contact);
   if (lattice) {
     wb::json parts = wb::json::array();
     for (int k = 0; k < 300; ++k) {
@@ -37,28 +37,9 @@ wb::json gas(bool lattice, const wb::json& contact) {
                        {"m", light ? 1.0 : 4.0},
                        {"radius", 0.05}});
     }
+    doc.erase("emitters");
     doc["particles"] = parts;
-  } else {
-    doc["emitters"] = {{{"count", 150},
-                        {"seed", 1},
-                        {"min", {-1.9, -1.9}},
-                        {"max", {1.9, 1.9}},
-                        {"speed", 2.0},
-                        {"m", 1.0},
-                        {"radius", 0.05}},
-                       {{"count", 150},
-                        {"seed", 2},
-                        {"min", {-1.9, -1.9}},
-                        {"max", {1.9, 1.9}},
-                        {"speed", 1.0},
-                        {"m", 4.0},
-                        {"radius", 0.05}}};
   }
-  doc["planes"] = {{{"point", {-2, 0}}, {"normal", {1, 0}}},
-                   {{"point", {2, 0}}, {"normal", {-1, 0}}},
-                   {{"point", {0, -2}}, {"normal", {0, 1}}},
-                   {{"point", {0, 2}}, {"normal", {0, -1}}}};
-  doc["contact"] = contact;
   return doc;
 }
 

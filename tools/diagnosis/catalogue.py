@@ -99,12 +99,7 @@ def record(grader, lab, files, built=False):
     if not built:
         pristine = pristine_files(grader.repo)
         pristine.update(worker_files(grader.repo, known_labs(grader.repo)))
-        staged = dict(pristine)
-        for name, data in files.items():
-            staged[os.path.join("labs", lab, name)] = data
-        grader.direct_tests = True
-        grader.sync(staged)
-        grader.configure([lab])
+        grader.stage_direct(lab, files, pristine)
         if os.path.exists(binary):
             os.remove(binary)
         proc = subprocess.run(["cmake", "--build", grader.build, "--target",

@@ -169,6 +169,17 @@ class Grader:
         """Makes src/ hold exactly `files`, rewriting only what changed (project.sync_tree)."""
         sync_tree(self.src, files)
 
+    def stage_direct(self, lab, files, pristine):
+        """The pristine tree with `lab`'s student files replaced by `files` ({name: bytes}),
+        synced and configured to build the tests linked straight with them (WB_DIRECT_TESTS):
+        tools/mutants' direct runs and the diagnosis' probes."""
+        staged = dict(pristine)
+        for name, data in files.items():
+            staged[os.path.join("labs", lab, name)] = data
+        self.direct_tests = True
+        self.sync(staged)
+        self.configure([lab])
+
     def configure(self, labs):
         # Every known lab, whichever are graded: the configuration stays the same from one
         # grade to the next (a lab graded alone does not make cmake run again), and only the

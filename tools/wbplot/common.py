@@ -180,6 +180,24 @@ def finish_frame(fig, path, inside=False):
     figfacts.note(fig, path)
 
 
+def save_animation(fig, draw, frames, out, fps, dpi):
+    """Writes the animation of `draw(k)` over `frames` as a GIF to a temporary name beside
+    `out`, then renames it (the forces and collisions labs' animations); closes the figure."""
+    import matplotlib.animation as animation
+    anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        raise InputError(f"{out}: folder {folder} does not exist")
+    tmp = os.path.join(folder, f".{os.path.basename(out)}.tmp-{os.getpid()}.gif")
+    try:
+        anim.save(tmp, writer=animation.PillowWriter(fps=fps), dpi=dpi)
+        os.replace(tmp, out)
+    finally:
+        plt.close(fig)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def write_text_atomic(path, text):
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):

@@ -59,6 +59,10 @@ def configured_compiler(build):
     return None
 
 
+# Steps that go on after a failure (every failing step is listed at the end). Not
+# newlab_check.Steps, which stops at the first failure (each step needs the one before) and
+# runs a step in a process group of its own, to end it when stopped (docs/contributor.md,
+# "Repeated code").
 class Steps:
     def __init__(self):
         self.failed = []

@@ -104,12 +104,7 @@ def direct_build(grader, lab, files, probes=None):
     pristine = pristine_files(grader.repo)
     pristine.update(worker_files(grader.repo, grade.known_labs(grader.repo)))
     tests = grader.test_lists([lab], pristine)[lab]
-    staged = dict(pristine)
-    for name, data in files.items():
-        staged[os.path.join("labs", lab, name)] = data
-    grader.direct_tests = True
-    grader.sync(staged)
-    grader.configure([lab])
+    grader.stage_direct(lab, files, pristine)
     binary = os.path.join(grader.build, "bin", f"{lab}-tests-direct")
     if os.path.exists(binary):
         os.remove(binary)

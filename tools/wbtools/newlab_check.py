@@ -71,6 +71,9 @@ def stop_step():
                 pass
 
 
+# Steps that stop at the first failure: each needs the one before (a build, then its
+# grading). Not clang_check.Steps, which goes on to list every failure and has no group of
+# processes to stop (docs/contributor.md, "Repeated code").
 class Steps:
     def __init__(self):
         self.t0 = time.monotonic()

@@ -5,6 +5,7 @@ import sys
 import time
 
 from wbplot.common import write_text_atomic
+from wbview import say_written
 
 from . import model, page
 from .data import InputError, read_scene, read_stats, read_summary, read_trace
@@ -151,7 +152,5 @@ def main(argv=None):
     except InputError as e:
         print(f"tools/view: error: {e}", file=sys.stderr)
         return 2
-    size = os.path.getsize(out) / 1e6
-    print(f"tools/view: wrote {out} ({size:.1f} MB, {time.monotonic() - t0:.1f} s): {what}")
-    print(f"tools/view: open it in a browser, e.g. file://{os.path.abspath(out)}")
+    say_written("tools/view", out, t0, what)
     return 0

@@ -5,6 +5,8 @@
 #include "wb/run.h"
 #include "wb/semi_implicit.h"
 
+// Every lab's main has this shape: the lab's declaration (summary, integrators) handed to
+// the run contract (docs/contributor.md, "Repeated code").
 int main(int argc, char** argv) {
   wb::LabInfo info;
   info.lab = WB_LAB;

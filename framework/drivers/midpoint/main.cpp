@@ -6,6 +6,8 @@
 #include "wb/rk4.h"
 #include "wb/run.h"
 
+// Every lab's main has this shape: the lab's declaration (summary, integrators) handed to
+// the run contract (docs/contributor.md, "Repeated code").
 int main(int argc, char** argv) {
   wb::LabInfo info;
   info.lab = WB_LAB;

@@ -3,6 +3,8 @@
 #include "rigid_world.h"
 #include "wb/run.h"  // WB_SIDE
 
+// Every lab's main has this shape: the lab's declaration (summary, integrators) handed to
+// the run contract (docs/contributor.md, "Repeated code").
 int main(int argc, char** argv) {
   rigid::LabInfo info;
   info.lab = WB_LAB;

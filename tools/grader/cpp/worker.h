@@ -113,10 +113,12 @@ void put_output(Out& o, const V& v) {
   if constexpr (is_output_v<A>) put(o, v);
 }
 
+// Runs fn on the arguments already read and sends back its outputs and its result. The
+// adversary's recording serve (fuzz/adversary/adversary.h) reads and observes the arguments
+// first, then answers through this same function.
 template <class R, class... A, std::size_t... I>
-void serve_impl(R (*fn)(A...), In& in, std::index_sequence<I...>) {
-  std::tuple<typename Storage<A>::type...> args;
-  (get(in, std::get<I>(args)), ...);
+void answer(R (*fn)(A...), std::tuple<typename Storage<A>::type...>& args,
+            std::index_sequence<I...>) {
   Out o;
   put(o, kResult);
   if constexpr (std::is_void_v<R>) {
@@ -128,6 +130,13 @@ void serve_impl(R (*fn)(A...), In& in, std::index_sequence<I...>) {
     put(o, r);
   }
   worker_channel().send(o);
+}
+
+template <class R, class... A, std::size_t... I>
+void serve_impl(R (*fn)(A...), In& in, std::index_sequence<I...> seq) {
+  std::tuple<typename Storage<A>::type...> args;
+  (get(in, std::get<I>(args)), ...);
+  answer(fn, args, seq);
 }
 
 template <class R, class... A>

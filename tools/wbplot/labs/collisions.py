@@ -205,8 +205,7 @@ def plot_discs(trace, scene, out, title=None):
 
 
 def plot_animation(trace, scene, out, fps=20, title=None):
-    import matplotlib.animation as animation
-    from ..common import finish_frame
+    from ..common import finish_frame, save_animation
     try:
         import PIL  # noqa: F401  (PillowWriter needs it)
     except ImportError:
@@ -252,19 +251,7 @@ def plot_animation(trace, scene, out, fps=20, title=None):
         finish_frame(fig, out, inside=True)
         return coll, label
 
-    anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
-    folder = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(folder):
-        raise InputError(f"{out}: folder {folder} does not exist")
-    tmp = os.path.join(folder, f".{os.path.basename(out)}.tmp-{os.getpid()}.gif")
-    try:
-        anim.save(tmp, writer=animation.PillowWriter(fps=fps), dpi=80)
-        os.replace(tmp, out)
-    finally:
-        import matplotlib.pyplot as plt
-        plt.close(fig)
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    save_animation(fig, draw, frames, out, fps, dpi=80)
 
 
 def first_rebound(trace, radius, floor_y=0.0, pid=0):

@@ -17,7 +17,7 @@ import json
 import math
 import os
 
-from ..common import InputError, new_figure, save_figure, write_text_atomic
+from ..common import InputError, new_figure, save_animation, save_figure, write_text_atomic
 from ..runs import choose_ids, read_trace
 
 PROBE_GRID = 161      # probe particles per side
@@ -249,7 +249,6 @@ def plot_flow(probe_trace, probe_path, out, trace=None, csv_out=None, title=None
 
 
 def plot_smoke(trace, scene, out, fps=20, title=None):
-    import matplotlib.animation as animation
     try:
         import PIL  # noqa: F401  (PillowWriter needs it)
     except ImportError:
@@ -297,19 +296,7 @@ def plot_smoke(trace, scene, out, fps=20, title=None):
         finish_frame(fig, out, inside=True)
         return dots, label
 
-    anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
-    folder = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(folder):
-        raise InputError(f"{out}: folder {folder} does not exist")
-    tmp = os.path.join(folder, f".{os.path.basename(out)}.tmp-{os.getpid()}.gif")
-    try:
-        anim.save(tmp, writer=animation.PillowWriter(fps=fps), dpi=90)
-        os.replace(tmp, out)
-    finally:
-        import matplotlib.pyplot as plt
-        plt.close(fig)
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    save_animation(fig, draw, frames, out, fps, dpi=90)
 
 
 # ----------------------------------------------------------------------------

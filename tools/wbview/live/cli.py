@@ -6,6 +6,7 @@ import sys
 import time
 
 from wbplot.common import write_text_atomic
+from wbview import say_written
 from wbview.data import InputError
 
 from . import build, page, recorded
@@ -111,7 +112,5 @@ def main(argv=None):
     except InputError as e:
         print(f"tools/view --live: error: {e}", file=sys.stderr)
         return 2
-    size = os.path.getsize(out) / 1e6
-    print(f"tools/view --live: wrote {out} ({size:.1f} MB, {time.monotonic() - t0:.1f} s): {what}")
-    print(f"tools/view --live: open it in a browser, e.g. file://{os.path.abspath(out)}")
+    say_written("tools/view --live", out, t0, what)
     return 0

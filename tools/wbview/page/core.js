@@ -11,7 +11,6 @@ const COLORS = { run: "#1f77b4", run2: "#ff7f0e", exact: "#111111", trail: "#9ec
   spring: "#9a9a9a", plane: "#7f6a3c", com: "#111111" };
 const BODY_COLORS = ["#4e79a7", "#59a14f", "#edc948", "#b07aa1", "#76b7b2", "#e15759",
   "#9c755f", "#bab0ac"];
-const AXIS_COLORS = ["#d62728", "#2ca02c", "#1f77b4"];
 
 // ---------------------------------------------------------------- data
 function blob(ref) {  // "#blob:K" -> Float32Array of the K-th binary block

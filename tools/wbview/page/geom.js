@@ -165,3 +165,39 @@ function edgeArrow(ctx, W, H, X, Y) {
   ctx.lineTo(ex + 5 * Math.cos(a - 2.4), ey + 5 * Math.sin(a - 2.4));
   ctx.closePath(); ctx.fill();
 }
+// A mark of a 2D scene (an attractor, a vortex's centre) at the screen point (x, y): the
+// dashed circle of its reach (rPx pixels; none when 0), a cross of arm `arm` pixels and
+// its label beside it. Both pages draw marks with it.
+function drawMark(ctx, x, y, rPx, label, arm) {
+  ctx.strokeStyle = "#555"; ctx.fillStyle = "#555"; ctx.lineWidth = 1.5;
+  if (rPx) {
+    ctx.setLineDash([4, 4]);
+    ctx.beginPath(); ctx.arc(x, y, rPx, 0, 2 * Math.PI); ctx.stroke();
+    ctx.setLineDash([]);
+  }
+  ctx.beginPath();
+  ctx.moveTo(x - arm, y); ctx.lineTo(x + arm, y); ctx.moveTo(x, y - arm); ctx.lineTo(x, y + arm);
+  ctx.stroke();
+  ctx.fillText(label, x + arm + 1, y - arm + 1);
+}
+const AXIS_COLORS = ["#d62728", "#2ca02c", "#1f77b4"];  // a body's x, y, z axes
+// A body's axes at pose P (its centre drawn at the screen point c), L metres long.
+function drawBodyAxes(ctx, cam, project, P, c, L) {
+  for (let d = 0; d < 3; d++) {
+    const e = [0, 0, 0]; e[d] = L;
+    const q = project(cam, add3(P.x, apply(P.R, e)));
+    if (!q) continue;
+    ctx.strokeStyle = AXIS_COLORS[d]; ctx.lineWidth = 2;
+    ctx.beginPath(); ctx.moveTo(c[0], c[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
+  }
+}
+// A revolute hinge's axis through its anchor, L metres each way, projected by the page's
+// project(cam, point) (null behind the camera: then nothing is drawn).
+function drawHingeAxis(ctx, cam, project, anchor, axis, L) {
+  const p0 = project(cam, sub3(anchor, mul3(axis, L)));
+  const p1 = project(cam, add3(anchor, mul3(axis, L)));
+  if (p0 && p1) {
+    ctx.strokeStyle = "#7b3294"; ctx.lineWidth = 2.5;
+    ctx.beginPath(); ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); ctx.stroke();
+  }
+}

@@ -103,16 +103,7 @@ function drawScene2() {
   ctx.font = "11px sans-serif";
   SCENE.marks.forEach(function (m) {
     const x = sx(m.at[0]), y = sy(m.at[1]);
-    ctx.strokeStyle = "#555"; ctx.fillStyle = "#555"; ctx.lineWidth = 1.5;
-    if (m.radius) {
-      ctx.setLineDash([4, 4]);
-      ctx.beginPath(); ctx.arc(x, y, m.radius * v.s, 0, 2 * Math.PI); ctx.stroke();
-      ctx.setLineDash([]);
-    }
-    ctx.beginPath();
-    ctx.moveTo(x - 6, y); ctx.lineTo(x + 6, y); ctx.moveTo(x, y - 6); ctx.lineTo(x, y + 6);
-    ctx.stroke();
-    ctx.fillText(m.label, x + 7, y - 5);
+    drawMark(ctx, x, y, m.radius * v.s, m.label, 6);
   });
 }
 

@@ -165,13 +165,8 @@ function draw3() {
     const a = project(cam, h.anchor);
     const P0 = pose(R1, 0, h.body), P = poses[h.body];
     if (h.axis) {
-      const L = Math.max(shapeSize(h.body), S.cam.radius * 0.3);
-      const p0 = project(cam, sub3(h.anchor, mul3(h.axis, L)));
-      const p1 = project(cam, add3(h.anchor, mul3(h.axis, L)));
-      if (p0 && p1) {
-        ctx.strokeStyle = "#7b3294"; ctx.lineWidth = 2.5;
-        ctx.beginPath(); ctx.moveTo(p0[0], p0[1]); ctx.lineTo(p1[0], p1[1]); ctx.stroke();
-      }
+      drawHingeAxis(ctx, cam, project, h.anchor, h.axis,
+                    Math.max(shapeSize(h.body), S.cam.radius * 0.3));
     }
     if (P0 && P) {
       const rb = applyT(P0.R, sub3(h.anchor, P0.x));
@@ -218,14 +213,7 @@ function draw3() {
     const c = project(cam, P.x);
     drawn.push(c);
     if (!c) continue;
-    const L = 0.5 * shapeSize(i) + 0.15 * shapeSize(i);
-    for (let d = 0; d < 3; d++) {
-      const e = [0, 0, 0]; e[d] = L;
-      const q = project(cam, add3(P.x, apply(P.R, e)));
-      if (!q) continue;
-      ctx.strokeStyle = AXIS_COLORS[d]; ctx.lineWidth = 2;
-      ctx.beginPath(); ctx.moveTo(c[0], c[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
-    }
+    drawBodyAxes(ctx, cam, project, P, c, 0.5 * shapeSize(i) + 0.15 * shapeSize(i));
     ctx.fillStyle = COLORS.com;
     fillDot(c, 3.5);
     if (S.pick === i) {

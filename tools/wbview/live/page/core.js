@@ -6,7 +6,6 @@ const META = JSON.parse(document.getElementById("wb-live").textContent);
 const RIGID = META.kind === "rigid";
 const COLORS = ["#1f77b4", "#ff7f0e"];        // the first run, the one beside it
 const BODY_COLORS = ["#4e79a7", "#59a14f", "#edc948", "#b07aa1", "#76b7b2", "#e15759"];
-const AXIS_COLORS = ["#d62728", "#2ca02c", "#1f77b4"];
 const FRAME_MS = 1000 / 60;                   // one displayed frame at 60 Hz
 const R = { T: 0, STEPS: 1, K: 2, V: 3, E: 4, PX: 5, PY: 6, PZ: 7, LX: 8, LY: 9, LZ: 10,
   EVALS: 11, UNCONVERGED: 12, EXACT: 13 };   // framework/live/live.h, enum Readout

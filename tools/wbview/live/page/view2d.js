@@ -131,16 +131,7 @@ function drawFixed2(p) {  // grid, planes, obstacles, marks
       ctx.fillStyle = "rgba(120,120,120,0.25)"; ctx.strokeStyle = "#888"; ctx.lineWidth = 1;
       ctx.beginPath(); ctx.arc(x, y, m.disc * v.s, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
     }
-    ctx.strokeStyle = "#555"; ctx.fillStyle = "#555"; ctx.lineWidth = 1.5;
-    if (m.radius) {
-      ctx.setLineDash([4, 4]);
-      ctx.beginPath(); ctx.arc(x, y, m.radius * v.s, 0, 2 * Math.PI); ctx.stroke();
-      ctx.setLineDash([]);
-    }
-    ctx.beginPath();
-    ctx.moveTo(x - 7, y); ctx.lineTo(x + 7, y); ctx.moveTo(x, y - 7); ctx.lineTo(x, y + 7);
-    ctx.stroke();
-    ctx.fillText(m.label + " (drag)", x + 8, y - 6);
+    drawMark(ctx, x, y, m.radius * v.s, m.label + " (drag)", 7);
   });
 }
 
