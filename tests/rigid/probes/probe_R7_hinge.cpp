@@ -32,6 +32,22 @@ void revolute(wbprobe::Probe& P, rigid::Body b, const Vec3& r_body, const Vec3& 
 const Vec3 kR(0.5, -0.25, 0.75);  // the pinned point, body frame
 // The anchor where the pinned point is: no drift.
 Vec3 pinned(const rigid::Body& b) { return b.x + b.q.toRotationMatrix() * kR; }
+// apply_hinge and apply_revolute on copies of b0 (h = 0.05, beta = 0.2), every output in one
+// group: the "turned" and "drift" probes differ only in the anchor and the axis.
+void hinge_then_revolute(wbprobe::Probe& P, const rigid::Body& b0, const Vec3& anchor,
+                         const Vec3& axis_body, const Vec3& axis) {
+  P.call("apply_hinge, apply_revolute"), rbprobe::body_in(P, b0), P.in("r_body", kR);
+  P.in("anchor", anchor), P.in("axis_body", axis_body), P.in("axis", axis), P.in("h", 0.05);
+  P.in("beta", 0.2);
+  rigid::Body b1 = b0, b2 = b0;
+  const Vec3 Ph = apply_hinge(b1, kR, anchor, 0.05, 0.2);
+  const RevoluteImpulse J = apply_revolute(b2, kR, anchor, axis_body, axis, 0.05, 0.2);
+  P.group("everything");
+  P.out("apply_hinge: returned", Ph), P.out("apply_hinge: b.v", b1.v);
+  P.out("apply_hinge: b.omega", b1.omega), P.out("apply_revolute: returned.P", J.P);
+  P.out("apply_revolute: returned.M", J.M), P.out("apply_revolute: b.v", b2.v);
+  P.out("apply_revolute: b.omega", b2.omega);
+}
 }  // namespace
 
 WB_PROBE("R7", "ball-simple",
@@ -109,17 +125,7 @@ WB_PROBE("R7", "turned",
   const Vec3 axis_body(0, 0, 1);
   const Vec3 axis = b0.q.toRotationMatrix() * axis_body;
   const Vec3 anchor = pinned(b0);
-  P.call("apply_hinge, apply_revolute"), rbprobe::body_in(P, b0), P.in("r_body", kR);
-  P.in("anchor", anchor), P.in("axis_body", axis_body), P.in("axis", axis), P.in("h", 0.05);
-  P.in("beta", 0.2);
-  rigid::Body b1 = b0, b2 = b0;
-  const Vec3 Ph = apply_hinge(b1, kR, anchor, 0.05, 0.2);
-  const RevoluteImpulse J = apply_revolute(b2, kR, anchor, axis_body, axis, 0.05, 0.2);
-  P.group("everything");
-  P.out("apply_hinge: returned", Ph), P.out("apply_hinge: b.v", b1.v);
-  P.out("apply_hinge: b.omega", b1.omega), P.out("apply_revolute: returned.P", J.P);
-  P.out("apply_revolute: returned.M", J.M), P.out("apply_revolute: b.v", b2.v);
-  P.out("apply_revolute: b.omega", b2.omega);
+  hinge_then_revolute(P, b0, anchor, axis_body, axis);
 }
 // The drift correction, in one group: apply_hinge with the anchor off, apply_revolute with the
 // anchor and the axis off.
@@ -131,17 +137,7 @@ WB_PROBE("R7", "drift",
   const Vec3 axis =
       (rbprobe::turn(0.1, Vec3(1, 0, 0)) * (b0.q.toRotationMatrix() * axis_body)).normalized();
   const Vec3 anchor = pinned(b0) + Vec3(0.06, -0.08, 0);
-  P.call("apply_hinge, apply_revolute"), rbprobe::body_in(P, b0), P.in("r_body", kR);
-  P.in("anchor", anchor), P.in("axis_body", axis_body), P.in("axis", axis), P.in("h", 0.05);
-  P.in("beta", 0.2);
-  rigid::Body b1 = b0, b2 = b0;
-  const Vec3 Ph = apply_hinge(b1, kR, anchor, 0.05, 0.2);
-  const RevoluteImpulse J = apply_revolute(b2, kR, anchor, axis_body, axis, 0.05, 0.2);
-  P.group("everything");
-  P.out("apply_hinge: returned", Ph), P.out("apply_hinge: b.v", b1.v);
-  P.out("apply_hinge: b.omega", b1.omega), P.out("apply_revolute: returned.P", J.P);
-  P.out("apply_revolute: returned.M", J.M), P.out("apply_revolute: b.v", b2.v);
-  P.out("apply_revolute: b.omega", b2.omega);
+  hinge_then_revolute(P, b0, anchor, axis_body, axis);
 }
 
 }  // namespace probe_R7_hinge
