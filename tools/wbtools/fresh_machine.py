@@ -163,6 +163,20 @@ def make_root_tar(path, work):
     os.replace(tmp, path)
 
 
+def wait_running(p, timeout, late):
+    """p's exit status; p is in RUNNING (ended on a signal) while it runs, and killed past
+    timeout, which raises StageError(late)."""
+    RUNNING.add(p)
+    try:
+        return p.wait(timeout)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        p.wait()
+        raise StageError(late)
+    finally:
+        RUNNING.discard(p)
+
+
 def run_logged(cmd, logfile, what, env=None, timeout=None):
     """Runs cmd with its output in logfile; a failure raises StageError with the last lines."""
     with open(logfile, "ab") as f:
@@ -170,15 +184,8 @@ def run_logged(cmd, logfile, what, env=None, timeout=None):
         f.flush()
         p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                              env=env)
-        RUNNING.add(p)
-        try:
-            status = p.wait(timeout)
-        except subprocess.TimeoutExpired:
-            p.kill()
-            p.wait()
-            raise StageError(f"{what}: did not finish in {timeout} s (log: {rel(logfile)})")
-        finally:
-            RUNNING.discard(p)
+        status = wait_running(p, timeout,
+                              f"{what}: did not finish in {timeout} s (log: {rel(logfile)})")
     if status != 0:
         raise StageError(f"{what}: exit status {status}\n{tail(logfile)}\n"
                          f"(whole log: {rel(logfile)})")
@@ -222,16 +229,8 @@ class Machine:
             f.flush()
             p = subprocess.Popen(full, stdout=f, stderr=subprocess.STDOUT,
                                  stdin=subprocess.DEVNULL, env=env)
-            RUNNING.add(p)
-            try:
-                status = p.wait(timeout)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait()
-                raise StageError(f"{self.name}: {what}: `{cmd}` did not finish in {timeout} s "
-                                 f"(log: {rel(logfile)})")
-            finally:
-                RUNNING.discard(p)
+            status = wait_running(p, timeout, f"{self.name}: {what}: `{cmd}` did not finish in "
+                                              f"{timeout} s (log: {rel(logfile)})")
         log(f"[{self.name}]   exit {status} in {time.monotonic() - t0:.0f} s")
         if check and status != 0:
             raise StageError(f"{self.name}: {what}: `{cmd}` exited with status {status}\n"
