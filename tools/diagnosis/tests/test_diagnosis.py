@@ -390,3 +390,24 @@ def test_mirror_image_stages_are_told_apart_by_how_they_go_wrong():
     assert wh.part_of(cat, "M", o((0.5, 1), (0, 0))) == ("m", "second stage")
     assert wh.part_of(cat, "M", o((0, 0), (-6, -2))) == ("m", "average")
     assert wh.part_of(cat, "M", o((0, 0), (1, -1))) is None  # neither way: no part named
+
+
+def test_a_mutant_left_with_nothing_to_act_on_is_counted_silent_and_fails_the_floor(
+        tmp_path, capsys):
+    """Defect (issue 46): a mistake whose every probe agrees with the solution and whose failed
+    test says nothing (an empty message) was counted as "probes blind", as if the test's message
+    helped; the leave-one-out must count it silent, and --max-silent 0 must fail on it."""
+    from diagnosis import catalogue
+    cat = json.loads(json.dumps(CAT))
+    for m in cat["mutants"].values():
+        m["failed"] = {"T one": "expected 1\ngot 2"}
+    cat["mutants"]["s.mute"] = {"task": "T", "kind": "spring term", "hint": "nothing shows",
+                                "failed": {"T one": ""},
+                                "probes": {p["probe"]: p["expected"] for p in cat["probes"]}}
+    rows = {name: res for name, _, res, _ in catalogue.leave_one_out(cat)}
+    assert rows["s.mute"] == "silent" and "silent" not in {rows[n] for n in CAT["mutants"]}
+    d = tmp_path / "tests" / "mutants" / "lab"
+    d.mkdir(parents=True)
+    (d / "signatures.json").write_text(json.dumps(cat))
+    assert catalogue.loo_table(str(tmp_path), ["lab"], max_silent=0) == 1
+    assert "1 mutants get nothing to act on > --max-silent 0" in capsys.readouterr().out
