@@ -63,7 +63,8 @@ def test_generated_advice_follows_the_header(lab):
 # Issue 46, "parts where mistakes live": mistakes of a loop's range and of the trapezoid's
 # stages, each left out of its lab's catalogue, and the part the diagnosis must name for them.
 OWN_PART = {
-    "forces": ["damping.skip-last", "damping.rows-for-cols"],
+    "forces": ["uniform_gravity.skip-first", "uniform_gravity.skip-last",
+               "damping.skip-last", "damping.rows-for-cols"],
     "midpoint": ["trapezoid.half-step-xb", "trapezoid.no-average",
                  "trapezoid.xb-from-xa", "trapezoid.xb-position-old-velocity"],
 }

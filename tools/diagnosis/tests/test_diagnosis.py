@@ -370,6 +370,18 @@ def test_a_loop_that_misses_a_particle_is_not_read_as_the_formula():
     assert wh.part_of(cat, "L", third) == ("l", "formula")
 
 
+def test_a_loop_that_misses_another_particle_is_named_as_the_loop():
+    """Defect (issue 46, fresh mistakes): a loop that skips the first particle, where the
+    catalogue's loop mistake skips the last, got no part (no particle is missed by every
+    mistake of a loop): the particles of an output are taken as one when no part fits them
+    apart, so the loop is named, and a wrong value of one particle is still not the loop."""
+    cat = loop_cat()
+    first = {"L/three": {"out": {"f": [2, 3, [0, 0, 3, 4, 5, 6]]}}}
+    assert wh.part_of(cat, "L", first) == ("l", "particle loop")
+    one_wrong = {"L/three": {"out": {"f": [2, 3, [7, 2, 3, 4, 5, 6]]}}}
+    assert wh.part_of(cat, "L", one_wrong) is None
+
+
 def test_mirror_image_stages_are_told_apart_by_how_they_go_wrong():
     """Defect (issue 46): the trapezoid's second stage and its average change the same outputs
     (a weight on a(X) too large in one, too small in the other), so no part was named for M2:
