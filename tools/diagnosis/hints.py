@@ -227,7 +227,8 @@ def units(probe, got):
     """{unit: class} for one probe: a unit is (probe, output, column) for an output whose
     columns are told apart (out_each: particles, bodies), else (probe, output, 0); the class is
     "ok", "error" (an exception where the solution returned, or the reverse), "shape", "nan"
-    (not finite), "none" (what the skeleton gives: nothing was done) or "wrong"."""
+    (not finite), "none" (what the skeleton gives, where no other output of the call was
+    computed wrong: nothing was done) or "wrong"."""
     pid = probe["probe"]
     exp, skel, g = expand(probe.get("expected")), expand(probe.get("skeleton")), expand(got)
     if exp is None or g is None:
@@ -267,8 +268,12 @@ def units(probe, got):
             prev = out.get(key, "ok")
             if prev == "ok" or (prev == "none" and k != "ok"):
                 out[key] = k
-    for key, k in out.items():  # a group goes wrong as "nothing done" only if all of it is
-        if k == "none" and not asis.get(key, False):
+    # A group goes wrong as "nothing done" only if all of it is, and an output only if no other
+    # output of the call was computed wrong (a total driven to the skeleton's 0 beside a
+    # velocity the code did change is a wrong value, not one left alone).
+    computed = "wrong" in out.values()
+    for key, k in out.items():
+        if k == "none" and (not asis.get(key, False) or computed):
             out[key] = "wrong"
     return out
 

@@ -382,6 +382,28 @@ def test_a_loop_that_misses_another_particle_is_named_as_the_loop():
     assert wh.part_of(cat, "L", one_wrong) is None
 
 
+def test_a_value_that_only_happens_to_be_the_skeletons_is_not_nothing_done():
+    """Defect (issue 46, fresh mistakes): R6's warm start applied in every pass drove the
+    returned total to 0, the skeleton's value, beside a body whose velocity it did change: the
+    total read as "nothing done", which no warm-start mistake does, so no part was named. An
+    output is "nothing done" only when no other output of its call was computed wrong; one that
+    the code leaves as the skeleton does, beside outputs that are right, still is."""
+    exp, skel = rec(total=[6], v=[1, 2]), rec(total=[0], v=[5, 5])
+    cat = {"version": wh.CATALOGUE_VERSION, "lab": "lab", "tests": ["S one"],
+           "tasks": {"S": {"title": "solve", "files": ["s.cpp"], "uses": []}},
+           "probes": [probe("S/plane", exp, skel)],
+           "mutants": {"s.warm-sign": {"task": "S", "kind": "warm start", "hint": "sign",
+                                       "probes": {"S/plane": rec(total=[7], v=[0, 2])}},
+                       "s.warm-none": {"task": "S", "kind": "warm start", "hint": "none",
+                                       "probes": {"S/plane": rec(total=[6.5], v=[1, 3])}},
+                       "s.no-sum": {"task": "S", "kind": "total", "hint": "sum",
+                                    "probes": {"S/plane": rec(total=[0], v=[1, 2])}},
+                       "s.no-sum-b": {"task": "S", "kind": "total", "hint": "sum",
+                                      "probes": {"S/plane": rec(total=[0], v=[1, 2])}}}}
+    assert wh.part_of(cat, "S", {"S/plane": rec(total=[0], v=[0.5, 2.5])}) == ("s", "warm start")
+    assert wh.part_of(cat, "S", {"S/plane": rec(total=[0], v=[1, 2])}) == ("s", "total")
+
+
 def test_mirror_image_stages_are_told_apart_by_how_they_go_wrong():
     """Defect (issue 46): the trapezoid's second stage and its average change the same outputs
     (a weight on a(X) too large in one, too small in the other), so no part was named for M2:
