@@ -227,7 +227,8 @@ def units(probe, got):
     """{unit: class} for one probe: a unit is (probe, output, column) for an output whose
     columns are told apart (out_each: particles, bodies), else (probe, output, 0); the class is
     "ok", "error" (an exception where the solution returned, or the reverse), "shape", "nan"
-    (not finite), "none" (what the skeleton gives: nothing was done) or "wrong"."""
+    (not finite), "none" (what the skeleton gives, where no other output of the call was
+    computed wrong: nothing was done) or "wrong"."""
     pid = probe["probe"]
     exp, skel, g = expand(probe.get("expected")), expand(probe.get("skeleton")), expand(got)
     if exp is None or g is None:
@@ -267,8 +268,12 @@ def units(probe, got):
             prev = out.get(key, "ok")
             if prev == "ok" or (prev == "none" and k != "ok"):
                 out[key] = k
-    for key, k in out.items():  # a group goes wrong as "nothing done" only if all of it is
-        if k == "none" and not asis.get(key, False):
+    # A group goes wrong as "nothing done" only if all of it is, and an output only if no other
+    # output of the call was computed wrong (a total driven to the skeleton's 0 beside a
+    # velocity the code did change is a wrong value, not one left alone).
+    computed = "wrong" in out.values()
+    for key, k in out.items():
+        if k == "none" and (not asis.get(key, False) or computed):
             out[key] = "wrong"
     return out
 
@@ -389,17 +394,16 @@ def part_of(cat, task, outputs, exclude=()):
 
     def core_of(b):
         return _at({u for u, _ in b}, CORE_LEVEL)
-    Br, Bc = reach_of(B), core_of(B)
-    fits, near = [], []
-    for key, sets in sorted(parts.items()):
-        reach = set.union(*(reach_of(b) for b in sets))
-        core = set.intersection(*(core_of(b) for b in sets))
-        if not core <= Bc:
-            continue
-        if Br <= reach:
-            fits.append(key)
-        elif len(Br & reach) >= NEAR * len(Br):
-            near.append(key)
+    fits, near = _fits(parts, B, reach_of, core_of)
+    if not fits and not near and _partial(probes, B):
+        # A loop's range: which particles it misses depends on where the range goes wrong
+        # (the first, the last, every one past the second), so none of them is in every
+        # mistake of the part. When the submission leaves some particles of each wrong output
+        # right, the parts whose every mistake does too are seen with the particles of an
+        # output taken as one (a mistake of a formula, wrong on every particle, is not one).
+        ranged = {k: sets for k, sets in parts.items() if all(_partial(probes, b) for b in sets)}
+        fits, near = _fits(ranged, B, lambda b: {(u[:2], k) for u, k in reach_of(b)},
+                           lambda b: {u[:2] for u in core_of(b)})
     if len(fits) == 1 and not near:
         return fits[0]
     if not fits:
@@ -415,6 +419,37 @@ def part_of(cat, task, outputs, exclude=()):
     alike = [k for k in fits + near
              if all(any(_aligned(mine[u], e.get(u, [])) for e in errs[k]) for u in valued)]
     return alike[0] if len(alike) == 1 and alike[0] in fits else None
+
+
+def _partial(probes, bad):
+    """Whether every wrong output of `bad` (units with how they are wrong) is one recorded
+    particle by particle with some of its particles right."""
+    cols = {}
+    for p in probes:
+        exp = expand(p.get("expected")) or {}
+        for o in p.get("out") or []:
+            if isinstance(o, dict) and o.get("each") and str(o.get("name")) in exp:
+                cols[(p["probe"], str(o.get("group") or o["name"]))] = exp[str(o["name"])][1]
+    seen = {}
+    for u, _ in bad:
+        seen.setdefault(u[:2], set()).add(u[2])
+    return bool(seen) and all(1 < cols.get(o, 1) and len(cs) < cols[o] for o, cs in seen.items())
+
+
+def _fits(parts, B, reach_of, core_of):
+    """(parts that fit B, parts near it): B within the part's reach and holding its core."""
+    Br, Bc = reach_of(B), core_of(B)
+    fits, near = [], []
+    for key, sets in sorted(parts.items()):
+        reach = set.union(*(reach_of(b) for b in sets))
+        core = set.intersection(*(core_of(b) for b in sets))
+        if not core <= Bc:
+            continue
+        if Br <= reach:
+            fits.append(key)
+        elif len(Br & reach) >= NEAR * len(Br):
+            near.append(key)
+    return fits, near
 
 
 def _errors(probes, outputs):

@@ -89,6 +89,13 @@ def wrap(line, width=LINE_LIMIT, indent=0):
     return _wrap(" " * indent + line, width)
 
 
+def wrap_text(text):
+    """A text of several lines, each line that is longer than LINE_LIMIT broken as wrap does
+    (results.json: the course platform shows it as the terminal does, line for line)."""
+    return "\n".join(w for l in text.split("\n") for w in (wrap(l) if len(l) > LINE_LIMIT
+                                                             else [l]))
+
+
 def reason_lines(r, limit=REASON_LINES):
     """A failed test's reason under its name: the check that failed (what, expected, got),
     then its context; the tolerance stays in the details (-v, results.json)."""
@@ -155,8 +162,8 @@ def print_table(reports, notes, out=sys.stdout, seed=None):
 def summary(reports, notes, layers="", seed=None):
     lines = []
     if seed is not None:  # the one line that names the seed (a reason refers to it)
-        lines.append(f"Held-out inputs from seed {seed:#x}: tools/grade ... --seed {seed:#x} "
-                     "replays this grade.")
+        lines.append(f"Held-out inputs from seed {seed:#x} (--seed {seed:#x} replays this "
+                     "grade).")
     for lab, rep in reports.items():
         failed = sum(1 for r in rep.results if r.status == "failed")
         state = ("refused: every test scores 0" if rep.refused else
@@ -196,10 +203,10 @@ def results_json(reports, notes, layers="", layer_data=None, seed=None):
                                       "failed test.)")
                 shown.add(task)
             tests.append({"name": f"{r.test.lab}: {r.test.name}", "score": r.score,
-                          "max_score": r.test.points, "status": r.status, "output": out,
-                          "visibility": "visible"})
+                          "max_score": r.test.points, "status": r.status,
+                          "output": wrap_text(out), "visibility": "visible"})
     data = {"score": sum(rep.score for rep in reports.values()),
-            "output": summary(reports, notes, layers, seed), "output_format": "text",
+            "output": wrap_text(summary(reports, notes, layers, seed)), "output_format": "text",
             "test_output_format": "text", "test_name_format": "text",
             "visibility": "visible", "stdout_visibility": "hidden", "tests": tests,
             "extra_data": {"defences": layer_data or {}}}

@@ -25,15 +25,18 @@ _WRAPPED = re.compile(r"^(?:[A-Za-z_]\w*::)*(?:str|to_string)\((.*)\)$")
 
 def capture(text):
     """A capture as a student writes it: "k := 0" -> "k = 0", "wbtest::str(x) := (1, 2)" ->
-    "x = (1, 2)". Anything else unchanged."""
+    "x = (1, 2)", a string's quotes dropped ('wbtest::str(x) := "(1, 2)"' -> "x = (1, 2)").
+    Anything else unchanged."""
     m = _CAPTURE.match(text)
     if not m:
         return text
-    name = m.group(1).strip()
+    name, value = m.group(1).strip(), m.group(2).strip()
     w = _WRAPPED.match(name)
     if w:
         name = w.group(1).strip()
-    return f"{name} = {m.group(2).strip()}"
+    if len(value) >= 2 and value[0] == value[-1] == '"' and '"' not in value[1:-1]:
+        value = value[1:-1]
+    return f"{name} = {value}"
 
 
 # "held-out inputs of E1 from seed 0x6f10c224dfd6e475 (replay: tools/grade ... --seed 0x...,

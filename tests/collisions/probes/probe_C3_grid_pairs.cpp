@@ -1,7 +1,7 @@
-// Diagnosis probes of C3 (tests/common/wb_probe.h): the pairs found, sorted (ascending):
-// a pair across a cell narrower than a diameter, neighbours across a cell's side and across its
-// corner, discs that just touch, one large disc among small ones, a list that comes in holding
-// old pairs.
+// Diagnosis probes of C3 (tests/common/wb_probe.h): the pairs found, sorted (ascending), and
+// those written the wrong way round, of: a pair across a cell narrower than a diameter,
+// neighbours across a cell's side and across its corner, discs that just touch, one large disc
+// among small ones, a list that comes in holding old pairs.
 #include <algorithm>
 
 #include "grid_pairs.h"
@@ -21,10 +21,19 @@ void run(wbprobe::Probe& P, const wb::Mat2X& x, const wb::VecX& radius,
   P.in("x", x), P.in("radius", radius);
   if (!pairs.empty()) P.in("pairs", pairs);
   grid_pairs(x, radius, pairs);
-  // The list in order (any order is right), each pair as it came: (i, j) with i < j is the
-  // header's, and a pair the other way round shows.
-  std::sort(pairs.begin(), pairs.end());
-  P.out("pairs", pairs);
+  // Which pairs were found apart from how each is written: the set (each pair as (min, max),
+  // in order: any order is right), then the pairs written (j, i) with j > i (the header's is
+  // (i, j), i < j), so that a pair the other way round does not read as one missed and another
+  // found (a mistake of the grid).
+  std::vector<std::pair<int, int>> found, reversed;
+  for (const auto& [i, j] : pairs) {
+    found.emplace_back(std::min(i, j), std::max(i, j));
+    if (i > j) reversed.emplace_back(i, j);
+  }
+  std::sort(found.begin(), found.end());
+  std::sort(reversed.begin(), reversed.end());
+  P.out("pairs", found);
+  P.out("pairs written (j, i), j > i", reversed);
 }
 }  // namespace
 

@@ -58,3 +58,25 @@ def test_generated_advice_follows_the_header(lab):
         for line in d.lines():
             for what in re.findall(r"add to ([\w.\[\]]+), do not overwrite", line):
                 assert what.rsplit(".", 1)[-1] in adds, f"{lab}/{name}: {line}"
+
+
+# Issue 46, "parts where mistakes live": mistakes of a loop's range and of the trapezoid's
+# stages, each left out of its lab's catalogue, and the part the diagnosis must name for them.
+OWN_PART = {
+    "forces": ["uniform_gravity.skip-first", "uniform_gravity.skip-last",
+               "damping.skip-last", "damping.rows-for-cols"],
+    "midpoint": ["trapezoid.half-step-xb", "trapezoid.no-average",
+                 "trapezoid.xb-from-xa", "trapezoid.xb-position-old-velocity"],
+}
+
+
+@pytest.mark.parametrize("lab", sorted(OWN_PART))
+def test_loop_and_stage_mistakes_name_their_own_part(lab):
+    """Defect (issue 46): a loop that skips a particle read as the formula ("the weight", "the
+    drag formula": no part was the loop's), and the trapezoid's stage mistakes never given a
+    part. Left out of the catalogue, each is named as its own part, never as another."""
+    cat = hints.load_catalogue(ROOT, lab)
+    for name in OWN_PART[lab]:
+        assert name in cat["mutants"], f"{lab}/{name}: not in the catalogue"
+        _, part, d = catalogue.outcome(cat, name)
+        assert part == hints.part_key(name, cat["mutants"][name]), (name, part, d.lines())

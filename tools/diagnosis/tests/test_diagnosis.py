@@ -370,6 +370,40 @@ def test_a_loop_that_misses_a_particle_is_not_read_as_the_formula():
     assert wh.part_of(cat, "L", third) == ("l", "formula")
 
 
+def test_a_loop_that_misses_another_particle_is_named_as_the_loop():
+    """Defect (issue 46, fresh mistakes): a loop that skips the first particle, where the
+    catalogue's loop mistake skips the last, got no part (no particle is missed by every
+    mistake of a loop): the particles of an output are taken as one when no part fits them
+    apart, so the loop is named, and a wrong value of one particle is still not the loop."""
+    cat = loop_cat()
+    first = {"L/three": {"out": {"f": [2, 3, [0, 0, 3, 4, 5, 6]]}}}
+    assert wh.part_of(cat, "L", first) == ("l", "particle loop")
+    one_wrong = {"L/three": {"out": {"f": [2, 3, [7, 2, 3, 4, 5, 6]]}}}
+    assert wh.part_of(cat, "L", one_wrong) is None
+
+
+def test_a_value_that_only_happens_to_be_the_skeletons_is_not_nothing_done():
+    """Defect (issue 46, fresh mistakes): R6's warm start applied in every pass drove the
+    returned total to 0, the skeleton's value, beside a body whose velocity it did change: the
+    total read as "nothing done", which no warm-start mistake does, so no part was named. An
+    output is "nothing done" only when no other output of its call was computed wrong; one that
+    the code leaves as the skeleton does, beside outputs that are right, still is."""
+    exp, skel = rec(total=[6], v=[1, 2]), rec(total=[0], v=[5, 5])
+    cat = {"version": wh.CATALOGUE_VERSION, "lab": "lab", "tests": ["S one"],
+           "tasks": {"S": {"title": "solve", "files": ["s.cpp"], "uses": []}},
+           "probes": [probe("S/plane", exp, skel)],
+           "mutants": {"s.warm-sign": {"task": "S", "kind": "warm start", "hint": "sign",
+                                       "probes": {"S/plane": rec(total=[7], v=[0, 2])}},
+                       "s.warm-none": {"task": "S", "kind": "warm start", "hint": "none",
+                                       "probes": {"S/plane": rec(total=[6.5], v=[1, 3])}},
+                       "s.no-sum": {"task": "S", "kind": "total", "hint": "sum",
+                                    "probes": {"S/plane": rec(total=[0], v=[1, 2])}},
+                       "s.no-sum-b": {"task": "S", "kind": "total", "hint": "sum",
+                                      "probes": {"S/plane": rec(total=[0], v=[1, 2])}}}}
+    assert wh.part_of(cat, "S", {"S/plane": rec(total=[0], v=[0.5, 2.5])}) == ("s", "warm start")
+    assert wh.part_of(cat, "S", {"S/plane": rec(total=[0], v=[1, 2])}) == ("s", "total")
+
+
 def test_mirror_image_stages_are_told_apart_by_how_they_go_wrong():
     """Defect (issue 46): the trapezoid's second stage and its average change the same outputs
     (a weight on a(X) too large in one, too small in the other), so no part was named for M2:
@@ -390,3 +424,24 @@ def test_mirror_image_stages_are_told_apart_by_how_they_go_wrong():
     assert wh.part_of(cat, "M", o((0.5, 1), (0, 0))) == ("m", "second stage")
     assert wh.part_of(cat, "M", o((0, 0), (-6, -2))) == ("m", "average")
     assert wh.part_of(cat, "M", o((0, 0), (1, -1))) is None  # neither way: no part named
+
+
+def test_a_mutant_left_with_nothing_to_act_on_is_counted_silent_and_fails_the_floor(
+        tmp_path, capsys):
+    """Defect (issue 46): a mistake whose every probe agrees with the solution and whose failed
+    test says nothing (an empty message) was counted as "probes blind", as if the test's message
+    helped; the leave-one-out must count it silent, and --max-silent 0 must fail on it."""
+    from diagnosis import catalogue
+    cat = json.loads(json.dumps(CAT))
+    for m in cat["mutants"].values():
+        m["failed"] = {"T one": "expected 1\ngot 2"}
+    cat["mutants"]["s.mute"] = {"task": "T", "kind": "spring term", "hint": "nothing shows",
+                                "failed": {"T one": ""},
+                                "probes": {p["probe"]: p["expected"] for p in cat["probes"]}}
+    rows = {name: res for name, _, res, _ in catalogue.leave_one_out(cat)}
+    assert rows["s.mute"] == "silent" and "silent" not in {rows[n] for n in CAT["mutants"]}
+    d = tmp_path / "tests" / "mutants" / "lab"
+    d.mkdir(parents=True)
+    (d / "signatures.json").write_text(json.dumps(cat))
+    assert catalogue.loo_table(str(tmp_path), ["lab"], max_silent=0) == 1
+    assert "1 mutants get nothing to act on > --max-silent 0" in capsys.readouterr().out

@@ -168,3 +168,26 @@ def test_a_regrade_keeps_one_seed():
     assert one_seed(7, True, {"euler": 7, "forces": 5}, {"euler": "E", "forces": "F"}) == \
         (7, {"euler": "E"})
     assert one_seed(7, False, {}, {}) == (7, {})
+
+
+def test_every_line_of_results_json_fits_a_terminal():
+    """Defect (issue 46, a half-done lab read as a student would): the table fit 100 characters
+    but results.json, which the course platform shows as text, held lines of up to 385 (a
+    held-out test's inputs, a task's "not started" headline, the summary's last line)."""
+    class D:
+        task, title, status = "C2", "collide two particles with an impulse", "not started"
+
+        def lines(self):
+            return ["C2 collide two particles: not started (its functions still do what the "
+                    "skeleton does)"]
+
+        def headline(self):
+            return self.lines()[0] + " and more words to pass the limit of a line"
+    reps = half_done()
+    reps["collisions"].results[1].output = "x = [" + ", ".join(["-0.233283"] * 40) + "]"
+    reps["collisions"].diagnosis = {"C2": D()}
+    data = results.results_json(reps, {"collisions": ["x" * 150]}, seed=SEED)
+    texts = [data["output"]] + [t["output"] for t in data["tests"]]
+    assert max(len(l) for t in texts for l in t.splitlines()) <= results.LINE_LIMIT
+    assert " ".join(data["tests"][1]["output"].split()).count("-0.233283") == 40  # nothing cut
+    assert f"--seed {SEED:#x} replays this grade" in data["output"]

@@ -33,6 +33,7 @@ def test_captures_and_library_checks_read_in_plain_words():
     """Defect (issue 46): "k := 0; wbtest::str(x) := ..." and Eigen's file and line."""
     assert wording.capture("wbtest::str(x) := (1, 2)") == "x = (1, 2)"
     assert wording.capture("k := 0") == "k = 0"
+    assert wording.capture('wbtest::str(x) := "(1.5, -0.25)"') == "x = (1.5, -0.25)"
     assert wording.probe_error("your f threw: Eigen: an index out of range, or sizes that do not "
                                "match (Eigen/src/Core/Block.h:120 checks startRow >= 0)") == \
         "Eigen matrices or vectors whose sizes do not match (startRow >= 0)"
