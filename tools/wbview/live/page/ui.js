@@ -840,6 +840,8 @@ window.wbLive = {
         screen: [r.left + sx(p, m.at[0]), r.top + sy(p, m.at[1])] };
     });
   },
+  // True while the mouse holds a marked point of the scene (a press on it, not yet released).
+  holdingMark: function () { return !!S.dragging; },
   doc: function () { return JSON.parse(S.docText); },
   frames: function () { return S.frames; },
   integrators: function () { return integratorsOf(S.main); },
