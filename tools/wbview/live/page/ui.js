@@ -250,6 +250,13 @@ function frame(now) {
   refreshTrace();
   S.panes.forEach(sample);
   if (!RIGID && !S.grab && !S.dragging && !S.userView) extend2();
+  // A banner that comes or goes (diverged, a warning, "Not real time") changes the panes'
+  // height: the canvas follows its box, else the drawing is stretched and the mouse lands
+  // off what it is drawn over.
+  S.panes.forEach(function (p) {
+    const r = p.canvas.getBoundingClientRect();
+    if (r.width > 0 && (Math.abs(r.width - p.W) > 0.5 || Math.abs(r.height - p.H) > 0.5)) p.resize();
+  });
   const d0 = performance.now();
   S.panes.forEach(function (p) {
     if (p.idx === 1 && S.compare === "none") return;
