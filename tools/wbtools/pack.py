@@ -212,10 +212,10 @@ def pack_handout(text, report_dir):
 def drop_other_labs(text, labs, labs_all, stand_in=None):
     """A shared doc as a pack of `labs` ships it: without the sections about a lab it does
     not hold (a heading "## rigid", "## The rigid lab", "## `exact` (rigid)" ...), whose
-    executables, scenes and glue the pack lacks, nor a table's row about one (a first cell
-    "euler"); an example command for such a lab (`--lab euler`) is given for the lab
+    executables, scenes and glue the pack lacks, nor the row about one of a table of labs
+    (first column "lab"); an example command for such a lab (`--lab euler`) is given for the lab
     `stand_in` (a packed one) instead, so that it runs in the pack."""
-    out, skip_level = [], None
+    out, skip_level, table = [], None, None
     gone = sorted(set(labs_all) - set(labs))
     for line in text.split("\n"):
         m = re.match(r"^(#{2,6})\s+(.*)$", line)
@@ -231,7 +231,11 @@ def drop_other_labs(text, labs, labs_all, stand_in=None):
         if skip_level is not None:
             continue
         row = re.match(r"^\|\s*`?([A-Za-z0-9_-]+)`?\s*\|", line)
-        if row and row.group(1) in gone:
+        if not line.startswith("|"):
+            table = None
+        elif table is None:
+            table = row.group(1).lower() if row else ""  # a table's header: its first cell
+        elif table == "lab" and row and row.group(1) in gone:
             continue
         for lab in gone:
             if stand_in and re.search(rf"--lab {lab}\b", line):
