@@ -134,10 +134,12 @@ def run(pack, shots):
                     replace_once(os.path.join(labdir, "uniform_gravity.cpp"), *FLIP)
                 wall, cpu, said = view_live(root)
                 g, t, warnings = fitted_g(b, page)
+                seen = (f"the chain's beads fall at g = {g:.3f} m/s^2" if g > 0 else
+                        f"the chain's beads rise at {-g:.3f} m/s^2" if g < 0 else
+                        "the chain's beads do not move")
                 log(f"live-check: pack: {what}: tools/view --live --lab {LAB} took {wall:.1f} s "
-                    f"wall, {cpu:.1f} s CPU; in the page the chain's beads fall at g = {g:.3f} "
-                    f"m/s^2 (t = {t:.2f} s; negative: they rise)" + (f"; the page warns: {warnings[0]}"
-                                               if warnings else ""))
+                    f"wall, {cpu:.1f} s CPU; in the page {seen} (t = {t:.2f} s)"
+                    + (f"; the page warns: {warnings[0]}" if warnings else ""))
                 shot = os.path.join(shots, f"pack-{edit or 'skeleton'}.png")
                 b.screenshot(shot)
                 if want is None:
