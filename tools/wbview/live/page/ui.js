@@ -359,8 +359,12 @@ function charts() {
       });
     });
     if (!isFinite(lo)) return;
-    // A quantity constant to rounding is drawn flat at its value (tools/plot does too).
-    const flat = hi - lo <= 1e-9 * Math.max(Math.abs(hi), Math.abs(lo), 1e-300);
+    // A quantity constant to rounding is drawn flat at its value, by tools/plot's rule
+    // (tools/wbplot/flat.py: a spread of 1e-9 of its size, or 1e-12 in SI units: a stub's
+    // 1e-29 J is 0, not an axis from 0 to 1e-29).
+    const big = Math.max(Math.abs(hi), Math.abs(lo));
+    const flat = hi - lo <= (log ? 1e-9 * Math.max(big, 1e-300) : 1e-9 * big + 1e-12);
+    if (flat && !log && Math.abs((hi + lo) / 2) <= 1e-9 * big + 1e-12) { hi = 0; lo = 0; }
     if (flat) { const m = (hi + lo) / 2, d = Math.max(Math.abs(m) * 1e-3, 1e-12); lo = m - d; hi = m + d; }
     if (t1 <= t0) t1 = t0 + 1e-9;
     const L = 58, B = 14, X = function (t) { return L + (t - t0) / (t1 - t0) * (W - L - 6); };
