@@ -19,7 +19,8 @@ and take every integrator with no console error and no error from the lab's code
 Then it breaks pages on purpose (the skeleton's explicit Euler, a page whose runs never
 step, one whose drag pulls nothing, one whose script throws) and requires the checks above
 to fail on each. The live layer's unit tests (pytest) run first. --bench times the
-WebAssembly step against the native one (bench/bench_live) in the same run."""
+WebAssembly step against the native one (bench/bench_live) in the same run. --pack instead
+takes a student pack through a force edited and seen live (tools/wbtools/live_pack.py)."""
 import argparse
 import json
 import math
@@ -234,16 +235,32 @@ class PageCheck:
 
     def drag_mark(self, k):
         """Mark k pressed and dragged by DRAG_PX: (the mark before, the cursor's world
-        point, where the scene put the mark)."""
-        m = self.js("wbLive.marks()")[k]
-        s = m["screen"]
-        self.b.mouse("pressed", s[0], s[1])
+        point, where the scene put the mark), or (the mark, None, None) when three presses
+        where the page draws it took no hold of it."""
+        # A banner that comes or goes above the panes ("Not real time" on a loaded machine,
+        # as the smoke's 2500 particles were) moves the canvas down or up by a line between
+        # reading where the mark is drawn and the press, which then missed it and moved the
+        # camera (the flaky "obstacle did not follow" of issue 43): the press is tried again
+        # where the mark is drawn then; the cursor's world point is read right after the
+        # last move, before a banner can move the canvas again.
+        for _ in range(3):
+            m = self.js("wbLive.marks()")[k]
+            s = m["screen"]
+            self.b.mouse("pressed", s[0], s[1])
+            if self.js("wbLive.holdingMark()"):
+                break
+            self.b.mouse("released", s[0], s[1])
+            self.b.pump(0.1)
+        else:
+            return m, None, None
+        end = [s[0] + DRAG_PX[0], s[1] + DRAG_PX[1]]
         for q in range(1, 6):
             self.b.mouse("moved", s[0] + DRAG_PX[0] * q / 5, s[1] + DRAG_PX[1] * q / 5)
-            self.b.pump(0.03)
+            if q < 5:
+                self.b.pump(0.03)
+        want = self.js(f"wbLive.worldOf({json.dumps(end)})")
         self.b.pump(0.1)
-        want = self.js(f"wbLive.worldOf({json.dumps([s[0] + DRAG_PX[0], s[1] + DRAG_PX[1]])})")
-        self.b.mouse("released", s[0] + DRAG_PX[0], s[1] + DRAG_PX[1])
+        self.b.mouse("released", end[0], end[1])
         self.b.pump(0.2)
         at = self.js("wbLive.doc()")
         for key in m["path"]:
@@ -256,19 +273,14 @@ class PageCheck:
         self.b.pump(0.3)
         moved = []
         for k, _ in enumerate(self.js("wbLive.marks()")):
-            # One retry: once in about four loaded runs the smoke scene's obstacle stopped
-            # short of the cursor, not reproduced alone (issue 43's closing note); a page
-            # whose points do not follow fails both tries.
-            for attempt in (1, 2):
-                m, want, at = self.drag_mark(k)
-                if dist(at, want) <= 0.05 * max(dist(m["at"], want), 1e-9):
-                    break
-                if attempt == 2:
-                    self.fail(f"scene {scene}: the {m['label']} dragged to {want} is at {at} "
-                              "(twice)")
-                else:
-                    log(f"live-check: scene {scene}: the {m['label']} dragged to {want} is at "
-                        f"{at}; dragging it again")
+            m, want, at = self.drag_mark(k)
+            if want is None:
+                s = m["screen"]
+                self.fail(f"scene {scene}: pressing the mouse on the {m['label']} at "
+                          f"({s[0]:.0f}, {s[1]:.0f}), where the page draws it, took no hold "
+                          "of it (three tries)")
+            elif not dist(at, want) <= 0.05 * max(dist(m["at"], want), 1e-9):
+                self.fail(f"scene {scene}: the {m['label']} dragged to {want} is at {at}")
             r = self.js("wbLive.run(0)")
             if r["error"]:
                 self.fail(f"scene {scene}: after moving the {m['label']}: {r['error']}")
@@ -512,6 +524,12 @@ def main(argv=None):
                    help="skip the pages broken on purpose")
     p.add_argument("--no-skeletons", action="store_true",
                    help="skip the pages built from labs/ (the skeletons, in this checkout)")
+    p.add_argument("--pack", metavar="PACK",
+                   help="instead: a student with this pack (tools/pack's .tar.gz or folder, "
+                        "with labs/forces) builds the forces page, writes F6 and F1, turns "
+                        "gravity's sign, each time with the docs' one command, and the page "
+                        "must show the chain falling, then rising, at 9.81 m/s^2 (a scratch "
+                        "copy; the builds' times are printed)")
     p.add_argument("--no-setup", action="store_true", help="install nothing first")
     args = p.parse_args(argv)
     sys.path.insert(0, os.path.join(ROOT, "tools"))
@@ -524,9 +542,17 @@ def main(argv=None):
         print("tools/live-check: no Chromium (Debian package chromium: tools/setup --live "
               "installs it)", file=sys.stderr)
         return 2
-    problems = unit_tests()
     shutil.rmtree(args.shots, ignore_errors=True)
     os.makedirs(args.shots)
+    if args.pack:
+        from . import live_pack
+        problems = live_pack.run(args.pack, args.shots)
+        for pr in problems:
+            log(f"live-check: FAILED: {pr}")
+        log(f"live-check: pack: {len(problems)} problem(s), screenshots in {rel(args.shots)}/; "
+            f"{time.monotonic() - t_start:.0f} s in all")
+        return 1 if problems else 0
+    problems = unit_tests()
     pages, t0 = {}, time.monotonic()
     for lab in args.lab or labs():
         out = os.path.join(args.shots, f"{lab}.html")

@@ -209,11 +209,14 @@ def pack_handout(text, report_dir):
     return REPORT_FIGURE.sub(swap, text), figures
 
 
-def drop_other_labs(text, labs, labs_all):
+def drop_other_labs(text, labs, labs_all, stand_in=None):
     """A shared doc as a pack of `labs` ships it: without the sections about a lab it does
     not hold (a heading "## rigid", "## The rigid lab", "## `exact` (rigid)" ...), whose
-    executables, scenes and glue the pack lacks."""
-    out, skip_level = [], None
+    executables, scenes and glue the pack lacks, nor the row about one of a table of labs
+    (first column "lab"); an example command for such a lab (`--lab euler`) is given for the lab
+    `stand_in` (a packed one) instead, so that it runs in the pack."""
+    out, skip_level, table = [], None, None
+    gone = sorted(set(labs_all) - set(labs))
     for line in text.split("\n"):
         m = re.match(r"^(#{2,6})\s+(.*)$", line)
         if m:
@@ -225,8 +228,19 @@ def drop_other_labs(text, labs, labs_all):
             if skip_level is None and named and all(w not in labs for w in named) and (
                     len(words) <= 3):
                 skip_level = level
-        if skip_level is None:
-            out.append(line)
+        if skip_level is not None:
+            continue
+        row = re.match(r"^\|\s*`?([A-Za-z0-9_-]+)`?\s*\|", line)
+        if not line.startswith("|"):
+            table = None
+        elif table is None:
+            table = row.group(1).lower() if row else ""  # a table's header: its first cell
+        elif table == "lab" and row and row.group(1) in gone:
+            continue
+        for lab in gone:
+            if stand_in and re.search(rf"--lab {lab}\b", line):
+                line = re.sub(rf"\b{lab}\b", stand_in, line)
+        out.append(line)
     return "\n".join(out)
 
 
@@ -256,7 +270,8 @@ def copy_tree(dest, labs, labs_all, order, report_dir, featured=None):
                     figures += figs
                 elif rel_dir == "docs" and name.endswith(".md"):
                     with open(os.path.join(SRC, rel), encoding="utf-8") as f:
-                        text = drop_other_labs(INSTRUCTOR_BLOCK.sub("", f.read()), labs, labs_all)
+                        text = drop_other_labs(INSTRUCTOR_BLOCK.sub("", f.read()), labs, labs_all,
+                                               featured or next(l for l in order if l in labs))
                     with open(os.path.join(dest, rel), "w", encoding="utf-8") as f:
                         f.write(text)
                 else:

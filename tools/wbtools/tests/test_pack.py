@@ -222,6 +222,20 @@ def test_shared_docs_drop_only_sections_of_labs_not_packed():
     assert "## collisions\nc" in out and "## End\ne" in out
 
 
+def test_a_doc_keeps_no_row_or_command_of_a_lab_the_pack_lacks():
+    """Defect: docs/live.md's example `tools/view --live --lab euler` and its table's row of
+    every lab shipped in a pack of forces alone: a command that fails in the pack."""
+    text = ("```\ntools/view --live --lab euler       # writes build/live/euler.html\n```\n"
+            "| lab | try |\n|---|---|\n| forces | f |\n| euler | e |\n| `rigid` | r |\n\n"
+            "| key | type |\n|---|---|\n| `euler` | a key named as a lab |\n")
+    out = pack.drop_other_labs(text, {"forces"}, ALL, "forces")
+    assert "tools/view --live --lab forces       # writes build/live/forces.html" in out
+    assert "| forces | f |" in out and "| euler |" not in out and "rigid" not in out
+    assert "| `euler` | a key named as a lab |" in out  # not a table of labs: kept
+    kept = pack.drop_other_labs(text, {"forces", "euler"}, ALL, "forces")
+    assert "--lab euler" in kept and "| euler | e |" in kept
+
+
 def test_check_references_reports_what_does_not_resolve(tmp_path):
     """Defect: --verify misses a link or a named path that the pack does not hold."""
     (tmp_path / "docs").mkdir()

@@ -250,6 +250,13 @@ function frame(now) {
   refreshTrace();
   S.panes.forEach(sample);
   if (!RIGID && !S.grab && !S.dragging && !S.userView) extend2();
+  // A banner that comes or goes (diverged, a warning, "Not real time") changes the panes'
+  // height: the canvas follows its box, else the drawing is stretched and the mouse lands
+  // off what it is drawn over.
+  S.panes.forEach(function (p) {
+    const r = p.canvas.getBoundingClientRect();
+    if (r.width > 0 && (Math.abs(r.width - p.W) > 0.5 || Math.abs(r.height - p.H) > 0.5)) p.resize();
+  });
   const d0 = performance.now();
   S.panes.forEach(function (p) {
     if (p.idx === 1 && S.compare === "none") return;
@@ -352,8 +359,12 @@ function charts() {
       });
     });
     if (!isFinite(lo)) return;
-    // A quantity constant to rounding is drawn flat at its value (tools/plot does too).
-    const flat = hi - lo <= 1e-9 * Math.max(Math.abs(hi), Math.abs(lo), 1e-300);
+    // A quantity constant to rounding is drawn flat at its value, by tools/plot's rule
+    // (tools/wbplot/flat.py: a spread of 1e-9 of its size, or 1e-12 in SI units: a stub's
+    // 1e-29 J is 0, not an axis from 0 to 1e-29).
+    const big = Math.max(Math.abs(hi), Math.abs(lo));
+    const flat = hi - lo <= (log ? 1e-9 * Math.max(big, 1e-300) : 1e-9 * big + 1e-12);
+    if (flat && !log && Math.abs((hi + lo) / 2) <= 1e-9 * big + 1e-12) { hi = 0; lo = 0; }
     if (flat) { const m = (hi + lo) / 2, d = Math.max(Math.abs(m) * 1e-3, 1e-12); lo = m - d; hi = m + d; }
     if (t1 <= t0) t1 = t0 + 1e-9;
     const L = 58, B = 14, X = function (t) { return L + (t - t0) / (t1 - t0) * (W - L - 6); };
@@ -840,6 +851,8 @@ window.wbLive = {
         screen: [r.left + sx(p, m.at[0]), r.top + sy(p, m.at[1])] };
     });
   },
+  // True while the mouse holds a marked point of the scene (a press on it, not yet released).
+  holdingMark: function () { return !!S.dragging; },
   doc: function () { return JSON.parse(S.docText); },
   frames: function () { return S.frames; },
   integrators: function () { return integratorsOf(S.main); },
