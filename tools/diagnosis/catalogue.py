@@ -434,14 +434,14 @@ def mid_lab_check(repo, grader, lab, cat, variant_files, log):
 
 # ------------------------------------------------------------ fresh mistakes
 
-def fresh_outcome(cat, name, kind, rep):
+def fresh_outcome(cat, name, kind, rep, changed=""):
     """What a mistake written apart from the catalogue gets (tools/mutants --fresh): (verdict,
     part named or why, the diagnosis' lines). verdict: right, wrong (another part named, or
     "not started" for started code), counterexample (no part named, the first wrong probe
     shown), tests (every probe agrees: the failed test's message shown), silent (nothing to
     act on: no diagnosis, or expected and got printed alike), missed (100 points), does not
-    compile."""
-    stem = name.split(".")[0]
+    compile. changed: the student file the mistake is in (by default the name's first word)."""
+    stem = changed[:-len(".cpp")] if changed.endswith(".cpp") else name.split(".")[0]
     if rep.compile_error:
         return "does not compile", rep.compile_error.splitlines()[-1:], []
     if rep.score >= rep.max_score:

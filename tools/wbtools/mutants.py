@@ -778,19 +778,20 @@ def run_lab(repo, grader, lab, args, stop):
 
 
 def fresh_variants(repo, folder, lab):
-    """[(name, files {student name: bytes} or an error, '# kind:' expected)] of folder/<lab>/:
-    mistakes written apart from the catalogue, each a whole file <file>.<what>.cpp (its
-    expected part on a '// kind: ...' line) or a patch of the solution in the catalogue's
-    format (with a '# kind: ...' line)."""
+    """[(name, files {student name: bytes} or an error, '# kind:' expected, the file changed)]
+    of folder/<lab>/: mistakes written apart from the catalogue, each a whole file
+    <file>.<what>.cpp (its expected part on a '// kind: ...' line) or a patch of the solution in
+    the catalogue's format (with a '# kind: ...' line). The file changed is the patch's own
+    target, not a guess from the mistake's name (a writer may name it after the function)."""
     names = grade.student_files(repo, lab)
     sol = {n: read(os.path.join(repo, "solutions", lab, n)) for n in names}
     d = os.path.join(folder, lab)
     out = []
     for f in sorted(os.listdir(d)) if os.path.isdir(d) else []:
-        files, kind = dict(sol), ""
+        files, kind, changed = dict(sol), "", ""
         try:
             if f.endswith(".cpp"):
-                target = f.split(".")[0] + ".cpp"
+                target = changed = f.split(".")[0] + ".cpp"
                 if target not in names:
                     raise PatchError(f"{target} is not a student file of {lab}")
                 files[target] = read(os.path.join(d, f))
@@ -806,11 +807,12 @@ def fresh_variants(repo, folder, lab):
                         raise PatchError(f"{target} is not a student file of {lab}")
                     files[target] = apply_hunks(files[target].decode("utf-8"), hunks,
                                                 f"solutions/{lab}/{target}").encode("utf-8")
+                    changed = changed or target
             else:
                 continue
         except (PatchError, OSError, UnicodeDecodeError) as e:
             files = f"bad variant: {e}"
-        out.append((f, files, kind))
+        out.append((f, files, kind, changed))
     return out
 
 
@@ -836,7 +838,7 @@ def fresh(repo, labs, args):
         try:
             for lab in group:
                 cat = hints.load_catalogue(repo, lab)
-                for name, files, kind in fresh_variants(repo, args.fresh, lab):
+                for name, files, kind, changed in fresh_variants(repo, args.fresh, lab):
                     if isinstance(files, str):
                         rows.append((lab, name, kind, "bad", files, [], []))
                         continue
@@ -845,7 +847,7 @@ def fresh(repo, labs, args):
                     buf = io.StringIO()
                     res.print_table({lab: rep}, {}, out=buf)
                     text = buf.getvalue()
-                    verdict, named, lines = diag.fresh_outcome(cat, name, kind, rep)
+                    verdict, named, lines = diag.fresh_outcome(cat, name, kind, rep, changed)
                     rows.append((lab, name, kind, verdict, named, lines,
                                  res.student_text_problems(text)))
         finally:
