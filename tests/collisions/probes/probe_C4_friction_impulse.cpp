@@ -1,6 +1,8 @@
 // Diagnosis probes of C4 (tests/common/wb_probe.h): static friction, sliding, the edge of the
 // cone, no sliding; on a tilted normal with a normal velocity, so that the tangential part
 // shows.
+#include <cmath>
+
 #include "friction_impulse.h"
 #include "wb_probe.h"
 
@@ -47,7 +49,12 @@ WB_PROBE("C4", "no-slide-no-push",
 }
 // The cone, in one output: inside it, outside it, on its edge and at its tip (at rest with no
 // normal impulse: m |v_t| = mu jn = 0, still static), each column the impulse and v. Every
-// mistake in the cone test shows here, the tip's strict comparison too.
+// mistake in the cone test shows here, the tip's strict comparison too. Apart, column by
+// column: whether v changed by the impulse returned (m |v' - v| - j, 0 for any correct code:
+// the header's "impulse magnitude applied"). A mistake of the cone (the wrong case, the wrong
+// bound) is wrong in both, yet consistent; one in applying the impulse (a velocity change
+// without the 1/m, not along v_t / |v_t|) breaks that consistency: it is not the cone's. Where
+// v is not finite the gap is recorded as 0: the NaN shows in v, and belongs to the cone's tip.
 WB_PROBE("C4", "cone",
          "four contacts on a tilted plane: m |v_t| inside, outside and on the edge of the cone "
          "mu jn, and at its tip (at rest, jn = 0)") {
@@ -60,15 +67,18 @@ WB_PROBE("C4", "cone",
                      {1, 0.5, 4, 0.2 * kT + 0.3 * kN},
                      {2, 0.5, 2, 0.5 * kT + 0.25 * kN},
                      {0, 0.5, 2, Vec2(0, 0)}};
-  Eigen::MatrixXd in(5, 4), out(3, 4);
+  Eigen::MatrixXd in(5, 4), out(3, 4), agree(1, 4);
   for (int k = 0; k < 4; ++k) {
     Vec2 v = cs[k].v;
     in.col(k) << cs[k].jn, cs[k].mu, cs[k].m, v;
     const double j = friction_impulse(kN, cs[k].jn, cs[k].mu, cs[k].m, v);
     out.col(k) << j, v;
+    const double gap = cs[k].m * (v - cs[k].v).norm() - j;
+    agree(0, k) = std::isfinite(gap) ? gap : 0.0;  // a NaN shows in v itself
   }
   P.in("n", kN), P.in("each column: jn, mu, m, v", in);
   P.out("each column: returned impulse, v", out);
+  P.out_each("each column: m |v' - v| - returned impulse (0: v changed by that impulse)", agree);
 }
 // No sliding: nothing changes, no NaN.
 WB_PROBE("C4", "no-slide", "moving only along the normal: nothing changes") {

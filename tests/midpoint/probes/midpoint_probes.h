@@ -11,9 +11,13 @@
 // acceleration is zero: what depends on it (the midpoint velocity, the start acceleration in
 // the update) cannot go wrong there, and what is left tells the second stage's position, the
 // final update and the evaluations apart. Mistakes it cannot see get the counterexample of a
-// detail instead of a part named on a guess.
+// detail instead of a part named on a guess. There a second evaluation asked at the start state
+// reads as a midpoint state built wrongly (x_mid = x, v_mid = v); the new velocity under the
+// stages' forces (stages_velocity, below) tells the two apart.
 #pragma once
 #include <algorithm>
+#include <limits>
+#include <string>
 
 #include "wb_probe_step.h"
 
@@ -34,23 +38,53 @@
 // launch probe tells the parts apart; this one would blur them): `tells_parts` false.
 // The new state is recorded particle by particle.
 namespace wbprobe {
-inline void stages(Probe& P, wb::StepFn fn, const char* name, bool tells_parts) {
-  if (!tells_parts) P.simple();
-  const wb::Mat2X x = cols({{1, 2}, {-0.5, 0.5}, {2, -1}});
-  const wb::Mat2X v = cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}});
+namespace stage_forces {
+inline const wb::Mat2X x0 = cols({{1, 2}, {-0.5, 0.5}, {2, -1}});
+inline const wb::Mat2X v0 = cols({{3, -1}, {0.5, 2}, {-1.5, -0.5}});
+inline const char* const kWords =
+    "A_i at particle i's start state, G_i anywhere else; A = (2, -3), (-1, 0.5), (0.5, 4); "
+    "G = (-1, 1.5), (3, 2), (-2.5, -0.5)";
+// a(x, v): A_i where particle i is at its start state (x0, v0), G_i anywhere else.
+inline Accel accel() {
   const wb::Mat2X A = cols({{2, -3}, {-1, 0.5}, {0.5, 4}});
   const wb::Mat2X G = cols({{-1, 1.5}, {3, 2}, {-2.5, -0.5}});
-  const Accel accel = [x, v, A, G](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
+  return [A, G](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) {
     a.resize(2, xx.cols());
     for (Eigen::Index i = 0; i < xx.cols(); ++i) {
-      const bool start = i < x.cols() && vv.cols() == xx.cols() && xx.col(i) == x.col(i) &&
-                         vv.col(i) == v.col(i);
+      const bool start = i < x0.cols() && vv.cols() == xx.cols() && xx.col(i) == x0.col(i) &&
+                         vv.col(i) == v0.col(i);
       a.col(i) = start ? A.col(std::min(i, A.cols() - 1)) : G.col(std::min(i, G.cols() - 1));
     }
   };
-  step(P, fn, name,
-       "A_i at particle i's start state, G_i anywhere else; A = (2, -3), (-1, 0.5), (0.5, 4); "
-       "G = (-1, 1.5), (3, 2), (-2.5, -0.5)",
-       accel, x, v, 0.25, kBoth | kEach);
+}
+}  // namespace stage_forces
+
+inline void stages(Probe& P, wb::StepFn fn, const char* name, bool tells_parts) {
+  if (!tells_parts) P.simple();
+  step(P, fn, name, stage_forces::kWords, stage_forces::accel(), stage_forces::x0,
+       stage_forces::v0, 0.25, kBoth | kEach);
+}
+
+// The new velocity alone under the stages' forces (M1 `stages-v`, a probe that tells parts
+// apart, where `stages` is a detail). With a(X) free of a at the second state, v' = v + h a_2
+// is right whatever state the second evaluation is asked at, except the start state itself: a
+// midpoint state built wrongly, or the forces asked at another wrong state, leave it right
+// (they show in the launch probe), where the forces asked at the start state a second time
+// take A for G. At the launch (a(X) = 0) those read alike. A wrong velocity update shows here
+// too; a wrong position update (x moved with another velocity) does not.
+inline void stages_velocity(Probe& P, wb::StepFn fn, const char* name) {
+  const Accel accel = stage_forces::accel();
+  wb::LambdaDynamics dyn(
+      [&](const wb::Mat2X& xx, const wb::Mat2X& vv, wb::Mat2X& a) { accel(xx, vv, a); });
+  wb::Mat2X x = stage_forces::x0, v = stage_forces::v0;
+  wb::Scratch s;
+  s.resize(x.cols());
+  for (wb::Mat2X* m : {&s.a0, &s.a1, &s.a2, &s.a3, &s.x1, &s.v1, &s.xs, &s.vs})
+    m->setConstant(std::numeric_limits<double>::quiet_NaN());
+  P.call(name);
+  P.note(std::string("dyn: a(x, v) = ") + stage_forces::kWords);
+  P.in("h", 0.25), P.in("x", x), P.in("v", v);
+  fn(dyn, 0.25, x, v, s);
+  P.out_each("v", v);
 }
 }  // namespace wbprobe

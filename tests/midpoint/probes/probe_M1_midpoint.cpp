@@ -29,4 +29,13 @@ WB_PROBE("M1", "stages",
   wbprobe::stages(P, &midpoint_step, "midpoint_step", false);
 }
 
+// The new velocity alone under the stages' forces (midpoint_probes.h): the forces asked at the
+// start state twice (a second evaluation at X, not at X_mid) show here, a midpoint state built
+// wrongly does not, where the launch shows both alike.
+WB_PROBE("M1", "stages-v",
+         "three moving particles, a = A_i at the start state and G_i at any other, h = 0.25: "
+         "the new v alone") {
+  wbprobe::stages_velocity(P, &midpoint_step, "midpoint_step");
+}
+
 }  // namespace probe_M1_midpoint
