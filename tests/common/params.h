@@ -37,8 +37,9 @@ class Params {
   explicit Params(HeldOut& g) : g_(&g) {}  // a held-out test: every value drawn from g
   bool held_out() const { return g_ != nullptr; }
 
-  // `published` in a public test; else a short decimal (kDigits significant digits) in [lo, hi]
-  // (lo and hi short decimals themselves).
+  // `published` in a public test; else a short decimal (kDigits significant digits) in [lo, hi]:
+  // a draw that rounds outside is drawn again (lo itself after 64 tries, which takes a range
+  // narrower than its own rounding).
   double num(double published, double lo, double hi) const {
     if (!g_) return published;
     for (int tries = 0; tries < 64; ++tries) {
@@ -54,15 +55,11 @@ class Params {
   // A loop's length: `published` in a public test; else `held_out` (what the held-out test can
   // afford, in the proportion its calls have among the public ones: see the caller).
   long steps(long published, long held_out) const { return g_ ? held_out : published; }
-  // One of `options` (held-out only: a public test writes its value).
+  // One of `options`: the first in a public test.
   double pick(std::initializer_list<double> options) const {
     return g_ ? g_->pick(std::vector<double>(options)) : *options.begin();
   }
-  // Which is running, for failure messages.
-  std::string source() const {
-    return g_ ? "held-out parameters (" + g_->replay() + ")" : "the published parameters";
-  }
-
+  // x rounded to kDigits significant digits (a derived start written as a public test would).
   static double short_decimal(double x) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.*g", kDigits, x);
