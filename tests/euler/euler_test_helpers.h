@@ -1,6 +1,7 @@
 // Test-written dynamics and a stepping loop for the euler lab's graded tests.
 // Nothing here uses the forces lab: every acceleration is written in the test.
 #pragma once
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -80,19 +81,22 @@ inline Mat2X cols(std::initializer_list<Vec2> list) {
 // coefficient, coordinate and h drawn in the published ones' ranges.
 struct OneStep {
   Eigen::Index n;
-  double c[6];  // a_i = (c0 x_i.x + c1 v_i.y + c2 + i, c3 x_i.y x_i.x + c4 v_i.x + c5 i)
   Mat2X x0, v0;
   double h;
   Mat2X a0;
   wb::LambdaDynamics::Fn accel;
   explicit OneStep(const wbtest::Params& p)
-      : n(p.count(3, 2, 4)),
-        c{p.num(-3.0, -4.0, -1.0), p.num(0.5, 0.1, 1.0),    p.num(1.0, -2.0, 2.0),
-          p.num(2.0, 0.5, 3.0),    p.num(-0.25, -1.0, 1.0), p.num(-0.5, -1.0, 1.0)},
-        x0(2, n),
-        v0(2, n),
-        h(p.num(0.25, 0.1, 0.4)),
-        a0(2, n) {
+      : n(p.count(3, 2, 4)), x0(2, n), v0(2, n), h(p.num(0.25, 0.1, 0.4)), a0(2, n) {
+    // a_i = (c0 x_i.x + c1 v_i.y + c2 + i, c3 x_i.y x_i.x + c4 v_i.x + c5 i)
+    const std::array<double, 6> c = {p.num(-3.0, -4.0, -1.0), p.num(0.5, 0.1, 1.0),
+                                     p.num(1.0, -2.0, 2.0),   p.num(2.0, 0.5, 3.0),
+                                     p.num(-0.25, -1.0, 1.0), p.num(-0.5, -1.0, 1.0)};
+    accel = [c](const Mat2X& x, const Mat2X& v, Mat2X& a) {
+      for (Eigen::Index i = 0; i < x.cols(); ++i) {
+        a.col(i) = Vec2(c[0] * x(0, i) + c[1] * v(1, i) + c[2] + double(i),
+                        c[3] * x(1, i) * x(0, i) + c[4] * v(0, i) + c[5] * double(i));
+      }
+    };
     const Mat2X px = cols({{1.0, 2.0}, {-0.5, 0.25}, {3.0, -1.5}});
     const Mat2X pv = cols({{0.5, -1.0}, {2.0, 0.75}, {-1.25, 0.125}});
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -101,13 +105,6 @@ struct OneStep {
         v0(d, i) = p.num(i < 3 ? pv(d, i) : 0.0, -2.0, 2.0);
       }
     }
-    const double k[6] = {c[0], c[1], c[2], c[3], c[4], c[5]};
-    accel = [k](const Mat2X& x, const Mat2X& v, Mat2X& a) {
-      for (Eigen::Index i = 0; i < x.cols(); ++i) {
-        a.col(i) = Vec2(k[0] * x(0, i) + k[1] * v(1, i) + k[2] + double(i),
-                        k[3] * x(1, i) * x(0, i) + k[4] * v(0, i) + k[5] * double(i));
-      }
-    };
     accel(x0, v0, a0);
   }
 };
@@ -193,16 +190,11 @@ inline void check_free_fall(const wbtest::Params& p, wb::StepFn step, bool veloc
                             const std::string& method) {
   const Vec2 g(p.num(0.3, -1.0, 1.0), p.num(-9.81, -12.0, -5.0));
   auto accel = [g](const Mat2X& x, const Mat2X&, Mat2X& a) { a = g.replicate(1, x.cols()); };
-  const Eigen::Index particles = p.count(3, 3, 3);
-  const Mat2X px = cols({{0.0, 100.0}, {5.0, 0.0}, {-2.0, 40.0}});
-  const Mat2X pv = cols({{1.0, 0.0}, {0.0, 20.0}, {-3.0, 7.5}});
-  Mat2X x0(2, particles), v0(2, particles);
-  for (Eigen::Index i = 0; i < particles; ++i) {
-    const bool pub = i < 3;
-    x0.col(i) =
-        Vec2(p.num(pub ? px(0, i) : 0.0, -5.0, 5.0), p.num(pub ? px(1, i) : 0.0, 0.0, 100.0));
-    v0.col(i) =
-        Vec2(p.num(pub ? pv(0, i) : 0.0, -3.0, 3.0), p.num(pub ? pv(1, i) : 0.0, 0.0, 20.0));
+  Mat2X x0 = cols({{0.0, 100.0}, {5.0, 0.0}, {-2.0, 40.0}});
+  Mat2X v0 = cols({{1.0, 0.0}, {0.0, 20.0}, {-3.0, 7.5}});
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    x0.col(i) = Vec2(p.num(x0(0, i), -5.0, 5.0), p.num(x0(1, i), 0.0, 100.0));
+    v0.col(i) = Vec2(p.num(v0(0, i), -3.0, 3.0), p.num(v0(1, i), 0.0, 20.0));
   }
   const double h = p.num(0.01, 0.025, 0.04);
   const double half = velocity_first ? 0.5 : -0.5;  // the sign of the 1/2 g h t term
@@ -232,18 +224,14 @@ inline void check_free_fall(const wbtest::Params& p, wb::StepFn step, bool veloc
 inline void check_damping(const wbtest::Params& p, wb::StepFn step, bool velocity_first,
                           const std::string& method) {
   const double b = p.num(0.3, 0.1, 0.5), h = p.num(0.1, 0.05, 0.15);
-  const Eigen::Index particles = p.count(3, 3, 3);
-  const double pm[3] = {0.5, 2.0, 7.0};
-  const Mat2X px = cols({{0.0, 0.0}, {1.0, -1.0}, {2.0, 3.0}});
-  const Mat2X pv = cols({{4.0, -2.0}, {-1.0, 3.0}, {0.5, 6.0}});
-  Eigen::VectorXd m(particles);
-  Mat2X x0(2, particles), v0(2, particles);
-  for (Eigen::Index i = 0; i < particles; ++i) {
-    const bool pub = i < 3;
-    m[i] = p.num(pub ? pm[i] : 0.0, 0.5, 8.0);
+  Eigen::Vector3d m(0.5, 2.0, 7.0);
+  Mat2X x0 = cols({{0.0, 0.0}, {1.0, -1.0}, {2.0, 3.0}});
+  Mat2X v0 = cols({{4.0, -2.0}, {-1.0, 3.0}, {0.5, 6.0}});
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    m[i] = p.num(m[i], 0.5, 8.0);
     for (int d = 0; d < 2; ++d) {
-      x0(d, i) = p.num(pub ? px(d, i) : 0.0, -3.0, 3.0);
-      v0(d, i) = p.num(pub ? pv(d, i) : 0.0, -6.0, 6.0);
+      x0(d, i) = p.num(x0(d, i), -3.0, 3.0);
+      v0(d, i) = p.num(v0(d, i), -6.0, 6.0);
     }
   }
   auto accel = [&](const Mat2X&, const Mat2X& v, Mat2X& a) {
@@ -252,7 +240,7 @@ inline void check_damping(const wbtest::Params& p, wb::StepFn step, bool velocit
   Run r(accel, x0, v0);
   const int N = 60;
   for (int n = 1; n <= N; ++n) r.step(step, h);
-  for (Eigen::Index i = 0; i < particles; ++i) {
+  for (int i = 0; i < 3; ++i) {
     const double ri = 1.0 - h * b / m[i];
     const double rn = std::pow(ri, N);
     const double c = velocity_first ? h * ri : h;  // h c of the law above
