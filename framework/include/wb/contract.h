@@ -41,7 +41,7 @@ double energy_scale(double kinetic0, double potential0, double work0);
 // Has the state after a step diverged: a state that is not finite, an energy that
 // is not finite, or |E| > kBlowUpFactor times `scale`. The rule alone, for a loop
 // that asks it after every step and wants divergence()'s sentence only when it has
-// (building an empty one cost 7 % of the cheapest live step in WebAssembly).
+// (building an empty one cost 6 % of the cheapest live step in WebAssembly).
 inline bool diverges(bool state_finite, double energy, double scale) {
   return !state_finite || !std::isfinite(energy) || std::abs(energy) > kBlowUpFactor * scale;
 }
