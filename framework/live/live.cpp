@@ -21,9 +21,10 @@ const std::vector<LabEntry>& labs() { return registry(); }
 bool Contract::after_step(double h, bool finite, double energy) {
   ++steps;
   t += h;
+  if (!diverges(finite, finite ? energy : NAN, scale)) return true;
   diverged = divergence(finite, finite ? energy : NAN, scale, steps);
-  if (!diverged.empty()) diverged_at = steps;
-  return diverged.empty();
+  diverged_at = steps;
+  return false;
 }
 
 void Contract::check_unconverged(long unconverged) {

@@ -18,6 +18,7 @@
 namespace wb::budget {
 
 std::atomic<int> g_phase{kLoad};
+long g_countdown = LONG_MAX;
 
 namespace {
 
@@ -51,8 +52,6 @@ constexpr int kWatching = 0, kFinished = 1, kStopping = 2;
 long g_ticks = 0;
 double g_rss_prev = 0, g_rss_growth = 0;
 
-// poll()'s countdown when there is no ticker.
-long g_countdown = LONG_MAX;
 long g_poll_every = 1;
 double g_poll_cpu = 0;
 
@@ -291,12 +290,6 @@ void step_done() {
   g_done.store(g_done.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
   if (--g_countdown <= 0) poll_clock();
 }
-
-#if !WB_BUDGET_THREAD
-void phase_boundary() {
-  if (--g_countdown <= 0) poll_clock();
-}
-#endif
 
 void poll_clock() {
   if (g_ticker || !g_started) {

@@ -47,6 +47,7 @@ double energy_scale(double kinetic0, double potential0, double work0) {
 }
 
 std::string divergence(bool state_finite, double energy, double scale, long step) {
+  if (!diverges(state_finite, energy, scale)) return "";
   if (!state_finite) return "the state is not finite at step " + std::to_string(step);
   if (!std::isfinite(energy)) return "the energy is not finite at step " + std::to_string(step);
   if (std::abs(energy) > kBlowUpFactor * scale) {

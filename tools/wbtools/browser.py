@@ -210,8 +210,8 @@ class Browser:
         img.x0, img.y0 = x0, y0
         return img
 
-    def cpu_seconds(self):
-        """CPU seconds (user + system) used so far by Chromium and every process it started
+    def _processes(self):
+        """{pid: CPU seconds (user + system)} of Chromium and every process it started
         (renderer, GPU/compositor, utility): /proc, Linux only."""
         tick = os.sysconf("SC_CLK_TCK")
         parent, used = {}, {}
@@ -225,7 +225,7 @@ class Browser:
                 continue
             parent[int(d)] = int(fields[1])
             used[int(d)] = (int(fields[11]) + int(fields[12])) / tick
-        mine, total = {self.proc.pid}, 0.0
+        mine = {self.proc.pid}
         changed = True
         while changed:
             changed = False
@@ -233,8 +233,29 @@ class Browser:
                 if pp in mine and pid not in mine:
                     mine.add(pid)
                     changed = True
-        for pid in mine:
-            total += used.get(pid, 0.0)
+        return {pid: used.get(pid, 0.0) for pid in mine}
+
+    def cpu_seconds(self):
+        """CPU seconds (user + system) used so far by Chromium and every process it started
+        (renderer, GPU/compositor, utility): /proc, Linux only."""
+        return sum(self._processes().values())
+
+    def page_cpu_seconds(self):
+        """CPU seconds used so far by the main threads of Chromium's renderer processes, where
+        a page's JavaScript and WebAssembly run (/proc/PID/task/PID/schedstat, nanoseconds):
+        a page's own computation, without the browser's other processes and threads (the
+        browser process, the GPU process, compositor threads), which keep using CPU of their
+        own while a page computes. Linux only."""
+        total = 0.0
+        for pid in self._processes():
+            try:
+                with open(f"/proc/{pid}/cmdline", "rb") as f:
+                    if b"--type=renderer" not in f.read():
+                        continue
+                with open(f"/proc/{pid}/task/{pid}/schedstat", encoding="ascii") as f:
+                    total += int(f.read().split()[0]) * 1e-9
+            except (OSError, ValueError, IndexError):
+                continue
         return total
 
     def close(self):

@@ -619,11 +619,19 @@ bool ParticleDynamics::take_step_sums(const Mat2X& x, const Mat2X& v, Eigen::Arr
   return ok;
 }
 
-double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
-                      bool& finite, const ParticleDynamics* dyn) {
-  Vec2 g = Vec2::Zero();  // every uniform gravity term's field, summed
-  for (const auto& term : forces)
-    if (const auto* u = dynamic_cast<const UniformGravity*>(term.get())) g += u->g();
+EnergyTerms::EnergyTerms(const ForceList& forces) {
+  for (const auto& term : forces) {
+    if (const auto* u = dynamic_cast<const UniformGravity*>(term.get())) {
+      g += u->g();
+    } else {
+      others.push_back(term.get());
+    }
+  }
+}
+
+double checked_energy(const ForceList& forces, const EnergyTerms& terms, const Mat2X& x,
+                      const Mat2X& v, const VecX& m, bool& finite, const ParticleDynamics* dyn) {
+  const Vec2& g = terms.g;  // every uniform gravity term's field, summed
   // k = sum m v.*v (twice the kinetic energy, per axis) and w = sum m x, from
   // which V_g = -g . w: summed by the step itself when it went by blocks (rk4
   // on per-particle forces, while each block was in cache), else in one pass
@@ -639,13 +647,12 @@ double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, c
   }
   finite = true;
   double e = 0.5 * k.sum() - (g.array() * w).sum();
-  for (const auto& term : forces)
-    if (!dynamic_cast<const UniformGravity*>(term.get())) e += term->potential(x, m);
+  for (const Force* term : terms.others) e += term->potential(x, m);
   return e;
 }
 
 ForceWorld::ForceWorld(const Scene& scene)
-    : m_(scene.m), forces_(build_forces(scene)), dyn_(forces_, m_) {}
+    : m_(scene.m), forces_(build_forces(scene)), dyn_(forces_, m_), terms_(forces_) {}
 
 std::vector<const Force*> ForceWorld::terms() const {
   std::vector<const Force*> out;

@@ -117,11 +117,23 @@ Energy energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const Vec
 void add_energy_sums(const Mat2X& x, const Mat2X& v, const VecX& m, Eigen::Index first,
                      Eigen::Index end, Eigen::Array2d& k, Eigen::Array2d& w);
 
-// World::checked_energy of a world with these forces: the finiteness of x and
-// v, the kinetic energy and the uniform gravity's potential in one pass over
-// the particles, then the other terms' potentials.
-double checked_energy(const ForceList& forces, const Mat2X& x, const Mat2X& v, const VecX& m,
-                      bool& finite, const ParticleDynamics* dyn = nullptr);
+// A world's force list as checked_energy sums it, sorted once when the world is
+// made: the uniform gravity terms' field, summed (their potential is -g . w, from
+// the one pass's sums), and the other terms, in the list's order (each adds its own
+// potential). Sorting on every step took two dynamic_casts per term, a fifth of the
+// cheapest step in WebAssembly (docs/benchmarks.md, "Live pages").
+struct EnergyTerms {
+  Vec2 g = Vec2::Zero();
+  std::vector<const Force*> others;
+  explicit EnergyTerms(const ForceList& forces);
+};
+
+// World::checked_energy of a world with these forces (`terms`, made from them): the
+// finiteness of x and v, the kinetic energy and the uniform gravity's potential in
+// one pass over the particles, then the other terms' potentials.
+double checked_energy(const ForceList& forces, const EnergyTerms& terms, const Mat2X& x,
+                      const Mat2X& v, const VecX& m, bool& finite,
+                      const ParticleDynamics* dyn = nullptr);
 
 // A particle scene's World: its forces, summed by accumulate_forces.
 class ForceWorld : public World {
@@ -130,7 +142,7 @@ class ForceWorld : public World {
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
   double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const override {
-    return wb::checked_energy(forces_, x, v, m_, finite, &dyn_);
+    return wb::checked_energy(forces_, terms_, x, v, m_, finite, &dyn_);
   }
   std::vector<const Force*> terms() const override;
   // A scene with forces whose every evaluation gave zero: the forces' stubs.
@@ -142,6 +154,7 @@ class ForceWorld : public World {
   VecX m_;
   ForceList forces_;
   ParticleDynamics dyn_;
+  EnergyTerms terms_;
 };
 
 // Makes a lab run its scenes with the forces lab: sets info.make_world and

@@ -480,7 +480,7 @@ std::string ImplicitDynamics::unconverged_warning() const {
 }
 
 ImplicitWorld::ImplicitWorld(const Scene& scene)
-    : m_(scene.m), forces_(implicit_forces(scene)), dyn_(forces_, scene) {}
+    : m_(scene.m), forces_(implicit_forces(scene)), dyn_(forces_, scene), terms_(forces_) {}
 
 std::vector<const Force*> ImplicitWorld::terms() const {
   std::vector<const Force*> out;

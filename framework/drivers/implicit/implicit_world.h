@@ -156,7 +156,7 @@ class ImplicitWorld : public World {
   const Dynamics& dynamics() const override { return dyn_; }
   Energy energy(const Mat2X& x, const Mat2X& v) const override;
   double checked_energy(const Mat2X& x, const Mat2X& v, bool& finite) const override {
-    return wb::checked_energy(forces_, x, v, m_, finite);
+    return wb::checked_energy(forces_, terms_, x, v, m_, finite);
   }
   std::vector<const Force*> terms() const override;
   // Steps whose Newton solve did not converge, said once at the end: a warning
@@ -168,6 +168,7 @@ class ImplicitWorld : public World {
   VecX m_;
   ForceList forces_;
   ImplicitDynamics dyn_;
+  EnergyTerms terms_;
 };
 
 // Integrator::check of backward-euler-1: one anchored spring only. (The size

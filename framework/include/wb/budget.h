@@ -56,9 +56,15 @@ inline void set_phase(Phase p) { g_phase.store(p, std::memory_order_relaxed); }
 #if WB_BUDGET_THREAD
 inline void phase_boundary() {}  // the watchdog thread looks by itself
 #else
+// poll_clock()'s countdown, where no ticker runs (LONG_MAX while nothing is watched).
+extern long g_countdown;
+void poll_clock();
 // A phase begins or ends: one decrement of the poll's countdown, the clock read when it
-// reaches 0 (poll_clock).
-void phase_boundary();
+// reaches 0 (poll_clock). Inline: a call costs more than the decrement, and a force
+// evaluation has two boundaries (docs/benchmarks.md, "Live pages").
+inline void phase_boundary() {
+  if (--g_countdown <= 0) poll_clock();
+}
 #endif
 
 // Sets the phase for its lifetime, then restores the one before (phases nest:

@@ -6,6 +6,7 @@
 // state, framework/drivers/rigid/rigid_run.cpp) both call these: one contract,
 // one implementation, whatever the state.
 #pragma once
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -37,9 +38,15 @@ constexpr double kMaxUnconvergedShare = 0.5;
 // zero potential (a rope laid out straight) still has a scale.
 double energy_scale(double kinetic0, double potential0, double work0);
 
-// Why the state after `step` has diverged, or "" while it has not: a state
-// that is not finite, an energy that is not finite, or |E| > kBlowUpFactor
-// times `scale`.
+// Has the state after a step diverged: a state that is not finite, an energy that
+// is not finite, or |E| > kBlowUpFactor times `scale`. The rule alone, for a loop
+// that asks it after every step and wants divergence()'s sentence only when it has
+// (building an empty one cost 6 % of the cheapest live step in WebAssembly).
+inline bool diverges(bool state_finite, double energy, double scale) {
+  return !state_finite || !std::isfinite(energy) || std::abs(energy) > kBlowUpFactor * scale;
+}
+
+// Why the state after `step` has diverged (diverges()), or "" while it has not.
 std::string divergence(bool state_finite, double energy, double scale, long step);
 
 // Why a finished run has diverged by its solver, or "": more than
