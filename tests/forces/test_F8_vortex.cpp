@@ -1,6 +1,10 @@
 // F8 vortex field: a Rankine vortex u(x) and the drag f_i += c (u(x_i) - v_i)
 // (labs/forces/vortex.h).
+#include <cmath>
+#include <string>
+
 #include "heldout.h"
+#include "params.h"
 #include "test_helpers.h"
 #include "vortex.h"
 
@@ -13,58 +17,103 @@ using wb::Vec2;
 
 namespace {
 
-// Hand-derived values below are short decimals: rounding only.
+// Hand-derived values below are short decimals: rounding only. A drawn vortex's expected
+// values are the formulas below, evaluated here in another order: a few ulps of |u|, so the
+// same 1e-12 relative to the speed.
 constexpr double kTol = 1e-12;
+
+// The scenarios of the public tests below, each a function of its parameters: the public test
+// runs it with the published ones (wbtest::Params()), the held-out test with drawn ones, in the
+// same format (tests/common/params.h): short decimals where the public test writes them, the
+// same sizes, about the same magnitudes, and each point in the regime (inside the core,
+// outside it, on the axis) that the public test puts it in.
 
 // The vortex of most tests: centre off the origin, core radius R = 2 (not 1,
 // so R^2 / r and R^2 / r^2 differ at the core's edge), omega = 2.
-VortexParams vortex() {
+// Held-out: every number drawn about the published one, R 1.7 to 2.3 (never 1) and c 1.2 to
+// 1.8 (never 1).
+VortexParams vortex(const wbtest::Params& q) {
   VortexParams p;
-  p.center = Vec2(1, -1);
-  p.omega = 2.0;
-  p.core = 2.0;
-  p.drag = 1.5;
+  p.center = Vec2(q.num(1.0, 0.5, 1.5), q.num(-1.0, -1.5, -0.5));
+  p.omega = q.num(2.0, 1.7, 2.3);
+  p.core = q.num(2.0, 1.7, 2.3);
+  p.drag = q.num(1.5, 1.2, 1.8);
   return p;
 }
 
-}  // namespace
+// The Rankine flow, written out: omega perp(d) inside the core (r <= R), omega R^2 perp(d) /
+// r^2 outside, d = x - center.
+Vec2 rankine(const Vec2& x, const VortexParams& p) {
+  const Vec2 d = x - p.center, perp(-d.y(), d.x());
+  const double r = d.norm();
+  return r <= p.core ? Vec2(p.omega * perp) : Vec2(p.omega * p.core * p.core * perp / (r * r));
+}
 
-TEST_CASE("F8 vortex: inside the core the flow turns like a solid disc", "[forces][F8][2pts]") {
-  const VortexParams p = vortex();
+// In the public test `published`; else the point at distance r in direction `angle` from the
+// vortex's centre, written as the public tests write positions (a short decimal).
+Vec2 at(const wbtest::Params& q, const Vec2& published, const VortexParams& p, double r,
+        double angle) {
+  if (!q.held_out()) return published;
+  return Vec2(wbtest::Params::short_decimal(p.center.x() + r * std::cos(angle)),
+              wbtest::Params::short_decimal(p.center.y() + r * std::sin(angle)));
+}
+// Points inside the core (0.1 R to 0.9 R from the centre) and outside it (1.2 R to 2.6 R): a
+// rounded coordinate moves a point by less than 0.01, far less than 0.1 R.
+Vec2 inside(const wbtest::Params& q, const Vec2& published, const VortexParams& p, double r) {
+  return at(q, published, p, q.num(r, 0.1 * p.core, 0.9 * p.core), q.num(0.93, 0.0, 6.28));
+}
+Vec2 outside(const wbtest::Params& q, const Vec2& published, const VortexParams& p, double r) {
+  return at(q, published, p, q.num(r, 1.2 * p.core, 2.6 * p.core), q.num(0.93, 0.0, 6.28));
+}
+
+// `published` (hand-derived) in the public test, the formula on a drawn vortex.
+Vec2 expect(const wbtest::Params& q, const Vec2& published, const Vec2& x,
+            const VortexParams& p) {
+  return q.held_out() ? rankine(x, p) : published;
+}
+
+void solid_core(const wbtest::Params& q) {
+  const VortexParams p = vortex(q);
   // x = (1.6, -0.2): d = (0.6, 0.8), r = 1 < R, perp(d) = (-0.8, 0.6),
   // u = omega perp(d) = (-1.6, 1.2), speed omega r = 2.
-  wbtest::require_near(vortex_flow(Vec2(1.6, -0.2), p), Vec2(-1.6, 1.2), kTol,
+  const Vec2 a = inside(q, Vec2(1.6, -0.2), p, 1.0);
+  wbtest::require_near(vortex_flow(a, p), expect(q, Vec2(-1.6, 1.2), a, p), kTol,
                        "solid rotation in the core: u = omega perp(x - center), speed omega r",
                        kTol);
   // x = (0.1, -2.2): d = (-0.9, -1.2), r = 1.5 < R, perp(d) = (1.2, -0.9),
   // u = (2.4, -1.8), speed omega r = 3.
-  wbtest::require_near(vortex_flow(Vec2(0.1, -2.2), p), Vec2(2.4, -1.8), kTol,
+  const Vec2 b = inside(q, Vec2(0.1, -2.2), p, 1.5);
+  wbtest::require_near(vortex_flow(b, p), expect(q, Vec2(2.4, -1.8), b, p), kTol,
                        "solid rotation in the core: u = omega perp(x - center), speed omega r",
                        kTol);
 }
 
-TEST_CASE("F8 vortex: outside the core the speed falls off as omega R^2 / r",
-          "[forces][F8][2pts]") {
-  const VortexParams p = vortex();
+void outer_flow(const wbtest::Params& q) {
+  const VortexParams p = vortex(q);
   // x = (4, 3): d = (3, 4), r = 5 > R, perp(d) = (-4, 3),
   // u = omega R^2 perp(d) / r^2 = 8 (-4, 3) / 25 = (-1.28, 0.96), speed 8 / 5 = omega R^2 / r.
-  wbtest::require_near(vortex_flow(Vec2(4, 3), p), Vec2(-1.28, 0.96), kTol,
+  const Vec2 a = outside(q, Vec2(4, 3), p, 5.0);
+  wbtest::require_near(vortex_flow(a, p), expect(q, Vec2(-1.28, 0.96), a, p), kTol,
                        "irrotational outside: u = omega R^2 perp(d) / r^2, speed omega R^2 / r",
                        kTol);
   // x = (-1.4, 0.8): d = (-2.4, 1.8), r = 3, perp(d) = (-1.8, -2.4),
   // u = 8 (-1.8, -2.4) / 9 = (-1.6, -32/15), speed 8 / 3.
-  wbtest::require_near(vortex_flow(Vec2(-1.4, 0.8), p), Vec2(-1.6, -32.0 / 15), kTol,
+  const Vec2 b = outside(q, Vec2(-1.4, 0.8), p, 3.0);
+  wbtest::require_near(vortex_flow(b, p), expect(q, Vec2(-1.6, -32.0 / 15), b, p), kTol,
                        "irrotational outside: u = omega R^2 perp(d) / r^2, speed omega R^2 / r",
                        kTol);
 }
 
-TEST_CASE("F8 vortex: the flow is continuous at the core radius and zero at the centre",
-          "[forces][F8][1pts]") {
-  const VortexParams p = vortex();
+void continuity(const wbtest::Params& q) {
+  const VortexParams p = vortex(q);
   // Along the unit direction (0.6, -0.8), just inside and just outside r = R = 2.
   // Both formulas give omega R perp(unit) = 4 (0.8, 0.6) = (3.2, 2.4) at r = R; a
   // step of 2e-9 in r changes u by at most omega * 2e-9 ~ 4e-9: tolerance 1e-7.
-  const Vec2 unit(0.6, -0.8), on_core(3.2, 2.4);
+  // Held-out: the direction drawn (omega R 2e-9 stays below 2e-8).
+  const double angle = q.num(5.36, 0.0, 6.28);
+  const Vec2 unit = q.held_out() ? Vec2(std::cos(angle), std::sin(angle)) : Vec2(0.6, -0.8);
+  const Vec2 on_core =
+      q.held_out() ? Vec2(p.omega * p.core * Vec2(-unit.y(), unit.x())) : Vec2(3.2, 2.4);
   const double tol = 1e-7;
   const Vec2 u_in = vortex_flow(p.center + (p.core * (1 - 1e-9)) * unit, p);
   const Vec2 u_out = vortex_flow(p.center + (p.core * (1 + 1e-9)) * unit, p);
@@ -83,40 +132,59 @@ TEST_CASE("F8 vortex: the flow is continuous at the core radius and zero at the 
   wbtest::require_near(u0, Vec2(0, 0), 0.0, "the vortex axis is at rest: u(center) = 0");
 }
 
-TEST_CASE("F8 vortex: drag c (u - v) towards the flow is zero for a particle moving with it",
-          "[forces][F8][3pts]") {
-  const VortexParams p = vortex();  // c = 1.5
+void drag(const wbtest::Params& q) {
+  const VortexParams p = vortex(q);  // c = 1.5
   // The first and the last particle feel a non-zero drag, so that a loop
   // that skips either end leaves a column wrong.
   // Particle 0 at (4, 3) at rest: f = 1.5 (-1.28, 0.96) = (-1.92, 1.44).
   // Particle 1 at (1.6, -0.2) moves with the flow, v = u = (-1.6, 1.2): no force.
   // Particle 2 on the axis at rest: u = 0, v = 0, no force.
   // Particle 3 at (0.1, -2.2), v = (1, 1): f = 1.5 ((2.4, -1.8) - (1, 1)) = (2.1, -4.2).
+  // Held-out: the same four situations drawn (particle 1's velocity the flow's, written as a
+  // short decimal: it then feels a drag of rounding size).
   Mat2X x(2, 4), v(2, 4), f(2, 4);
-  x << 4.0, 1.6, 1.0, 0.1,  //
-      3.0, -0.2, -1.0, -2.2;
-  v << 0.0, -1.6, 0.0, 1.0,  //
-      0.0, 1.2, 0.0, 1.0;
-  f << 2.0, 1.0, 4.0, 3.0,  // forces already there: add to them
-      0.0, -1.0, 0.25, 0.5;
+  x.col(0) = outside(q, Vec2(4.0, 3.0), p, 5.0);
+  x.col(1) = inside(q, Vec2(1.6, -0.2), p, 1.0);
+  x.col(2) = p.center;
+  x.col(3) = inside(q, Vec2(0.1, -2.2), p, 1.5);
+  const Vec2 u1 = rankine(x.col(1), p);
+  v.col(0) = Vec2(0, 0);
+  v.col(1) = q.held_out() ? Vec2(wbtest::Params::short_decimal(u1.x()),
+                                 wbtest::Params::short_decimal(u1.y()))
+                          : Vec2(-1.6, 1.2);
+  v.col(2) = Vec2(0, 0);
+  v.col(3) = Vec2(q.num(1.0, -1.5, 1.5), q.num(1.0, -1.5, 1.5));
+  const Mat2X f0 = (Mat2X(2, 4) << 2.0, 1.0, 4.0, 3.0,  // forces already there: add to them
+                    0.0, -1.0, 0.25, 0.5)
+                       .finished();
+  for (Eigen::Index i = 0; i < 4; ++i)
+    f.col(i) = Vec2(q.num(f0(0, i), -5.0, 5.0), q.num(f0(1, i), -5.0, 5.0));
+  Mat2X expected = f;
   add_vortex(x, v, p, f);
   wbtest::require_finite(f, "vortex drag with a particle on the axis");
-  Mat2X expected(2, 4);
-  expected << 2.0 - 1.92, 1.0, 4.0, 3.0 + 2.1,  //
-      1.44, -1.0, 0.25, 0.5 - 4.2;
+  if (q.held_out()) {
+    for (Eigen::Index i = 0; i < 4; ++i)
+      expected.col(i) += p.drag * (rankine(x.col(i), p) - v.col(i));
+  } else {
+    expected << 2.0 - 1.92, 1.0, 4.0, 3.0 + 2.1,  //
+        1.44, -1.0, 0.25, 0.5 - 4.2;
+  }
   wbtest::require_near(f, expected, kTol,
                        "drag towards the flow: f_i += c (u(x_i) - v_i) for EVERY particle i "
                        "(first and last included), added to f",
                        kTol);
 }
 
-TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise",
-          "[forces][F8][1pts]") {
-  VortexParams p = vortex();
+void turning_sense(const wbtest::Params& q) {
+  VortexParams p = vortex(q);
+  // Eight points, each under both senses in turn. Held-out: the same points (this test's 16
+  // calls are most of the task's public ones: fresh ones would make their magnitudes a
+  // property of the held-out calls), the vortex and both senses' rates drawn about them.
   const Mat2X pts = wbtest::random_points(8, 41, -4.0, 4.0);
-  for (double omega : {2.0, -1.5}) {
-    p.omega = omega;
-    for (Eigen::Index i = 0; i < pts.cols(); ++i) {
+  const double omegas[2] = {q.num(2.0, 1.7, 2.3), q.num(-1.5, -1.8, -1.2)};
+  for (Eigen::Index i = 0; i < pts.cols(); ++i) {
+    for (double omega : omegas) {
+      p.omega = omega;
       const Vec2 d = Vec2(pts.col(i)) - p.center;
       if (d.norm() < 1e-3) continue;
       const double turn = wb::cross(d, vortex_flow(pts.col(i), p));  // > 0: counter-clockwise
@@ -127,48 +195,85 @@ TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise"
     }
   }
   // omega = -1.5 at (4, 3): -1.5 * 4 (-4, 3) / 25 = (0.96, -0.72).
-  wbtest::require_near(vortex_flow(Vec2(4, 3), p), Vec2(0.96, -0.72), kTol,
+  const Vec2 a = outside(q, Vec2(4, 3), p, 5.0);
+  wbtest::require_near(vortex_flow(a, p), expect(q, Vec2(0.96, -0.72), a, p), kTol,
                        "omega < 0: the same flow reversed", kTol);
 }
 
+// The held-out test's own vortices: both senses of turning in every draw (omega's sign says
+// which way the flow turns), 3 to 5 particles (as the public drag's 4) alternately inside and
+// outside the core, one on the axis, numbers as the public tests write them.
+void random_vortices(wbtest::HeldOut& g) {
+  const wbtest::Params q(g);
+  for (const double sense : {1.0, -1.0}) {
+    VortexParams p;
+    p.center = Vec2(q.num(0, 0.0, 2.0), q.num(0, -2.0, 0.0));
+    p.omega = sense * q.num(0, 0.5, 2.5);
+    p.core = q.num(0, 1.0, 2.5);
+    p.drag = q.num(0, 0.5, 2.0);
+    const Eigen::Index n = q.count(4, 3, 5);
+    Mat2X x(2, n), v(2, n), f0(2, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      x.col(i) = i % 2 ? inside(q, Vec2(0, 0), p, 0) : outside(q, Vec2(0, 0), p, 0);
+      v.col(i) = Vec2(q.num(0, -2.0, 2.0), q.num(0, -2.0, 2.0));
+      f0.col(i) = Vec2(q.num(0, -4.0, 4.0), q.num(0, -4.0, 4.0));
+    }
+    x.col(g.integer(0, n - 1)) = p.center;
+    Mat2X expected = f0;
+    for (Eigen::Index i = 0; i < n; ++i)
+      expected.col(i) += p.drag * (rankine(x.col(i), p) - v.col(i));
+    Mat2X f = f0;
+    add_vortex(x, v, p, f);
+    INFO("x = " << x << "\n  v = " << v << "\n  center " << wbtest::str(p.center)
+                << ", omega = " << p.omega << ", core R = " << p.core << ", drag c = " << p.drag);
+    wbtest::require_near(f, expected, 1e-11,
+                         "f_i += c (u(x_i) - v_i) for every particle, u = omega perp(d) inside "
+                         "the core, omega R^2 perp(d) / r^2 outside",
+                         1e-12);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("F8 vortex: inside the core the flow turns like a solid disc", "[forces][F8][2pts]") {
+  solid_core(wbtest::Params());
+}
+
+TEST_CASE("F8 vortex: outside the core the speed falls off as omega R^2 / r",
+          "[forces][F8][2pts]") {
+  outer_flow(wbtest::Params());
+}
+
+TEST_CASE("F8 vortex: the flow is continuous at the core radius and zero at the centre",
+          "[forces][F8][1pts]") {
+  continuity(wbtest::Params());
+}
+
+TEST_CASE("F8 vortex: drag c (u - v) towards the flow is zero for a particle moving with it",
+          "[forces][F8][3pts]") {
+  drag(wbtest::Params());
+}
+
+TEST_CASE("F8 vortex: omega > 0 turns counter-clockwise and omega < 0 clockwise",
+          "[forces][F8][1pts]") {
+  turning_sense(wbtest::Params());
+}
+
+// Every public scenario above again, its parameters drawn from the held-out seed in the public
+// tests' format (short decimals, the same sizes, about the same magnitudes, each scenario's
+// calls in the share they have among the public tests' calls), so that no call tells the public
+// tests from this one (tools/adversary --inputs); then vortices of the test's own.
 TEST_CASE("F8 held-out: random vortices and particles inside and outside the core",
           "[forces][F8][held-out][2pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("F8")) {
     INFO(g.replay());
-    // Both senses of turning in every draw: omega's sign says which way the flow turns.
-    for (const double sense : {1.0, -1.0}) {
-      VortexParams p;
-      p.center = g.vec2(-2.0, 2.0);
-      p.omega = sense * g.uniform(0.2, 4.0);
-      p.core = g.uniform(0.5, 2.5);
-      p.drag = g.uniform(0.1, 3.0);
-      const Eigen::Index n = g.integer(4, 10);
-      // Half of them inside the core, half outside, one on the axis.
-      Mat2X x(2, n);
-      for (Eigen::Index i = 0; i < n; ++i)
-        x.col(i) = p.center +
-                   (i % 2 ? g.uniform(0.05, 0.95) : g.uniform(1.05, 3.0)) * p.core * g.unit2();
-      x.col(g.integer(0, n - 1)) = p.center;
-      const Mat2X v = g.points(n, -3.0, 3.0), f0 = g.points(n, -5.0, 5.0);
-      Mat2X expected = f0;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        const Vec2 d = x.col(i) - p.center, perp(-d.y(), d.x());
-        const double r = d.norm();
-        const Vec2 u =
-            r <= p.core ? Vec2(p.omega * perp) : Vec2(p.omega * p.core * p.core * perp / (r * r));
-        INFO("x = " << wbtest::str(x.col(i)) << ", center " << wbtest::str(p.center)
-                    << ", omega = " << p.omega << ", core R = " << p.core);
-        wbtest::require_near(
-            vortex_flow(x.col(i), p), u, 1e-12 * (1.0 + u.norm()),
-            "Rankine vortex: omega perp(d) inside, omega R^2 perp(d) / r^2 outside", 1e-12);
-        expected.col(i) += p.drag * (u - v.col(i));
-      }
-      Mat2X f = f0;
-      add_vortex(x, v, p, f);
-      INFO("x = " << x << "\n  v = " << v << "\n  drag c = " << p.drag);
-      wbtest::require_near(f, expected, 1e-11, "f_i += c (u(x_i) - v_i) for every particle",
-                           1e-12);
-    }
+    const wbtest::Params q(g);
+    solid_core(q);
+    outer_flow(q);
+    continuity(q);
+    drag(q);
+    turning_sense(q);
+    random_vortices(g);
   }
 }
 
