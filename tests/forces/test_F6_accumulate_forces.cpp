@@ -6,6 +6,7 @@
 
 #include "accumulate_forces.h"
 #include "heldout.h"
+#include "params.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -19,8 +20,9 @@ using Terms = std::vector<std::unique_ptr<wb::Force>>;
 
 namespace {
 
-// The terms below add small integers and halves: every sum is exact, so
-// any correct order of summation gives the same bits. 1e-12 is rounding slack.
+// The terms below add small integers and halves: every sum of the published values is exact,
+// so any correct order of summation gives the same bits; drawn short decimals leave a few ulps
+// of the largest term. 1e-12 (absolute and relative) is rounding slack.
 constexpr double kTol = 1e-12;
 
 // Force::add must get f already 2 x n (the interface says terms never resize it).
@@ -70,8 +72,10 @@ struct System {
   VecX m;
 };
 
-// Four particles with exactly representable coordinates.
-System four() {
+// Four particles with exactly representable coordinates. Held-out (wbtest::Params): every
+// coordinate and mass drawn as a short decimal in the published ones' ranges (the largest
+// about the published 4), still four particles.
+System four(const wbtest::Params& q) {
   System s;
   s.x.resize(2, 4);
   s.x << 1.0, -2.5, 0.5, 3.0,  //
@@ -81,6 +85,13 @@ System four() {
       -1.5, 2.0, 0.25, 3.0;
   s.m.resize(4);
   s.m << 1.0, 2.0, 0.5, 4.0;
+  for (Eigen::Index i = 0; i < 4; ++i) {
+    for (int d = 0; d < 2; ++d) {
+      s.x(d, i) = q.num(s.x(d, i), -4.2, 4.2);
+      s.v(d, i) = q.num(s.v(d, i), -3.5, 3.5);
+    }
+    s.m[i] = q.num(s.m[i], 0.3, 4.2);
+  }
   return s;
 }
 
@@ -101,41 +112,43 @@ Mat2X expected_sum(const System& s) {
   return f;
 }
 
-}  // namespace
+// The scenarios of the public tests below, each a function of its parameters: the public test
+// runs it with the published ones (wbtest::Params()), the held-out test with drawn ones, in the
+// same format (tests/common/params.h): the system drawn (four), the garbage f comes in with
+// drawn about the published garbage (1e30, -3, 5), its sizes as published.
 
-TEST_CASE("F6 accumulate forces: the total is the sum of every term", "[forces][F6][3pts]") {
-  const System s = four();
+void sum_of_terms(const wbtest::Params& q) {
+  const System s = four(q);
   const Terms terms = three_terms();
   Mat2X f = Mat2X::Zero(2, 4);
   accumulate_forces(terms, s.x, s.v, s.m, f);
   wbtest::require_near(f, expected_sum(s), kTol,
                        "superposition: the total force is the sum of the terms' forces", kTol);
 
-  // One term alone gives that term alone.
+  // One term alone gives that term alone: m_i (1, -2), with the published masses
+  // (1, 2, 0.5, 4, -2, -4, -1, -8).
   Terms one;
   one.push_back(std::make_unique<MassTerm>());
   accumulate_forces(one, s.x, s.v, s.m, f);
   Mat2X mass_only(2, 4);
-  mass_only << 1.0, 2.0, 0.5, 4.0,  //
-      -2.0, -4.0, -1.0, -8.0;
+  for (Eigen::Index i = 0; i < 4; ++i) mass_only.col(i) = s.m[i] * Vec2(1, -2);
   wbtest::require_near(f, mass_only, kTol, "a single term: the total is that term's force", kTol);
 }
 
-TEST_CASE("F6 accumulate forces: f of the wrong size or full of garbage still gives the sum",
-          "[forces][F6][2pts]") {
-  const System s = four();
+void garbage_in(const wbtest::Params& q) {
+  const System s = four(q);
   const Terms terms = three_terms();
   const Mat2X expected = expected_sum(s);
 
   // Too many columns, full of huge values (last step's forces of another scene, say).
-  Mat2X f = Mat2X::Constant(2, 7, 1e30);
+  Mat2X f = Mat2X::Constant(2, 7, q.num(1e30, 3e29, 3e30));
   accumulate_forces(terms, s.x, s.v, s.m, f);
   wbtest::require_near(f, expected, kTol,
                        "f came in 2 x 7: it must leave 2 x n holding only the sum of the terms",
                        kTol);
 
   // Too few columns.
-  f = Mat2X::Constant(2, 1, -3.0);
+  f = Mat2X::Constant(2, 1, q.num(-3.0, -5.0, -1.0));
   accumulate_forces(terms, s.x, s.v, s.m, f);
   wbtest::require_near(f, expected, kTol,
                        "f came in 2 x 1: it must leave 2 x n holding only the sum of the terms",
@@ -150,9 +163,9 @@ TEST_CASE("F6 accumulate forces: f of the wrong size or full of garbage still gi
                        kTol);
 }
 
-TEST_CASE("F6 accumulate forces: calling it twice gives the same result", "[forces][F6][2pts]") {
+void called_twice(const wbtest::Params& q) {
   // The driver reuses the same f every step: the second call must not add on top of the first.
-  const System s = four();
+  const System s = four(q);
   const Terms terms = three_terms();
   Mat2X f = Mat2X::Zero(2, 4);
   accumulate_forces(terms, s.x, s.v, s.m, f);
@@ -163,48 +176,86 @@ TEST_CASE("F6 accumulate forces: calling it twice gives the same result", "[forc
                        kTol);
 }
 
-TEST_CASE("F6 accumulate forces: no terms give zero force of the right size",
-          "[forces][F6][1pts]") {
-  const System s = four();
+void no_terms(const wbtest::Params& q) {
+  const System s = four(q);
   const Terms none;
-  Mat2X f = Mat2X::Constant(2, 2, 5.0);
+  Mat2X f = Mat2X::Constant(2, 2, q.num(5.0, 1.0, 9.0));
   accumulate_forces(none, s.x, s.v, s.m, f);
   wbtest::require_near(f, Mat2X::Zero(2, 4), 0.0,
                        "no force terms: every particle is free, f = 0 (2 x n)");
 }
 
+// The held-out test's own systems: 3 to 6 particles, a random list of the three terms (each may
+// come twice, or not at all), f coming in with too few columns, the right number and too many,
+// holding one of the public tests' kinds of garbage (zero, huge, small, NaN), numbers as the
+// public tests write them.
+void random_systems(wbtest::HeldOut& g) {
+  const wbtest::Params q(g);
+  System s;
+  const Eigen::Index n = q.count(4, 3, 6);
+  s.x.resize(2, n), s.v.resize(2, n), s.m.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s.x.col(i) = Vec2(q.num(0, -4.0, 4.0), q.num(0, -4.0, 4.0));
+    s.v.col(i) = Vec2(q.num(0, -4.0, 4.0), q.num(0, -4.0, 4.0));
+    s.m[i] = q.num(1, 0.1, 5.0);
+  }
+  Terms terms;
+  std::vector<int> kinds;
+  for (int k = int(g.integer(0, 4)); k > 0; --k) kinds.push_back(int(g.integer(0, 2)));
+  Mat2X expected = Mat2X::Zero(2, n);
+  for (int kind : kinds) {
+    if (kind == 0) terms.push_back(std::make_unique<MassTerm>());
+    if (kind == 1) terms.push_back(std::make_unique<PositionTerm>());
+    if (kind == 2) terms.push_back(std::make_unique<VelocityTerm>());
+    terms.back()->add(s.x, s.v, s.m, expected);
+  }
+  for (const Eigen::Index cols : {Eigen::Index(g.integer(0, 1)), n, n + g.integer(1, 3)}) {
+    const double garbage[] = {0.0, q.num(1e30, 3e29, 3e30), q.num(-3.0, -5.0, -1.0),
+                              std::numeric_limits<double>::quiet_NaN(), q.num(5.0, 1.0, 9.0)};
+    Mat2X f = Mat2X::Constant(2, cols, garbage[g.integer(0, 4)]);
+    INFO(kinds.size() << " terms, " << n << " particles, f coming in with " << cols
+                      << " columns of " << (cols > 0 ? f(0, 0) : 0.0));
+    accumulate_forces(terms, s.x, s.v, s.m, f);
+    wbtest::require_near(f, expected, kTol, "f = the sum of every term's force, nothing else",
+                         kTol);
+    accumulate_forces(terms, s.x, s.v, s.m, f);
+    wbtest::require_near(f, expected, kTol, "a second call gives the same sum again", kTol);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("F6 accumulate forces: the total is the sum of every term", "[forces][F6][3pts]") {
+  sum_of_terms(wbtest::Params());
+}
+
+TEST_CASE("F6 accumulate forces: f of the wrong size or full of garbage still gives the sum",
+          "[forces][F6][2pts]") {
+  garbage_in(wbtest::Params());
+}
+
+TEST_CASE("F6 accumulate forces: calling it twice gives the same result", "[forces][F6][2pts]") {
+  called_twice(wbtest::Params());
+}
+
+TEST_CASE("F6 accumulate forces: no terms give zero force of the right size",
+          "[forces][F6][1pts]") {
+  no_terms(wbtest::Params());
+}
+
+// Every public scenario above again, its parameters drawn from the held-out seed in the public
+// tests' format (short decimals, the same sizes and kinds of garbage), so that no call tells
+// the public tests from this one (tools/adversary --inputs); then systems of the test's own.
 TEST_CASE("F6 held-out: random systems and term lists sum to exactly the terms' forces",
           "[forces][F6][held-out][1pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("F6")) {
     INFO(g.replay());
-    System s;
-    const Eigen::Index n = g.integer(2, 9);
-    s.x = g.points(n, -4.0, 4.0);
-    s.v = g.points(n, -4.0, 4.0);
-    s.m = g.values(n, 0.1, 5.0);
-    // A random list of the three terms (each may come twice, or not at all).
-    Terms terms;
-    std::vector<int> kinds;
-    for (int k = int(g.integer(0, 4)); k > 0; --k) kinds.push_back(int(g.integer(0, 2)));
-    Mat2X expected = Mat2X::Zero(2, n);
-    for (int kind : kinds) {
-      if (kind == 0) terms.push_back(std::make_unique<MassTerm>());
-      if (kind == 1) terms.push_back(std::make_unique<PositionTerm>());
-      if (kind == 2) terms.push_back(std::make_unique<VelocityTerm>());
-      terms.back()->add(s.x, s.v, s.m, expected);
-    }
-    // f comes in with any size and any contents: too few columns, the right number, too many.
-    for (const Eigen::Index cols : {Eigen::Index(g.integer(0, 1)), n, n + g.integer(1, 3)}) {
-      Mat2X f = g.points(cols, -1e3, 1e3);
-      if (cols > 0 && g.coin()) f(0, 0) = std::numeric_limits<double>::quiet_NaN();
-      INFO(kinds.size() << " terms, " << n << " particles, f coming in with " << cols
-                        << " columns");
-      accumulate_forces(terms, s.x, s.v, s.m, f);
-      wbtest::require_near(f, expected, kTol, "f = the sum of every term's force, nothing else",
-                           kTol);
-      accumulate_forces(terms, s.x, s.v, s.m, f);
-      wbtest::require_near(f, expected, kTol, "a second call gives the same sum again", kTol);
-    }
+    const wbtest::Params q(g);
+    sum_of_terms(q);
+    garbage_in(q);
+    called_twice(q);
+    no_terms(q);
+    random_systems(g);
   }
 }
 
