@@ -63,11 +63,24 @@ double ramp(double s) {
   return 15.0 / 8 * s - 10.0 / 8 * s * s * s + 3.0 / 8 * s * s * s * s * s;
 }
 // psi_c of the header, written out: ramp(d / d0) psi, d the signed distance to the nearest edge.
-double ramped(const Vec2& y, const CurlNoiseParams& p) {
-  if (p.obstacles.empty()) return p.psi(y);
+double nearest_edge_distance(const Vec2& y, const CurlNoiseParams& p) {
   double d = std::numeric_limits<double>::infinity();
   for (const Disc& ob : p.obstacles) d = wbtest::least_of(d, (y - ob.center).norm() - ob.radius);
-  return ramp(d / p.ramp) * p.psi(y);
+  return d;
+}
+double ramped(const Vec2& y, const CurlNoiseParams& p) {
+  if (p.obstacles.empty()) return p.psi(y);
+  return ramp(nearest_edge_distance(y, p) / p.ramp) * p.psi(y);
+}
+// What a failure on drawn discs says: the published case's situation, then this point's own
+// numbers (the published ones would not hold: d = 0.5 is now some other d).
+std::string situation(const wbtest::Params& q, const char* published, const Vec2& x,
+                      const CurlNoiseParams& p) {
+  if (!q.held_out()) return published;
+  const double d = nearest_edge_distance(x, p);
+  return std::string("drawn as the published case (") + published +
+         "): here d = " + wbtest::num(d) + ", d0 = " + wbtest::num(p.ramp) +
+         ", s = d / d0 = " + wbtest::num(d / p.ramp) + ", psi = " + wbtest::num(p.psi(x));
 }
 
 // The Rankine vortex of F8 (centre (1, -1), omega = 2, core R = 2) as a stream
@@ -249,8 +262,7 @@ void ramp_to_edge(const wbtest::Params& q) {
                          kTol,
                          std::string("psi_c = ramp(d / d0) psi with ramp(s) = 15/8 s - 10/8 s^3 "
                                      "+ 3/8 s^5 for |s| < 1: ") +
-                             (q.held_out() ? "on drawn discs, as published: " : "") + k.why +
-                             " (at " + wbtest::str(k.x) + ")");
+                             situation(q, k.why, k.x, p) + " (at " + wbtest::str(k.x) + ")");
   }
 }
 
@@ -284,15 +296,15 @@ void deep_inside(const wbtest::Params& q) {
     wbtest::require_near(curl_noise_potential(k.x, p),
                          expect(q, k.ramp * p.psi(k.x), ramped(k.x, p)), kTol,
                          std::string("psi_c = ramp(d / d0) psi, ramp(s) = -1 for s <= -1: ") +
-                             (q.held_out() ? "on a drawn disc, as published: " : "") + k.why +
-                             " (at " + wbtest::str(k.x) + ")");
+                             situation(q, k.why, k.x, p) + " (at " + wbtest::str(k.x) + ")");
   }
   const Vec2 uniform(p.psi(Vec2(0, 1)) - p.psi(Vec2(0, 0)),
                      p.psi(Vec2(0, 0)) - p.psi(Vec2(1, 0)));
   wbtest::require_near(curl_noise_flow(cases[0].x, p), expect(q, Vec2(-0.5, -2.0), -uniform),
                        kTol,
-                       "deep inside (ramp = -1 all around) the flow is the curl of -psi: "
-                       "-(0.5, 2)");
+                       std::string("deep inside (ramp = -1 all around) the flow is the curl of "
+                                   "-psi") +
+                           (q.held_out() ? "" : ": -(0.5, 2)"));
 }
 
 void nearest_edge(const wbtest::Params& q) {
@@ -312,14 +324,20 @@ void nearest_edge(const wbtest::Params& q) {
       large{at(q, Vec2(3.5, 0), x, far, a + 3.14159), q.num(2.0, far - 0.45, far - 0.3)};
   for (int order = 0; order < 2; ++order) {
     p.obstacles = order == 0 ? std::vector<Disc>{small, large} : std::vector<Disc>{large, small};
+    const std::string d_large = q.held_out()
+                                    ? wbtest::num((x - large.center).norm() - large.radius)
+                                    : "0.5",
+                      d_small = q.held_out()
+                                    ? wbtest::num((x - small.center).norm() - small.radius)
+                                    : "0.8",
+                      s = q.held_out() ? "ramp(d / d0)" : "ramp(1/4)";
     wbtest::require_near(curl_noise_potential(x, p), expect(q, c * kRampQuarter, ramped(x, p)),
                          kTol,
-                         std::string("d = min over the discs of (|x - center| - radius) = 0.5 "
-                                     "(the large disc's edge; the small disc's centre is "
-                                     "nearer but its edge is 0.8 away): psi_c = ramp(1/4) psi, "
-                                     "obstacles listed ") +
-                             (order == 0 ? "small first" : "large first") +
-                             (q.held_out() ? " (drawn discs, as published)" : ""));
+                         "d = min over the discs of (|x - center| - radius) = " + d_large +
+                             " (the large disc's edge; the small disc's centre is nearer but its "
+                             "edge is " +
+                             d_small + " away): psi_c = " + s + " psi, obstacles listed " +
+                             (order == 0 ? "small first" : "large first"));
   }
 }
 
