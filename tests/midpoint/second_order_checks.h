@@ -381,4 +381,23 @@ inline void check_random_steps(wbtest::HeldOut& g, StepFn step, bool trapezoid,
   }
 }
 
+// ---------------------------------------------------------------------------
+// The held-out test of M1 and M2: every step of random systems against the method's definition
+// first (the most telling failure), then every public scenario above again, its parameters
+// drawn from the held-out seed in the public tests' format (short decimals around the
+// published values, the published particle counts, the Kepler runs cut to the share of calls
+// the public test has), so that no call tells the public tests from this one
+// (tools/adversary --inputs). `coef` is the method's h^3 coefficient (check_third_order_term).
+inline void check_held_out(wbtest::HeldOut& g, StepFn step, bool trapezoid,
+                           const std::string& method, double coef) {
+  check_random_steps(g, step, trapezoid, method);
+  const wbtest::Params p(g);
+  check_second_order(p, step, method);
+  check_energy_factor(p, step, method);
+  check_damped_spring_step(p, step, method);
+  check_columns_apart(p, step, method);
+  check_third_order_term(p, step, method, coef);
+  check_two_evaluations(p, step, method);
+}
+
 }  // namespace mptest

@@ -42,25 +42,14 @@ TEST_CASE("M2 trapezoid: exactly two force evaluations per step", "[midpoint][M2
   mptest::check_two_evaluations(wbtest::Params(), trapezoid_step, kMethod);
 }
 
-// Every public scenario above again, its parameters drawn from the held-out seed in the public
-// tests' format (short decimals around the published values, the published particle counts,
-// the Kepler runs cut to the share of calls the public test has), so that no call tells the
-// public tests from this one (tools/adversary --inputs); first, every step of random systems
-// against the method's definition, in the same format (the most telling failure).
+// The public scenarios again with drawn parameters, after random systems (second_order_checks.h).
 TEST_CASE(
     "M2 held-out: every step of random systems follows the trapezoid rule with its two "
     "evaluations",
     "[midpoint][M2][held-out][8pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("M2")) {
     INFO(g.replay());
-    mptest::check_random_steps(g, trapezoid_step, true, kMethod);
-    const wbtest::Params p(g);
-    mptest::check_second_order(p, trapezoid_step, kMethod);
-    mptest::check_energy_factor(p, trapezoid_step, kMethod);
-    mptest::check_damped_spring_step(p, trapezoid_step, kMethod);
-    mptest::check_columns_apart(p, trapezoid_step, kMethod);
-    mptest::check_third_order_term(p, trapezoid_step, kMethod, kThirdOrderCoef);
-    mptest::check_two_evaluations(p, trapezoid_step, kMethod);
+    mptest::check_held_out(g, trapezoid_step, true, kMethod, kThirdOrderCoef);
   }
 }
 
