@@ -15,40 +15,41 @@ constexpr double kThirdOrderCoef = 1.0 / 8.0;  // h^3 a''[f, f] coefficient (Tay
 }  // namespace
 
 TEST_CASE("M1 midpoint: second order on the circular Kepler orbit", "[midpoint][M1][12pts]") {
-  mptest::check_second_order(midpoint_step, kMethod);
+  mptest::check_second_order(wbtest::Params(), midpoint_step, kMethod);
 }
 
 TEST_CASE("M1 midpoint: oscillator energy grows by 1 + (h w)^4/4 per step",
           "[midpoint][M1][8pts]") {
-  mptest::check_energy_factor(midpoint_step, kMethod);
+  mptest::check_energy_factor(wbtest::Params(), midpoint_step, kMethod);
 }
 
 TEST_CASE("M1 midpoint: one step on a damped spring is (I + hA + (hA)^2/2) X",
           "[midpoint][M1][7pts]") {
-  mptest::check_damped_spring_step(midpoint_step, kMethod);
+  mptest::check_damped_spring_step(wbtest::Params(), midpoint_step, kMethod);
 }
 
 TEST_CASE("M1 midpoint: several particles at once without mixing columns",
           "[midpoint][M1][5pts]") {
-  mptest::check_columns_apart(midpoint_step, kMethod);
+  mptest::check_columns_apart(wbtest::Params(), midpoint_step, kMethod);
 }
 
 TEST_CASE("M1 midpoint: h^3 velocity term on a nonlinear force is one eighth of a''(f f)",
           "[midpoint][M1][7pts]") {
-  mptest::check_third_order_term(midpoint_step, kMethod, kThirdOrderCoef);
+  mptest::check_third_order_term(wbtest::Params(), midpoint_step, kMethod, kThirdOrderCoef);
 }
 
 TEST_CASE("M1 midpoint: exactly two force evaluations per step", "[midpoint][M1][3pts]") {
-  mptest::check_two_evaluations(midpoint_step, kMethod);
+  mptest::check_two_evaluations(wbtest::Params(), midpoint_step, kMethod);
 }
 
+// The public scenarios again with drawn parameters, after random systems (second_order_checks.h).
 TEST_CASE(
     "M1 held-out: every step of random systems follows the midpoint rule with its two "
     "evaluations",
     "[midpoint][M1][held-out][8pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("M1")) {
     INFO(g.replay());
-    mptest::check_random_steps(g, midpoint_step, false, "midpoint");
+    mptest::check_held_out(g, midpoint_step, false, kMethod, kThirdOrderCoef);
   }
 }
 
