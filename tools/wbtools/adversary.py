@@ -252,6 +252,13 @@ def stump(public, held):
     balanced accuracy on the odd ones: (accuracy, feature, threshold)."""
     def balanced(rule, a, b):
         return (sum(map(rule, a)) / len(a) + sum(not rule(x) for x in b) / len(b)) / 2
+    # The halves at random (a fixed seed: the same table every run), not by the calls' order: a
+    # test that makes its large calls first and its small ones after would otherwise train on
+    # one kind and be tried on the other (F8's turning sense, 2026-12-07).
+    import random
+    public, held = list(public), list(held)
+    random.Random(42).shuffle(public)
+    random.Random(43).shuffle(held)
     train_a, test_a, train_b, test_b = public[::2], public[1::2], held[::2], held[1::2]
     if not (train_a and test_a and train_b and test_b):
         return None

@@ -87,3 +87,15 @@ def test_few_public_calls_are_measured_by_where_they_fall_among_the_held_out_one
         1, "log10 largest |number|")
     assert adversary.atypical([(1.0, 2.0, 0.001)], held) is not None  # at the range's edge
     assert adversary.atypical([(1.0, 3.0, 0.5)], held)[1] == "log2 particles"  # another size
+
+
+def test_the_halves_do_not_follow_the_calls_order():
+    """Defect: the rule was trained on the even calls and tried on the odd ones, so a public
+    test alternating a large and a small call (F8's turning sense) read as told apart in
+    reverse against held-out calls of the same two kinds in any order."""
+    import random
+    rng = random.Random(3)
+    public = [(1.0, 2.0, 1.0), (1.0, 2.0, -1.0)] * 50
+    held = [(1.0, 2.0, rng.choice((1.0, -1.0))) for _ in range(100)]
+    acc, _, _ = adversary.stump(public, held)
+    assert not adversary.told_apart(acc)
