@@ -5,6 +5,8 @@
 // vectors up to rounding (0.6, 0.8), (0.28, 0.96): the held-out ones are drawn among such.
 #pragma once
 #include <array>
+#include <cstdio>
+#include <cstdlib>
 
 #include "params.h"
 #include "wb/types.h"
@@ -32,6 +34,14 @@ inline wb::Vec2 short_unit(const wbtest::Params& p, const wb::Vec2& published,
   wb::Vec2 n(u[0], u[1]);
   if (p.pick({0.0, 1.0}) > 0) n = wb::Vec2(n.y(), n.x());
   return wb::Vec2(p.pick({1.0, -1.0}) * n.x(), p.pick({1.0, -1.0}) * n.y());
+}
+
+// x rounded to 6 significant digits: a coordinate a public test writes out in full (0.26 = 0.25
+// + 0.01), where kDigits would move it by more than the gap it stands for.
+inline double decimal6(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return std::strtod(buf, nullptr);
 }
 
 // A sign: +1 in a public test, else +-1.
