@@ -40,7 +40,7 @@ struct Oblique {
   explicit Oblique(const wbtest::Params& p)
       : n(collisionstest::short_unit(p, Vec2(0.28, 0.96))),
         x2(p.num(-0.4, -0.6, -0.2), p.num(0.15, 0.0, 0.3)),
-        dist(p.num(0.35, 0.32, 0.38)) {
+        dist(p.num(0.35, 0.32, 0.37)) {
     x1 = x2 + dist * n;
   }
 };
