@@ -12,6 +12,7 @@
 
 #include "grid_pairs.h"
 #include "heldout.h"
+#include "params.h"
 #include "test_helpers.h"
 
 // A lab's test files compile as one unit (cmake/labs.cmake): each keeps its
@@ -77,40 +78,56 @@ wb::VecX random_radii(Eigen::Index n, std::uint64_t seed, double lo, double hi) 
   return r;
 }
 
-}  // namespace
+// The public tests' scenarios, each a function of its parameters: the public test runs it with
+// the published ones (wbtest::Params()), the held-out test with drawn ones in the same format
+// (tests/common/params.h): the same sizes (a drawn one would be rare among the public calls,
+// and a submission could special-case the public ones), the same magnitudes, the scenes' own
+// seeds and ranges drawn. The lattices stay on binary fractions: touching must be exact.
 
-TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed radii",
-          "[collisions][C3][5pts]") {
+// Random scenes of 400 discs of mixed radii (some points among them), then a dense patch in a
+// sparse field.
+void random_scenes(const wbtest::Params& p) {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
     const Eigen::Index n = 400;
-    const wb::Mat2X x = wbtest::random_points(n, seed, -3.0, 2.0);  // negative coordinates too
-    wb::VecX r = random_radii(n, 100 + seed, 0.01, 0.15);
+    const auto drawn = std::uint64_t(p.count(long(seed), 1, 1L << 40));
+    // The box stays the published one: its corner -3 makes 3 the largest number of these
+    // calls (and of the points below), where a drawn corner would set them apart.
+    const wb::Mat2X x = wbtest::random_points(n, drawn, -3.0, 2.0);  // negative coordinates too
+    wb::VecX r = random_radii(n, std::uint64_t(p.count(long(100 + seed), 1, 1L << 40)),
+                              p.num(0.01, 0.005, 0.02), p.num(0.15, 0.1, 0.2));
     for (Eigen::Index i = 0; i < n; i += 7) r[i] = 0.0;  // some points among the discs
-    require_same_pairs(x, r, "random scene, seed " + std::to_string(seed));
+    require_same_pairs(x, r, "random scene, seed " + std::to_string(drawn));
   }
   // Clustered: a dense patch in a sparse field.
   wb::Mat2X x(2, 300);
-  x << wbtest::random_points(200, 9, 0.0, 0.5), wbtest::random_points(100, 10, -40.0, 40.0);
-  require_same_pairs(x, random_radii(300, 11, 0.02, 0.06), "dense patch in a sparse field");
+  const double patch = p.num(0.5, 0.4, 0.6), field = p.num(40.0, 30.0, 50.0);
+  x << wbtest::random_points(200, std::uint64_t(p.count(9, 1, 1L << 40)), 0.0, patch),
+      wbtest::random_points(100, std::uint64_t(p.count(10, 1, 1L << 40)), -field, field);
+  require_same_pairs(x,
+                     random_radii(300, std::uint64_t(p.count(11, 1, 1L << 40)),
+                                  p.num(0.02, 0.015, 0.025), p.num(0.06, 0.05, 0.07)),
+                     "dense patch in a sparse field");
 }
 
-TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
-          "[collisions][C3][4pts]") {
-  // k x k centres 2r apart (exact in binary), from -1 upwards: every disc
-  // touches its neighbours and each box touches its diagonal neighbours'
-  // corners, so the pairs are the lattice's 8-neighbour links:
-  //   2 k (k - 1) horizontal and vertical, 2 (k - 1)^2 diagonal.
-  for (double r : {0.125, 0.25}) {
+// k x k centres 2r apart (exact in binary), from a corner upwards: every disc touches its
+// neighbours and each box touches its diagonal neighbours' corners, so the pairs are the
+// lattice's 8-neighbour links: 2 k (k - 1) horizontal and vertical, 2 (k - 1)^2 diagonal.
+// Held-out: the radii (one sixteenth either way) and the corner, whole eighths, drawn.
+void lattice(const wbtest::Params& p) {
+  for (long sixteenths : {2L, 4L}) {
+    const double r = double(p.count(sixteenths, sixteenths - 1, sixteenths + 1)) / 16.0;
+    const wb::Vec2 corner(double(p.count(-8, -16, 8)) / 8.0, double(p.count(-8, -16, 8)) / 8.0);
     const int k = 12;
     wb::Mat2X x(2, k * k);
     for (int a = 0; a < k; ++a) {
-      for (int b = 0; b < k; ++b) x.col(a * k + b) = wb::Vec2(-1.0 + 2 * r * a, -1.0 + 2 * r * b);
+      for (int b = 0; b < k; ++b) x.col(a * k + b) = corner + wb::Vec2(2 * r * a, 2 * r * b);
     }
     const wb::VecX radius = wb::VecX::Constant(k * k, r);
     Pairs got;
     grid_pairs(x, radius, got);
     INFO("a 12 x 12 lattice of touching discs of radius "
-         << r << " on cell boundaries: expected " << 2 * k * (k - 1) + 2 * (k - 1) * (k - 1)
+         << r << " on cell boundaries, from " << wbtest::str(corner) << ": expected "
+         << 2 * k * (k - 1) + 2 * (k - 1) * (k - 1)
          << " pairs (every 8-neighbour link: touching boxes count), got " << got.size()
          << " (fewer: a neighbour cell left out, or a strict < where touching must count; "
             "more: a pair listed twice)");
@@ -119,12 +136,16 @@ TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
   }
 }
 
-TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far outliers",
-          "[collisions][C3][3pts]") {
+// Zero radii (only coincident points pair up); none, one and two particles; one large disc
+// among small ones and two far outliers.
+void zero_radii_and_outliers(const wbtest::Params& p) {
   {
-    // Points (radius 0): only coincident ones pair up; none, one and two particles.
+    // Three places a, b, c (drawn apart: a right of b, c right of both), copied as
+    // {0, 2, 5} at a and {1, 4} at b.
+    const wb::Vec2 a(p.num(0.5, 0.0, 1.0), p.num(1.0, 0.5, 1.5)),
+        b(p.num(-0.25, -1.0, -0.1), p.num(2.0, 1.5, 2.5)), c(3.0, p.num(0.0, -0.5, 0.5));
     wb::Mat2X x(2, 6);
-    x << 0.5, -0.25, 0.5, 3.0, -0.25, 0.5, 1.0, 2.0, 1.0, 0.0, 2.0, 1.0;
+    x << a, b, a, c, b, a;
     require_same_pairs(x, wb::VecX::Zero(6), "points with coincident copies");
     Pairs got;
     grid_pairs(x, wb::VecX::Zero(6), got);
@@ -136,98 +157,86 @@ TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far
     grid_pairs(wb::Mat2X(2, 0), wb::VecX(0), got);
     INFO("no particles give no pairs, and `pairs` is cleared first; got " << got.size());
     REQUIRE(got.empty());
-    grid_pairs(x.leftCols(1), wb::VecX::Constant(1, 0.3), got);
+    grid_pairs(x.leftCols(1), wb::VecX::Constant(1, p.num(0.3, 0.2, 0.4)), got);
     INFO("one particle gives no pairs (never a particle with itself); got " << got.size());
     REQUIRE(got.empty());
   }
   {
     const Eigen::Index n = 300;
-    wb::Mat2X x = wbtest::random_points(n, 21, -1.0, 1.0);
-    wb::VecX r = random_radii(n, 22, 0.005, 0.03);
-    r[n - 1] = 0.6;                      // one large disc
-    x.col(n - 2) = wb::Vec2(1e6, -1e6);  // far outliers
-    x.col(n - 3) = wb::Vec2(1e6 + 0.01, -1e6);
+    wb::Mat2X x = wbtest::random_points(n, std::uint64_t(p.count(21, 1, 1L << 40)), -1.0, 1.0);
+    wb::VecX r = random_radii(n, std::uint64_t(p.count(22, 1, 1L << 40)),
+                              p.num(0.005, 0.003, 0.008), p.num(0.03, 0.02, 0.04));
+    r[n - 1] = p.num(0.6, 0.4, 0.8);  // one large disc
+    const double far = p.num(1e6, 5e5, 2e6);
+    x.col(n - 2) = wb::Vec2(far, -far);  // far outliers
+    x.col(n - 3) = wb::Vec2(far + p.num(0.01, 0.005, 0.02), -far);
     require_same_pairs(x, r, "one large disc and two far outliers");
   }
 }
 
+// The held-out test's own scenes, of the public sizes and magnitudes: dense discs (cells
+// narrower than the largest diameter miss pairs), and mixed radii with zeros, one large disc,
+// one far away and two at the same place.
+void dense_and_mixed(wbtest::HeldOut& g) {
+  for (const Eigen::Index n : {Eigen::Index(400), Eigen::Index(300), Eigen::Index(144)}) {
+    // Dense: discs of about one radius R in a box R sqrt(n) / 2 wide, so that the box
+    // alone asks for cells narrower than R: many pairs lie between R and 2R apart, in
+    // cells two apart when the cells are narrower than the largest diameter.
+    const double R = g.uniform(0.02, 0.15), side = R * std::sqrt(double(n)) / 2;
+    const wb::Vec2 origin(-3.0, g.uniform(-3.0, 2.0 - side));  // in the public scenes' box
+    wb::Mat2X x(2, n);
+    wb::VecX radius(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      radius[i] = i % 7 == 0 ? 0.0 : R * g.uniform(0.8, 1.0);  // points as in the public scenes
+      x.col(i) = origin + side * g.vec2(0, 1);
+    }
+    require_same_pairs(x, radius, "dense discs, " + std::to_string(n));
+  }
+  for (const Eigen::Index n : {Eigen::Index(400), Eigen::Index(300)}) {
+    // Mixed radii (some zero, one large), spread in a box a few diameters wide, some far.
+    const double scale = g.uniform(0.2, 0.5);
+    wb::Mat2X x(2, n);
+    wb::VecX radius(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      radius[i] = i % 7 == 0 ? 0.0 : scale * g.uniform(0.05, 0.5);
+      x.col(i) = scale * g.vec2(-6, 4);
+    }
+    radius[g.integer(0, n - 1)] = scale * g.uniform(1.0, 3.0);
+    x.col(g.integer(0, n - 1)) = wb::Vec2(-3.0, g.uniform(-1.0, 1.0));  // at the box's edge
+    x.col(g.integer(0, n - 1)) = x.col(g.integer(0, n - 1));            // two at the same place
+    require_same_pairs(x, radius, "mixed radii, " + std::to_string(n));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("C3 grid_pairs: same pair set as brute force on random scenes of mixed radii",
+          "[collisions][C3][5pts]") {
+  random_scenes(wbtest::Params());
+}
+
+TEST_CASE("C3 grid_pairs: a lattice of touching discs on cell boundaries",
+          "[collisions][C3][4pts]") {
+  lattice(wbtest::Params());
+}
+
+TEST_CASE("C3 grid_pairs: zero radii and one large disc among small ones and far outliers",
+          "[collisions][C3][3pts]") {
+  zero_radii_and_outliers(wbtest::Params());
+}
+
+// Every public scenario above again, its parameters drawn from the held-out seed (the public
+// sizes and magnitudes), then dense and mixed scenes of the same sizes (tools/adversary
+// --inputs).
 TEST_CASE("C3 held-out: random scenes of mixed radii give the brute force's pair set",
           "[collisions][C3][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("C3")) {
     INFO(g.replay());
-    for (int s = 0; s < 4; ++s) {
-      const Eigen::Index n = s == 3 ? g.integer(40, 60) : g.integer(20, 60);
-      wb::Mat2X x(2, n);
-      wb::VecX radius(n);
-      if (s == 3) {
-        // Dense: discs of about one radius R in a box R sqrt(n) / 2 wide, so that the box
-        // alone asks for cells narrower than R: many pairs lie between R and 2R apart, in
-        // cells two apart when the cells are narrower than the largest diameter.
-        const double R = g.log_uniform(0.1, 10.0), side = R * std::sqrt(double(n)) / 2;
-        const wb::Vec2 origin = g.vec2(-100, 100) * R;
-        for (Eigen::Index i = 0; i < n; ++i) {
-          radius[i] = R * g.uniform(0.8, 1.0);
-          x.col(i) = origin + side * g.vec2(0, 1);
-        }
-      } else if (s == 0) {
-        // A lattice of touching discs of one radius (binary fractions, offset at random by
-        // whole spacings): boxes touch exactly on the cells' boundaries.
-        const double r = g.integer(1, 8) / 16.0;
-        const long cols = g.integer(3, 8);
-        const wb::Vec2 origin(2 * r * double(g.integer(-20, 20)),
-                              2 * r * double(g.integer(-20, 20)));
-        for (Eigen::Index i = 0; i < n; ++i) {
-          x.col(i) = origin + 2 * r * wb::Vec2(double(i % cols), double(i / cols));
-          radius[i] = r;
-        }
-      } else {
-        // Mixed radii (some zero, one large), spread in a box a few diameters wide, some far.
-        const double scale = g.log_uniform(0.1, 10.0);
-        for (Eigen::Index i = 0; i < n; ++i) {
-          radius[i] = g.coin(0.1) ? 0.0 : scale * g.uniform(0.05, 0.5);
-          x.col(i) = scale * g.vec2(-3, 3);
-        }
-        radius[g.integer(0, n - 1)] = scale * g.uniform(1.0, 3.0);
-        x.col(g.integer(0, n - 1)) = scale * g.vec2(-100, 100);
-        x.col(g.integer(0, n - 1)) = x.col(g.integer(0, n - 1));  // two at the same place
-      }
-      Pairs expected;
-      brute_force(x, radius, expected);
-      // The output comes in full of last call's pairs: it must be cleared.
-      Pairs got = {{0, 1}, {2, 3}, {int(n) - 2, int(n) - 1}};
-      grid_pairs(x, radius, got);
-      for (const auto& pr : got) {
-        INFO("pair (" << pr.first << ", " << pr.second << "): expected 0 <= i < j < " << n);
-        REQUIRE((0 <= pr.first && pr.first < pr.second && pr.second < n));  // nanfree: integers
-      }
-      std::sort(got.begin(), got.end());
-      std::sort(expected.begin(), expected.end());
-      Pairs missing, extra;
-      std::set_difference(expected.begin(), expected.end(), got.begin(), got.end(),
-                          std::back_inserter(missing));
-      std::set_difference(got.begin(), got.end(), expected.begin(), expected.end(),
-                          std::back_inserter(extra));
-      const bool repeated = std::adjacent_find(got.begin(), got.end()) != got.end();
-      std::ostringstream what;
-      what << (s == 0   ? "a lattice of touching discs"
-               : s == 3 ? "dense discs"
-                        : "mixed radii")
-           << ", " << n << " discs: " << expected.size() << " pairs expected, " << got.size()
-           << " found";
-      if (!missing.empty())
-        what << "; missing (" << missing[0].first << ", " << missing[0].second
-             << "): x = " << wbtest::str(x.col(missing[0].first))
-             << " r = " << radius[missing[0].first]
-             << " and x = " << wbtest::str(x.col(missing[0].second))
-             << " r = " << radius[missing[0].second];
-      if (!extra.empty())
-        what << "; not overlapping (" << extra[0].first << ", " << extra[0].second << ")";
-      if (repeated) what << "; a pair found twice";
-      INFO(what.str());
-      REQUIRE(missing.empty());
-      REQUIRE(extra.empty());
-      REQUIRE_FALSE(repeated);
-    }
+    const wbtest::Params p(g);
+    random_scenes(p);
+    lattice(p);
+    zero_radii_and_outliers(p);
+    dense_and_mixed(g);
   }
 }
 
