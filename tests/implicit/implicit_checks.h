@@ -10,6 +10,7 @@
 
 #include "backward_euler.h"
 #include "heldout.h"
+#include "params.h"
 #include "spring_network.h"
 #include "test_helpers.h"
 
@@ -193,25 +194,60 @@ inline NetworkSpring spring(Eigen::Index i, Eigen::Index j, double k, double res
 }
 
 // A small nonlinear network (4 particles, a triangle with a tail to an
-// anchor), every spring stretched, every particle moving.
-inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.0,
-                          double drag = 0.0) {
+// anchor), every spring stretched, every particle moving. With held-out parameters
+// (tests/common/params.h) every number is drawn around the published one (masses within 20 %,
+// positions within 0.02 m, the anchor within 0.05 m, rests within 0.03 m: every spring stays
+// stretched by at least 0.07 m, as the tests that ask for the exact Jacobian need; kd and drag
+// within 20 %), except the stiffness 60 N/m: the largest number of the public tests' calls on
+// this network, so the others stay below it.
+inline void small_network(const wbtest::Params& p, SpringNetwork& net, Mat2X& x, Mat2X& v,
+                          double kd = 0.0, double drag = 0.0) {
   net = SpringNetwork{};
-  net.m = Eigen::Vector4d(1.0, 2.0, 0.5, 1.5);
-  net.drag = drag;
-  net.springs = {spring(0, 1, 40.0, 0.8, kd), spring(1, 2, 25.0, 0.9, kd),
-                 spring(2, 0, 60.0, 0.7, kd), spring(2, 3, 30.0, 0.5, kd),
-                 spring(3, -1, 50.0, 0.6, kd, Vec2(2.5, -1.0))};
+  const double m0 = p.num(1.0, 0.8, 1.2), m1 = p.num(2.0, 1.6, 2.4), m2 = p.num(0.5, 0.4, 0.6),
+               m3 = p.num(1.5, 1.2, 1.8);  // one after the other: the same draws everywhere
+  net.m = Eigen::Vector4d(m0, m1, m2, m3);
+  net.drag = drag > 0 ? p.num(drag, 0.8 * drag, 1.2 * drag) : 0.0;
+  if (kd > 0) kd = p.num(kd, 0.8 * kd, 1.2 * kd);
+  const double k01 = p.num(40.0, 30.0, 50.0), k12 = p.num(25.0, 20.0, 30.0),
+               k23 = p.num(30.0, 25.0, 35.0), k3 = p.num(50.0, 40.0, 55.0);
+  const double r01 = p.num(0.8, 0.77, 0.83), r12 = p.num(0.9, 0.87, 0.93),
+               r20 = p.num(0.7, 0.67, 0.73), r23 = p.num(0.5, 0.47, 0.53),
+               r3 = p.num(0.6, 0.57, 0.63);
+  const double ax = p.num(2.5, 2.45, 2.55), ay = p.num(-1.0, -1.05, -0.95);
+  const Vec2 anchor(ax, ay);
+  net.springs = {spring(0, 1, k01, r01, kd), spring(1, 2, k12, r12, kd),
+                 spring(2, 0, 60.0, r20, kd), spring(2, 3, k23, r23, kd),
+                 spring(3, -1, k3, r3, kd, anchor)};
   x.resize(2, 4);
   v.resize(2, 4);
-  x << 0.0, 1.1, 0.4, 1.3,  //
-      0.0, 0.2, 1.0, 0.1;
-  v << 0.3, -0.5, 0.8, -0.2,  //
-      -0.7, 0.4, -0.1, 0.6;
+  const double px[2][4] = {{0.0, 1.1, 0.4, 1.3}, {0.0, 0.2, 1.0, 0.1}};
+  const double pv[2][4] = {{0.3, -0.5, 0.8, -0.2}, {-0.7, 0.4, -0.1, 0.6}};
+  for (int d = 0; d < 2; ++d) {
+    for (int q = 0; q < 4; ++q) {
+      x(d, q) = p.num(px[d][q], px[d][q] - 0.02, px[d][q] + 0.02);
+      v(d, q) = p.num(pv[d][q], pv[d][q] - 0.2, pv[d][q] + 0.2);
+    }
+  }
+}
+inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.0,
+                          double drag = 0.0) {
+  small_network(wbtest::Params(), net, x, v, kd, drag);
 }
 
 // External forces on small_network's four particles: gravity on each mass (m g, g = 9.8),
-// with a sideways push (push true) or without (false).
+// with a sideways push (push true) or without (false). Held-out: g and the push drawn, m g
+// written as a short decimal (as 9.8 m is in the public tests).
+inline Mat2X small_network_load(const wbtest::Params& p, const Eigen::VectorXd& m,
+                                bool push = true) {
+  const double g = p.num(9.8, 9.6, 10.0);
+  const double pushes[4] = {0.3, 0.0, -0.2, 0.1};
+  Mat2X f(2, 4);
+  for (int q = 0; q < 4; ++q) {
+    f(0, q) = push ? p.num(pushes[q], pushes[q] - 0.1, pushes[q] + 0.1) : 0.0;
+    f(1, q) = p.held_out() ? -wbtest::Params::short_decimal(m[q] * g) : -9.8 * m[q];
+  }
+  return f;
+}
 inline Mat2X small_network_load(bool push = true) {
   Mat2X f(2, 4);
   if (push)
@@ -223,15 +259,28 @@ inline Mat2X small_network_load(bool push = true) {
 
 // Two particles (m 2 and 0.5), each on its own linear spring (k 50 and 8) to its anchor,
 // with drag 0.7, moving and pushed by f: the closed-form one-step cases of I4 and I5.
-inline void anchored_pair(SpringNetwork& net, Mat2X& x, Mat2X& v, Mat2X& f) {
-  net = anchored_network({2.0, 0.5}, {50.0, 8.0}, {Vec2(0.3, -0.2), Vec2(-1.0, 0.4)});
-  net.drag = 0.7;
+// Held-out: every number drawn around the published one.
+inline void anchored_pair(const wbtest::Params& p, SpringNetwork& net, Mat2X& x, Mat2X& v,
+                          Mat2X& f) {
+  net = anchored_network({p.num(2.0, 1.5, 2.5), p.num(0.5, 0.3, 0.7)},
+                         {p.num(50.0, 40.0, 60.0), p.num(8.0, 5.0, 11.0)},
+                         {Vec2(p.num(0.3, 0.0, 0.6), p.num(-0.2, -0.5, 0.1)),
+                          Vec2(p.num(-1.0, -1.3, -0.7), p.num(0.4, 0.1, 0.7))});
+  net.drag = p.num(0.7, 0.4, 1.0);
   x.resize(2, 2);
   v.resize(2, 2);
   f.resize(2, 2);
-  x << 1.1, 0.2, 0.4, -0.6;
-  v << -0.6, 1.5, 2.1, 0.8;
-  f << 0.5, 0.1, -19.6, -4.9;
+  const double px[4] = {1.1, 0.2, 0.4, -0.6}, pv[4] = {-0.6, 1.5, 2.1, 0.8},
+               pf[4] = {0.5, 0.1, -19.6, -4.9};
+  for (int k = 0; k < 4; ++k) {  // row-major, as the public test writes them
+    x(k / 2, k % 2) = p.num(px[k], px[k] - 0.5, px[k] + 0.5);
+    v(k / 2, k % 2) = p.num(pv[k], pv[k] - 0.5, pv[k] + 0.5);
+    f(k / 2, k % 2) =
+        p.num(pf[k], pf[k] - 0.3 - 0.2 * std::abs(pf[k]), pf[k] + 0.3 + 0.2 * std::abs(pf[k]));
+  }
+}
+inline void anchored_pair(SpringNetwork& net, Mat2X& x, Mat2X& v, Mat2X& f) {
+  anchored_pair(wbtest::Params(), net, x, v, f);
 }
 
 // A network's workspace carried from step to step the way the grader carries it
@@ -267,41 +316,55 @@ struct Network {
 // compressed: spring 0 (between particles 1 and 0) compressed, rest > L by 10 to 40 %, where
 // the definite clamp changes its block (I3 wants one in every draw; Newton's steps converge
 // only linearly with a clamped block, so I4 leaves it to chance).
+// Every number is a short decimal (wbtest::Params::short_decimal), as the public tests write
+// theirs.
 inline Network random_network(wbtest::HeldOut& g, bool pin, bool compressed = false) {
   Network w;
+  const auto dec = wbtest::Params::short_decimal;
+  auto num = [&](double lo, double hi) { return dec(g.uniform(lo, hi)); };
+  auto points = [&](Eigen::Index n, double lo, double hi) {
+    Mat2X p(2, n);
+    for (Eigen::Index i = 0; i < n; ++i) p(0, i) = num(lo, hi), p(1, i) = num(lo, hi);
+    return p;
+  };
   const Eigen::Index n = g.integer(3, 6);
   w.x.resize(2, n);
   for (Eigen::Index i = 0; i < n; ++i) {
     for (;;) {  // at least 0.3 m from the others: no spring close to zero length
-      w.x.col(i) = g.vec2(-1.5, 1.5);
+      w.x.col(i) = points(1, -1.5, 1.5);
       bool far = true;
       for (Eigen::Index j = 0; j < i; ++j) far = far && (w.x.col(i) - w.x.col(j)).norm() > 0.3;
       if (far) break;
     }
   }
-  w.v = g.points(n, -1.0, 1.0);
-  w.f_ext = g.points(n, -3.0, 3.0);
-  w.net.m = g.values(n, 0.3, 3.0);
-  w.net.drag = g.uniform(0.0, 0.5);
+  w.v = points(n, -1.0, 1.0);
+  w.f_ext = points(n, -3.0, 3.0);
+  w.net.m.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) w.net.m[i] = num(0.3, 3.0);
+  w.net.drag = num(0.0, 0.5);
   auto add = [&](Eigen::Index i, Eigen::Index j, const Vec2& anchor) {
     const Vec2 xj = j < 0 ? anchor : Vec2(w.x.col(j));
     const double L = (Vec2(w.x.col(i)) - xj).norm();
-    w.net.springs.push_back(
-        spring(i, j, g.uniform(5.0, 60.0), L * g.uniform(0.6, 1.4), g.uniform(0.0, 1.0), anchor));
+    const double k = num(5.0, 60.0), rest = dec(L * g.uniform(0.6, 1.4)), kd = num(0.0, 1.0);
+    w.net.springs.push_back(spring(i, j, k, rest, kd, anchor));
   };
   for (Eigen::Index i = 1; i < n; ++i) add(i, g.integer(0, i - 1), Vec2::Zero());
   add(n - 1, 0, Vec2::Zero());
   if (compressed) {
     NetworkSpring& sp = w.net.springs[0];
-    sp.rest = (Vec2(w.x.col(sp.i)) - Vec2(w.x.col(sp.j))).norm() * g.uniform(1.1, 1.4);
+    sp.rest = dec((Vec2(w.x.col(sp.i)) - Vec2(w.x.col(sp.j))).norm() * g.uniform(1.1, 1.4));
   }
-  for (long a = g.integer(1, 2); a > 0; --a) add(g.integer(0, n - 1), -1, g.vec2(-2.0, 2.0));
+  for (long a = g.integer(1, 2); a > 0; --a) {
+    const Eigen::Index i = g.integer(0, n - 1);
+    add(i, -1, points(1, -2.0, 2.0).col(0));
+  }
   if (pin) {
     w.net.pinned.assign(std::size_t(n), 0);
     const Eigen::Index p = g.integer(0, n - 1);
     w.net.pinned[std::size_t(p)] = 1;
     // It arrives moving, at 0.3 to 1 m/s: a v left unzeroed shows on every draw.
-    w.v.col(p) = g.unit2() * g.uniform(0.3, 1.0);
+    const Vec2 u = g.unit2() * g.uniform(0.3, 1.0);
+    w.v.col(p) = Vec2(dec(u.x()), dec(u.y()));
   }
   return w;
 }

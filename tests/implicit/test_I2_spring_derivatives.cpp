@@ -1,6 +1,8 @@
 // Graded tests for I2, the spring's force and derivatives
 // (labs/implicit/spring_derivatives.cpp). Expected values: the force formula,
 // and central finite differences of it.
+#include <limits>
+
 #include "implicit_checks.h"
 #include "spring_derivatives.h"
 
@@ -18,97 +20,133 @@ using wb::Vec2;
 constexpr double kDelta = 1e-5;
 constexpr double kFdTol = 1e-7;
 constexpr double kRelTol = 1e-12;  // a closed form evaluated two ways: rounding only
-
-const Vec2 xi(0.4, 1.3), xj(-0.5, 0.6), vi(0.7, -0.2), vj(-0.3, 0.9);
-const double k = 30.0, kd = 2.5;
+// What the outputs hold before the call: NaN, which every call must overwrite (and the same in
+// every call, public or held-out, rather than whatever the stack held).
+const Vec2 kUnset = Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
+const Mat2 kUnsetBlock = Mat2::Constant(std::numeric_limits<double>::quiet_NaN());
 
 void require_mat(const Mat2& got, const Mat2& expected, double tol, const std::string& what) {
   INFO(what << "\n  expected\n" << expected << "\n  got\n" << got << "\n  tolerance " << tol);
   REQUIRE(wbtest::max_abs_diff(got, expected) <= tol);  // NaN fails
 }
 
-// Central differences in x_i of the force formula (imtest::spring_terms).
-Mat2 fd_x(double rest, double damping) {
-  Mat2 J;
-  for (int c = 0; c < 2; ++c) {
-    Vec2 e = Vec2::Zero();
-    e[c] = kDelta;
-    J.col(c) = (imtest::spring_terms(xi + e, xj, vi, vj, k, rest, damping).f -
-                imtest::spring_terms(xi - e, xj, vi, vj, k, rest, damping).f) /
-               (2 * kDelta);
+// The public tests' spring, or one drawn around it (tests/common/params.h): x_i - x_j within
+// (0.7..1.1, 0.5..0.9), so L in [0.86, 1.42] (published 1.14), between the stretched rests
+// (0.3 to 0.7) and the compressed ones (1.5 to 1.8). k = 30 as published: it is the largest
+// number of every public call (the positions, velocities and rests are O(1)), so a drawn one
+// would tell the held-out calls apart by their magnitude alone.
+struct Spring {
+  Vec2 xi, xj, vi, vj;
+  double k = 30.0, kd;
+  explicit Spring(const wbtest::Params& p)
+      : xi(p.num(0.4, -1.0, 1.0), p.num(1.3, 0.5, 2.0)),
+        vi(p.num(0.7, -1.0, 1.0), p.num(-0.2, -1.0, 1.0)),
+        vj(p.num(-0.3, -1.0, 1.0), p.num(0.9, -1.0, 1.0)),
+        kd(p.num(2.5, 1.0, 4.0)) {
+    const Vec2 d(p.num(0.9, 0.7, 1.1), p.num(0.7, 0.5, 0.9));
+    const auto dec = wbtest::Params::short_decimal;
+    xj = p.held_out() ? Vec2(dec(xi.x() - d.x()), dec(xi.y() - d.y())) : Vec2(-0.5, 0.6);
   }
-  return J;
-}
-}  // namespace
+  double stretched(const wbtest::Params& p) const { return p.num(0.5, 0.3, 0.7); }
+  double compressed(const wbtest::Params& p) const { return p.num(1.6, 1.5, 1.8); }
+  std::string str() const {
+    return "x_i = " + wbtest::str(xi) + ", x_j = " + wbtest::str(xj) +
+           ", v_i = " + wbtest::str(vi) + ", v_j = " + wbtest::str(vj) +
+           ", k = " + std::to_string(k) + ", kd = " + std::to_string(kd);
+  }
 
-TEST_CASE("I2 spring derivatives: force is -(k (L - rest) + kd (v_i - v_j).u) u",
-          "[implicit][I2][3pts]") {
-  for (double rest : {0.5, 1.6}) {  // stretched (L = 1.14) and compressed
-    Vec2 f;
-    Mat2 K, D;
-    spring_derivatives(xi, xj, vi, vj, k, rest, kd, false, f, K, D);
-    const Vec2 e = imtest::spring_terms(xi, xj, vi, vj, k, rest, kd).f;
+  // Central differences in x_i of the force formula (imtest::spring_terms).
+  Mat2 fd_x(double rest, double damping) const {
+    Mat2 J;
+    for (int c = 0; c < 2; ++c) {
+      Vec2 e = Vec2::Zero();
+      e[c] = kDelta;
+      J.col(c) = (imtest::spring_terms(xi + e, xj, vi, vj, k, rest, damping).f -
+                  imtest::spring_terms(xi - e, xj, vi, vj, k, rest, damping).f) /
+                 (2 * kDelta);
+    }
+    return J;
+  }
+};
+
+// The scenarios of the public tests below, each a function of its parameters: the public test
+// runs it with the published ones (wbtest::Params()), the held-out test with drawn ones.
+
+void force(const wbtest::Params& p) {
+  const Spring s(p);
+  INFO(s.str());
+  for (double rest : {s.stretched(p), s.compressed(p)}) {  // stretched (L = 1.14) and compressed
+    Vec2 f = kUnset;
+    Mat2 K = kUnsetBlock, D = kUnsetBlock;
+    spring_derivatives(s.xi, s.xj, s.vi, s.vj, s.k, rest, s.kd, false, f, K, D);
+    const Vec2 e = imtest::spring_terms(s.xi, s.xj, s.vi, s.vj, s.k, rest, s.kd).f;
     wbtest::require_near(f, e, 0.0, "spring-damper force on end i, rest " + std::to_string(rest),
                          kRelTol);
   }
 }
 
-TEST_CASE("I2 spring derivatives: K matches central differences of the elastic force",
-          "[implicit][I2][5pts]") {
+void stiffness_block(const wbtest::Params& p) {
   // The elastic force (kd = 0) stretched and compressed; definite = false: the exact block.
-  for (double rest : {0.5, 1.6, 0.0}) {
-    Vec2 f;
-    Mat2 K, D;
-    spring_derivatives(xi, xj, vi, vj, k, rest, 0.0, false, f, K, D);
-    require_mat(K, fd_x(rest, 0.0), kFdTol * k,
+  const Spring s(p);
+  INFO(s.str());
+  for (double rest : {s.stretched(p), s.compressed(p), 0.0}) {
+    Vec2 f = kUnset;
+    Mat2 K = kUnsetBlock, D = kUnsetBlock;
+    spring_derivatives(s.xi, s.xj, s.vi, s.vj, s.k, rest, 0.0, false, f, K, D);
+    require_mat(K, s.fd_x(rest, 0.0), kFdTol * s.k,
                 "K = df_i/dx_i against central differences, rest " + std::to_string(rest));
   }
 }
 
-TEST_CASE("I2 spring derivatives: D matches central differences in the velocities",
-          "[implicit][I2][3pts]") {
-  Vec2 f;
-  Mat2 K, D, J;
+void damping_block(const wbtest::Params& p) {
+  const Spring s(p);
+  INFO(s.str());
+  const double rest = p.num(0.8, 0.6, 1.0);
+  Vec2 f = kUnset;
+  Mat2 K = kUnsetBlock, D = kUnsetBlock, J;
   for (int c = 0; c < 2; ++c) {
     Vec2 e = Vec2::Zero();
     e[c] = kDelta;
-    J.col(c) = (imtest::spring_terms(xi, xj, vi + e, vj, k, 0.8, kd).f -
-                imtest::spring_terms(xi, xj, vi - e, vj, k, 0.8, kd).f) /
+    J.col(c) = (imtest::spring_terms(s.xi, s.xj, s.vi + e, s.vj, s.k, rest, s.kd).f -
+                imtest::spring_terms(s.xi, s.xj, s.vi - e, s.vj, s.k, rest, s.kd).f) /
                (2 * kDelta);
   }
-  spring_derivatives(xi, xj, vi, vj, k, 0.8, kd, false, f, K, D);
-  require_mat(D, J, kFdTol * kd, "D = df_i/dv_i against central differences");
+  spring_derivatives(s.xi, s.xj, s.vi, s.vj, s.k, rest, s.kd, false, f, K, D);
+  require_mat(D, J, kFdTol * s.kd, "D = df_i/dv_i against central differences");
 }
 
-TEST_CASE("I2 spring derivatives: definite drops only a compressed spring's cross term",
-          "[implicit][I2][3pts]") {
-  Vec2 f;
-  Mat2 K, D;
-  const Vec2 u = (xi - xj).normalized();
+void definite_clamp(const wbtest::Params& p) {
+  const Spring s(p);
+  INFO(s.str());
+  Vec2 f = kUnset;
+  Mat2 K = kUnsetBlock, D = kUnsetBlock;
+  const Vec2 u = (s.xi - s.xj).normalized();
   // Compressed (L = 1.14 < 1.6): K = -k u u^T, negative semi-definite.
-  spring_derivatives(xi, xj, vi, vj, k, 1.6, kd, true, f, K, D);
-  require_mat(K, -k * u * u.transpose(), kRelTol * k,
+  spring_derivatives(s.xi, s.xj, s.vi, s.vj, s.k, s.compressed(p), s.kd, true, f, K, D);
+  require_mat(K, -s.k * u * u.transpose(), kRelTol * s.k,
               "compressed spring with definite = true: K = -k u u^T");
   // Stretched: nothing to clamp, K is the exact block.
-  spring_derivatives(xi, xj, vi, vj, k, 0.5, kd, true, f, K, D);
-  require_mat(K, imtest::spring_terms(xi, xj, vi, vj, k, 0.5, kd).K, kRelTol * k,
+  const double rest = s.stretched(p);
+  spring_derivatives(s.xi, s.xj, s.vi, s.vj, s.k, rest, s.kd, true, f, K, D);
+  require_mat(K, imtest::spring_terms(s.xi, s.xj, s.vi, s.vj, s.k, rest, s.kd).K, kRelTol * s.k,
               "stretched spring with definite = true: the exact K");
 }
 
-TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
-          "[implicit][I2][3pts]") {
+void coincident(const wbtest::Params& p) {
   // Whatever the rest length and the flag (spring_derivatives.h: L == 0).
-  for (double rest : {0.0, 0.8}) {
+  const Spring s(p);
+  const double k = s.k;
+  for (double rest : {0.0, p.num(0.8, 0.3, 1.5)}) {
     for (bool definite : {true, false}) {
       Vec2 f(1.0, 1.0);
-      Mat2 K, D;
-      spring_derivatives(xi, xi, vi, vj, k, rest, kd, definite, f, K, D);
-      INFO("L = 0, rest " << rest << ", definite " << definite
-                          << ": the direction is undefined; f = 0, K = -k I (the rest-0 "
-                             "limit), D = 0; got f = "
-                          << f.transpose() << ", K =\n"
-                          << K << "\nD =\n"
-                          << D);
+      Mat2 K = kUnsetBlock, D = kUnsetBlock;
+      spring_derivatives(s.xi, s.xi, s.vi, s.vj, k, rest, s.kd, definite, f, K, D);
+      INFO(s.str() << "\nL = 0, rest " << rest << ", definite " << definite
+                   << ": the direction is undefined; f = 0, K = -k I (the rest-0 "
+                      "limit), D = 0; got f = "
+                   << f.transpose() << ", K =\n"
+                   << K << "\nD =\n"
+                   << D);
       REQUIRE(f.allFinite());
       REQUIRE(K.allFinite());
       REQUIRE(D.allFinite());
@@ -119,44 +157,96 @@ TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
   }
 }
 
+// The held-out test's own check: springs anywhere, stretched or compressed, every input a short
+// decimal as in the public tests; k as published in two of three (see Spring), else drawn.
+void random_springs(wbtest::HeldOut& g) {
+  const auto dec = wbtest::Params::short_decimal;
+  auto vec = [&](double lo, double hi) {
+    return Vec2(dec(g.uniform(lo, hi)), dec(g.uniform(lo, hi)));
+  };
+  for (int s = 0; s < 12; ++s) {
+    const Vec2 a = vec(-2, 2), va = vec(-3, 3), vb = vec(-3, 3);
+    Vec2 b = a;
+    if (s != 0) {
+      const Vec2 d = g.uniform(0.1, 2.0) * g.unit2();
+      b = Vec2(dec(a.x() + d.x()), dec(a.y() + d.y()));
+    }
+    const double kk = s % 3 == 1 ? dec(g.uniform(10.0, 50.0)) : 30.0,
+                 kdd = dec(g.uniform(0.0, 5.0));
+    const double L = (a - b).norm();
+    // Half of them compressed (rest > L), half stretched (and two more compressed).
+    const double rest = dec(s == 0             ? g.uniform(0.0, 1.0)
+                            : s % 2 || s >= 10 ? L * g.uniform(1.1, 2.0)
+                                               : L * g.uniform(0.3, 0.9));
+    // The last two compressed, with the clamp off, then on (where the clamp matters).
+    const bool definite = s >= 10 ? s == 11 : g.coin();
+    // f holds (1, 1) before a third of the calls, as before the public test's calls with
+    // coincident ends (4 of its 12): whatever it holds, it must be overwritten.
+    Vec2 f = s % 3 == 0 ? Vec2(1.0, 1.0) : kUnset;
+    Mat2 K = kUnsetBlock, D = kUnsetBlock;
+    spring_derivatives(a, b, va, vb, kk, rest, kdd, definite, f, K, D);
+    Vec2 fe(0, 0);
+    Mat2 Ke = -kk * Mat2::Identity(), De = Mat2::Zero();
+    if (L > 0) {
+      const imtest::SpringTerms t = imtest::spring_terms(a, b, va, vb, kk, rest, kdd, definite);
+      fe = t.f, Ke = t.K, De = t.D;
+    }
+    INFO("x_i = " << wbtest::str(a) << ", x_j = " << wbtest::str(b) << " (L = " << L
+                  << "), v_i = " << wbtest::str(va) << ", v_j = " << wbtest::str(vb)
+                  << ", k = " << kk << ", rest = " << rest << ", kd = " << kdd
+                  << ", definite = " << definite << "\n  got f = " << f.transpose() << ", K =\n"
+                  << K << "\n  D =\n"
+                  << D << "\n  expected K =\n"
+                  << Ke << "\n  D =\n"
+                  << De);
+    const double fscale = kk * (L + rest) + kdd * (va - vb).norm();
+    wbtest::require_near(f, fe, kRelTol * (1 + fscale),
+                         "f = -(k (L - rest) + kd (v_i - v_j).u) u (0 when L = 0)");
+    REQUIRE(wbtest::max_abs_diff(K, Ke) <= kRelTol * kk * (1 + rest / (L > 0 ? L : 1)));
+    REQUIRE(wbtest::max_abs_diff(D, De) <= kRelTol * (1 + kdd));
+  }
+}
+}  // namespace
+
+TEST_CASE("I2 spring derivatives: force is -(k (L - rest) + kd (v_i - v_j).u) u",
+          "[implicit][I2][3pts]") {
+  force(wbtest::Params());
+}
+
+TEST_CASE("I2 spring derivatives: K matches central differences of the elastic force",
+          "[implicit][I2][5pts]") {
+  stiffness_block(wbtest::Params());
+}
+
+TEST_CASE("I2 spring derivatives: D matches central differences in the velocities",
+          "[implicit][I2][3pts]") {
+  damping_block(wbtest::Params());
+}
+
+TEST_CASE("I2 spring derivatives: definite drops only a compressed spring's cross term",
+          "[implicit][I2][3pts]") {
+  definite_clamp(wbtest::Params());
+}
+
+TEST_CASE("I2 spring derivatives: coincident ends give f = 0 and K = -k I",
+          "[implicit][I2][3pts]") {
+  coincident(wbtest::Params());
+}
+
+// Every public scenario above again, its parameters drawn from the held-out seed in the public
+// tests' format (short decimals, the same magnitudes), so that no call tells the public tests
+// from this one (tools/adversary --inputs); then random springs anywhere.
 TEST_CASE("I2 held-out: random springs stretched or compressed give the header's f K and D",
           "[implicit][I2][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("I2")) {
     INFO(g.replay());
-    for (int s = 0; s < 12; ++s) {
-      const Vec2 a = g.vec2(-2, 2), va = g.vec2(-3, 3), vb = g.vec2(-3, 3);
-      const Vec2 b = s == 0 ? a : Vec2(a + g.uniform(0.1, 2.0) * g.unit2());
-      const double kk = g.uniform(1.0, 100.0), kdd = g.uniform(0.0, 5.0);
-      const double L = (a - b).norm();
-      // Half of them compressed (rest > L), half stretched (and two more compressed).
-      const double rest = s == 0             ? g.uniform(0.0, 1.0)
-                          : s % 2 || s >= 10 ? L * g.uniform(1.1, 2.0)
-                                             : L * g.uniform(0.3, 0.9);
-      // The last two compressed, with the clamp off, then on (where the clamp matters).
-      const bool definite = s >= 10 ? s == 11 : g.coin();
-      Vec2 f;
-      Mat2 K, D;
-      spring_derivatives(a, b, va, vb, kk, rest, kdd, definite, f, K, D);
-      Vec2 fe(0, 0);
-      Mat2 Ke = -kk * Mat2::Identity(), De = Mat2::Zero();
-      if (L > 0) {
-        const imtest::SpringTerms t = imtest::spring_terms(a, b, va, vb, kk, rest, kdd, definite);
-        fe = t.f, Ke = t.K, De = t.D;
-      }
-      INFO("x_i = " << wbtest::str(a) << ", x_j = " << wbtest::str(b) << " (L = " << L
-                    << "), v_i = " << wbtest::str(va) << ", v_j = " << wbtest::str(vb)
-                    << ", k = " << kk << ", rest = " << rest << ", kd = " << kdd
-                    << ", definite = " << definite << "\n  got f = " << f.transpose() << ", K =\n"
-                    << K << "\n  D =\n"
-                    << D << "\n  expected K =\n"
-                    << Ke << "\n  D =\n"
-                    << De);
-      const double fscale = kk * (L + rest) + kdd * (va - vb).norm();
-      wbtest::require_near(f, fe, kRelTol * (1 + fscale),
-                           "f = -(k (L - rest) + kd (v_i - v_j).u) u (0 when L = 0)");
-      REQUIRE(wbtest::max_abs_diff(K, Ke) <= kRelTol * kk * (1 + rest / (L > 0 ? L : 1)));
-      REQUIRE(wbtest::max_abs_diff(D, De) <= kRelTol * (1 + kdd));
-    }
+    const wbtest::Params p(g);
+    force(p);
+    stiffness_block(p);
+    damping_block(p);
+    definite_clamp(p);
+    coincident(p);
+    random_springs(g);
   }
 }
 

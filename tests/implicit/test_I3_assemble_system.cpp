@@ -15,24 +15,29 @@ using wb::Vec2;
 
 // A and b hold sums of a few products of O(1..100) numbers: rounding only.
 constexpr double kRelTol = 1e-12;
-constexpr double kH = 0.1;
 
+// The public tests' network and linearisation point, or one drawn around them
+// (tests/common/params.h: imtest::small_network's draws, the offsets, the load
+// and h).
 struct Setup {
   SpringNetwork net;
   Mat2X x0, v0, xl, vl, f_ext;
+  double h = 0.1;
 };
 
-Setup setup() {
+Setup setup(const wbtest::Params& p) {
   Setup s;
-  imtest::small_network(s.net, s.x0, s.v0, 1.5, 0.3);
+  imtest::small_network(p, s.net, s.x0, s.v0, 1.5, 0.3);
+  s.h = p.num(0.1, 0.08, 0.12);
   // A linearisation point away from x0 + h vl, so that b's K term counts.
-  s.vl = s.v0 + Mat2X::Constant(2, 4, 0.2);
-  s.xl = s.x0 + kH * s.vl;
-  s.xl(0, 1) += 0.03;
-  s.xl(1, 3) -= 0.02;
+  s.vl = s.v0 + Mat2X::Constant(2, 4, p.num(0.2, 0.1, 0.3));
+  s.xl = s.x0 + s.h * s.vl;
+  s.xl(0, 1) += p.num(0.03, 0.02, 0.04);
+  s.xl(1, 3) -= p.num(0.02, 0.01, 0.03);
   s.f_ext.resize(2, 4);
-  s.f_ext << 0.5, -0.3, 0.2, 0.4,  //
-      -9.8, -19.6, -4.9, -14.7;
+  const double push[4] = {0.5, -0.3, 0.2, 0.4};
+  for (int q = 0; q < 4; ++q) s.f_ext(0, q) = p.num(push[q], push[q] - 0.2, push[q] + 0.2);
+  s.f_ext.row(1) = imtest::small_network_load(p, s.net.m, false).row(1);  // m g, as published
   return s;
 }
 
@@ -45,10 +50,11 @@ void dense_reference(const Setup& s, Eigen::MatrixXd& A, Eigen::VectorXd& b,
   const Eigen::Index n = s.net.n();
   Eigen::VectorXd M(2 * n);
   for (Eigen::Index p = 0; p < n; ++p) M.segment<2>(2 * p).setConstant(s.net.m[p]);
-  A = Eigen::MatrixXd(M.asDiagonal()) - kH * D - kH * kH * K;
+  const double h = s.h;
+  A = Eigen::MatrixXd(M.asDiagonal()) - h * D - h * h * K;
   b = M.asDiagonal() * imtest::flat(s.v0 - s.vl) +
-      kH * imtest::flat(imtest::forces(s.net, s.xl, s.vl) + s.f_ext) +
-      kH * K * imtest::flat(s.x0 + kH * s.vl - s.xl);
+      h * imtest::flat(imtest::forces(s.net, s.xl, s.vl) + s.f_ext) +
+      h * K * imtest::flat(s.x0 + h * s.vl - s.xl);
   for (Eigen::Index p = 0; p < n; ++p) {
     if (!s.net.is_pinned(p)) continue;
     A.middleRows(2 * p, 2).setZero();
@@ -92,7 +98,8 @@ void require_dense(const SparseSystem& sys, const Eigen::MatrixXd& Ae, const Eig
   {
     const bool below = entry_below(A, r, c);
     INFO(what << ": A stores an entry below the diagonal, A(" << r << ", " << c
-              << "): only the upper triangle (row <= column) is stored (assemble_system.h)");
+              << "): only the upper triangle (row <= column) is stored "
+                 "(assemble_system.h)");
     REQUIRE_FALSE(below);
   }
   const Eigen::MatrixXd Ad = full(A);
@@ -108,11 +115,15 @@ void require_dense(const SparseSystem& sys, const Eigen::MatrixXd& Ae, const Eig
 }
 }  // namespace
 
-TEST_CASE("I3 assembly: A is 2n x 2n and stores its upper triangle with the network's sparsity",
-          "[implicit][I3][3pts]") {
-  const Setup s = setup();
+namespace {
+// The scenarios of the public tests below, each a function of its parameters:
+// the public test runs it with the published ones (wbtest::Params()), the
+// held-out test with drawn ones, in the same format (tests/common/params.h).
+
+void pattern(const wbtest::Params& p) {
+  const Setup s = setup(p);
   SparseSystem sys;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, sys);
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, s.h, true, sys);
   const Eigen::SparseMatrix<double>& A = sys.A;
   INFO("A is " << A.rows() << " x " << A.cols()
                << ", expected 8 x 8 (2n for the 4 particles, pinned ones included)");
@@ -133,13 +144,15 @@ TEST_CASE("I3 assembly: A is 2n x 2n and stores its upper triangle with the netw
       }
       {
         INFO(
-            "it is below the diagonal: A is symmetric, only its upper triangle (row <= "
+            "it is below the diagonal: A is symmetric, only its upper "
+            "triangle (row <= "
             "column) is stored (assemble_system.h)");
         REQUIRE(it.row() <= it.col());  // nanfree: integers
       }
     }
   }
-  // M - h D - h^2 K with -D, -K positive semi-definite (definite = true): diagonal >= m.
+  // M - h D - h^2 K with -D, -K positive semi-definite (definite = true):
+  // diagonal >= m.
   const Eigen::MatrixXd Ad = full(A);
   for (Eigen::Index p = 0; p < 4; ++p) {
     INFO("diagonal of particle " << p << ": " << Ad(2 * p, 2 * p) << ", "
@@ -148,7 +161,8 @@ TEST_CASE("I3 assembly: A is 2n x 2n and stores its upper triangle with the netw
     REQUIRE(wbtest::finite(Ad(2 * p, 2 * p)) >= s.net.m[p]);
     REQUIRE(wbtest::finite(Ad(2 * p + 1, 2 * p + 1)) >= s.net.m[p]);
   }
-  // The first assembly records where each of its values went (assemble_system.h).
+  // The first assembly records where each of its values went
+  // (assemble_system.h).
   INFO("sys.slot has " << sys.slot.size() << " entries for " << A.nonZeros()
                        << " stored ones: the first assembly records, for each value it adds, "
                           "its index in A.valuePtr() (at least one per stored entry)");
@@ -160,28 +174,27 @@ TEST_CASE("I3 assembly: A is 2n x 2n and stores its upper triangle with the netw
   }
 }
 
-TEST_CASE("I3 assembly: A and b equal a dense reference on a small network",
-          "[implicit][I3][4pts]") {
-  const Setup s = setup();
+void dense(const wbtest::Params& p) {
+  const Setup s = setup(p);
   SparseSystem sys;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, sys);
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, s.h, false, sys);
   Eigen::MatrixXd Ae;
   Eigen::VectorXd be;
   dense_reference(s, Ae, be);
   require_dense(sys, Ae, be, "A = M - h D - h^2 K, b = M (v0 - vl) + h (f + f_ext) + h K w");
 }
 
-TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3][3pts]") {
-  Setup s = setup();
+void start_rhs(const wbtest::Params& p) {
+  Setup s = setup(p);
   s.xl = s.x0;
   s.vl = s.v0;
   SparseSystem sys;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, sys);
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, s.h, false, sys);
   const Eigen::VectorXd& b = sys.b;
   Eigen::MatrixXd K, D;
   imtest::dense_jacobians(s.net, s.x0, s.v0, K, D);
-  const Eigen::VectorXd be = kH * (imtest::flat(imtest::forces(s.net, s.x0, s.v0) + s.f_ext) +
-                                   kH * K * imtest::flat(s.v0));
+  const Eigen::VectorXd be = s.h * (imtest::flat(imtest::forces(s.net, s.x0, s.v0) + s.f_ext) +
+                                    s.h * K * imtest::flat(s.v0));
   INFO("b has " << b.size() << " entries, expected " << be.size() << " (2n)");
   REQUIRE(b.size() == be.size());
   Eigen::Index i;
@@ -191,31 +204,29 @@ TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3
   REQUIRE(wbtest::max_abs_diff(b, be) <= kRelTol * wbtest::max_abs(be));  // NaN fails
 }
 
-TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
-          "[implicit][I3][3pts]") {
-  Setup s = setup();
+void pinned(const wbtest::Params& p) {
+  Setup s = setup(p);
   s.net.pinned = {0, 1, 0, 0};  // particle 1: springs to 0 and 2 act on them only
   s.vl.col(1).setZero();
   s.xl.col(1) = s.x0.col(1);
   SparseSystem sys;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, false, sys);
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, s.h, false, sys);
   Eigen::MatrixXd Ae;
   Eigen::VectorXd be;
   dense_reference(s, Ae, be);
   require_dense(sys, Ae, be, "particle 1 pinned");
 }
 
-TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks",
-          "[implicit][I3][2pts]") {
+void definite(const wbtest::Params& p) {
   // Springs 0-1 and 2-0 compressed (rest 1.5 > L), the others stretched: with
-  // definite = true their blocks lose the term across the spring, in A and in b;
-  // with definite = false they keep it.
-  Setup s = setup();
-  s.net.springs[0].rest = 1.5;
-  s.net.springs[2].rest = 1.5;
+  // definite = true their blocks lose the term across the spring, in A and in
+  // b; with definite = false they keep it.
+  Setup s = setup(p);
+  s.net.springs[0].rest = p.num(1.5, 1.3, 1.7);  // L = 1.12 (1.07 to 1.17 drawn)
+  s.net.springs[2].rest = p.num(1.5, 1.3, 1.7);  // L = 1.08 (1.03 to 1.13 drawn)
   for (bool definite : {true, false}) {
     SparseSystem sys;
-    assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, definite, sys);
+    assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, s.h, definite, sys);
     Eigen::MatrixXd Ae;
     Eigen::VectorXd be;
     dense_reference(s, Ae, be, definite);
@@ -226,20 +237,21 @@ TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks"
   }
 }
 
-TEST_CASE("I3 assembly: a later assembly writes its values into the first one's pattern",
-          "[implicit][I3][2pts]") {
-  // One system, assembled at one state, then again at another (other velocities,
-  // another linearisation point, another step size, definite switched, particle 1
-  // pinned in both): the second A and b are the dense reference's at the second
-  // state, in the first one's pattern. Its values are overwritten beforehand with
-  // NaN: a later assembly zeroes them before adding (assemble_system.h).
-  Setup s = setup();
+void later_assembly(const wbtest::Params& p) {
+  // One system, assembled at one state, then again at another (other
+  // velocities, another linearisation point, another step size, definite
+  // switched, particle 1 pinned in both): the second A and b are the dense
+  // reference's at the second state, in the first one's pattern. Its values are
+  // overwritten beforehand with NaN: a later assembly zeroes them before adding
+  // (assemble_system.h).
+  Setup s = setup(p);
   s.net.pinned = {0, 1, 0, 0};
   s.vl.col(1).setZero();
   s.xl.col(1) = s.x0.col(1);
   SparseSystem sys;
-  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, kH, true, sys);
-  // Slots outside A's values would make the second assembly write past them: checked first.
+  assemble_system(s.net, s.x0, s.v0, s.xl, s.vl, s.f_ext, s.h, true, sys);
+  // Slots outside A's values would make the second assembly write past them:
+  // checked first.
   for (int k : sys.slot) {
     INFO("after the first assembly, a slot " << k << " outside A's " << sys.A.nonZeros()
                                              << " stored values (a slot is where a value went "
@@ -255,11 +267,11 @@ TEST_CASE("I3 assembly: a later assembly writes its values into the first one's 
   sys.b.setConstant(std::nan(""));
   Setup t = s;
   t.v0 = s.v0.reverse().eval();
-  t.vl = t.v0 + Mat2X::Constant(2, 4, -0.1);
+  t.vl = t.v0 + Mat2X::Constant(2, 4, p.num(-0.1, -0.2, -0.05));
   t.vl.col(1).setZero();
-  t.xl = t.x0 + 0.5 * kH * t.vl;
-  t.xl(1, 2) += 0.04;
-  const double h2 = 0.5 * kH;
+  t.xl = t.x0 + 0.5 * s.h * t.vl;
+  t.xl(1, 2) += p.num(0.04, 0.02, 0.06);
+  const double h2 = 0.5 * s.h;
   assemble_system(t.net, t.x0, t.v0, t.xl, t.vl, t.f_ext, h2, false, sys);
   {
     const std::vector<int> outer2(sys.A.outerIndexPtr(),
@@ -289,18 +301,69 @@ TEST_CASE("I3 assembly: a later assembly writes its values into the first one's 
   Ae.block<2, 2>(2, 2) = t.net.m[1] * Eigen::Matrix2d::Identity();
   be.segment<2>(2).setZero();
   require_dense(sys, Ae, be,
-                "the second assembly (its values first set to NaN; h = 0.05, definite false)");
+                "the second assembly (its values first set to NaN; h = " + std::to_string(h2) +
+                    ", definite false)");
+}
+}  // namespace
+
+TEST_CASE(
+    "I3 assembly: A is 2n x 2n and stores its upper triangle with the "
+    "network's sparsity",
+    "[implicit][I3][3pts]") {
+  pattern(wbtest::Params());
+}
+
+TEST_CASE("I3 assembly: A and b equal a dense reference on a small network",
+          "[implicit][I3][4pts]") {
+  dense(wbtest::Params());
+}
+
+TEST_CASE("I3 assembly: at the start b is h (f + f_ext + h K v)", "[implicit][I3][3pts]") {
+  start_rhs(wbtest::Params());
+}
+
+TEST_CASE("I3 assembly: a pinned particle's rows hold only its mass and b = 0",
+          "[implicit][I3][3pts]") {
+  pinned(wbtest::Params());
+}
+
+TEST_CASE("I3 assembly: definite is passed on to the compressed springs' blocks",
+          "[implicit][I3][2pts]") {
+  definite(wbtest::Params());
 }
 
 TEST_CASE(
-    "I3 held-out: random networks assemble A = M - h D - h^2 K and b with only the allowed "
+    "I3 assembly: a later assembly writes its values into the first "
+    "one's pattern",
+    "[implicit][I3][2pts]") {
+  later_assembly(wbtest::Params());
+}
+
+TEST_CASE(
+    "I3 held-out: random networks assemble A = M - h D - h^2 K and b "
+    "with only the allowed "
     "blocks",
     "[implicit][I3][held-out][3pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("I3")) {
     INFO(g.replay());
-    // Each network with the clamp off and on (a compressed spring is where it matters), each
-    // assembled twice into the same system at two linearisation points (the second call
-    // reuses the pattern and its slots: every value must be replaced, none added).
+    // Every public scenario above again, its parameters drawn from the held-out
+    // seed in the public tests' format (short decimals, the same network's
+    // shape and largest number), so that no call tells the public tests from
+    // this one (tools/adversary --inputs); then random networks, assembled
+    // twice each.
+    {
+      const wbtest::Params p(g);
+      pattern(p);
+      dense(p);
+      start_rhs(p);
+      pinned(p);
+      definite(p);
+      later_assembly(p);
+    }
+    // Each network with the clamp off and on (a compressed spring is where it
+    // matters), each assembled twice into the same system at two linearisation
+    // points (the second call reuses the pattern and its slots: every value
+    // must be replaced, none added).
     for (const bool pin : {false, true}) {
       for (const bool definite : {false, true}) {
         imtest::Network w = imtest::random_network(g, pin, true);
@@ -329,8 +392,8 @@ TEST_CASE(
             REQUIRE(A.cols() == 2 * n);
             REQUIRE(b.size() == 2 * n);
           }
-          // Blocks that may hold entries: each particle's own, and pairs of free particles
-          // joined by a spring.
+          // Blocks that may hold entries: each particle's own, and pairs of
+          // free particles joined by a spring.
           Eigen::MatrixXi allowed = Eigen::MatrixXi::Identity(n, n);
           for (const NetworkSpring& sp : w.net.springs)
             if (sp.j >= 0 && !w.net.is_pinned(sp.i) && !w.net.is_pinned(sp.j))
@@ -341,7 +404,8 @@ TEST_CASE(
                    << it.row() << ", " << it.col() << ") between particles " << it.row() / 2
                    << " and " << it.col() / 2
                    << ": only a particle's own block and the blocks of a spring "
-                      "between two free particles may be stored, on or above the "
+                      "between two free particles may be stored, on or above "
+                      "the "
                       "diagonal (the upper triangle)");
               REQUIRE(allowed(it.row() / 2, it.col() / 2) == 1);
               REQUIRE(it.row() <= it.col());  // nanfree: integers
