@@ -271,6 +271,26 @@ def stump(public, held):
     return balanced(best[2], test_a, test_b), FEATURES[k], f"{'>' if sign > 0 else '<'} {t:.3g}"
 
 
+TYPICAL = (0.05, 0.95)  # a public call's mid-rank among the held-out calls, on every feature
+
+
+def atypical(public, held):
+    """For a task with fewer than MIN_CALLS public calls, where no rule can be trained on half of
+    them: the first public call that does not look like a held-out one, as (call index, feature,
+    mid-rank), or None. A public call looks like one when, on every feature, its mid-rank among
+    the held-out calls' values (the share below it, plus half the share equal to it) lies within
+    TYPICAL: a published value at the edge of the drawn range, or outside it, tells its call
+    apart as surely as a trained rule would."""
+    for i, call in enumerate(public):
+        for k, name in enumerate(FEATURES):
+            below = sum(h[k] < call[k] for h in held)
+            equal = sum(h[k] == call[k] for h in held)
+            rank = (below + equal / 2) / len(held)
+            if not TYPICAL[0] <= rank <= TYPICAL[1]:
+                return i, name, rank
+    return None
+
+
 def inputs_report(labs, built, cwd, seeds):
     """The --inputs table; False when a task's calls can be told apart."""
     ok = True
@@ -280,6 +300,14 @@ def inputs_report(labs, built, cwd, seeds):
         tests = list_tests(lab, built[lab][0])
         for task, calls in sorted(record_inputs(built[lab], lab, tests, cwd, seeds).items()):
             got = stump(calls["public"], calls["held-out"])
+            if 0 < len(calls["public"]) < MIN_CALLS <= len(calls["held-out"]):
+                odd = atypical(calls["public"], calls["held-out"])
+                ok &= odd is None
+                verdict = ("every public call typical of the held-out ones" if odd is None else
+                           f"public call {odd[0] + 1}: {odd[1]} at rank {odd[2]:.2f}")
+                print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
+                      f"{verdict:<49} {'ok' if odd is None else 'TOLD APART'}")
+                continue
             if min(len(calls["public"]), len(calls["held-out"])) < MIN_CALLS:
                 got = None
             if got is None:
@@ -293,7 +321,9 @@ def inputs_report(labs, built, cwd, seeds):
             print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
                   f"{feature + ' ' + (rule or ''):<49} {acc:.2f} {'ok' if good else 'TOLD APART'}")
     print(f"aim: no better than chance ({CHANCE:.1f} \u00b1 {MARGIN:.1f}) for every task, "
-          f"measured on at least {MIN_CALLS} calls of each class")
+          f"measured on at least {MIN_CALLS} calls of each class; a task with fewer public "
+          f"calls: each of them typical of the held-out ones (on every feature, a mid-rank "
+          f"within [{TYPICAL[0]}, {TYPICAL[1]}])")
     return ok
 
 

@@ -73,3 +73,17 @@ def test_the_inputs_classifier_tells_apart_only_what_differs():
     assert adversary.told_apart(0.23) and adversary.told_apart(0.77)
     assert not adversary.told_apart(0.5) and not adversary.told_apart(0.45)
     assert adversary.call_features("3 10 4 2.5 3") == pytest.approx((0.4, 2.0, 0.39794), 1e-4)
+
+
+def test_few_public_calls_are_measured_by_where_they_fall_among_the_held_out_ones():
+    """Defect: a task with fewer than MIN_CALLS public calls was reported unmeasurable (so a
+    port that fixed it could not pass), or passed with a published value outside the drawn
+    range or at its edge (a call told apart by that alone)."""
+    import random
+    rng = random.Random(2)
+    held = [(1.0, 2.0, rng.uniform(0.0, 1.0)) for _ in range(100)]
+    assert adversary.atypical([(1.0, 2.0, 0.5), (1.0, 2.0, 0.3)], held) is None
+    assert adversary.atypical([(1.0, 2.0, 0.5), (1.0, 2.0, 1.5)], held)[:2] == (
+        1, "log10 largest |number|")
+    assert adversary.atypical([(1.0, 2.0, 0.001)], held) is not None  # at the range's edge
+    assert adversary.atypical([(1.0, 3.0, 0.5)], held)[1] == "log2 particles"  # another size
