@@ -148,6 +148,25 @@ inline Body random_body(wbtest::HeldOut& g) {
   return b;
 }
 
+// A published vector in a scenario of the public tests (tests/common/params.h): as published
+// in the public test, each entry drawn in the held-out one, a short decimal within half of it
+// either side (within 0.5 of a published 0).
+inline Vec3 num3(const wbtest::Params& p, const Vec3& published) {
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    const double x = published[i], w = x == 0 ? 0.5 : 0.5 * std::abs(x);
+    v[i] = p.num(x, x - w, x + w);
+  }
+  return v;
+}
+
+// A published orientation quat(w, x, y, z): each component drawn within 0.2 of it (held-out).
+inline Eigen::Quaterniond quat_near(const wbtest::Params& p, double w, double x, double y,
+                                    double z) {
+  return quat(p.num(w, w - 0.2, w + 0.2), p.num(x, x - 0.2, x + 0.2), p.num(y, y - 0.2, y + 0.2),
+              p.num(z, z - 0.2, z + 0.2));
+}
+
 // Every field of a body against the expected one (tolerance relative to the sizes).
 inline void require_body(const Body& got, const Body& e, double tol, const std::string& what) {
   require_near(got.x, e.x, tol * (1 + e.x.norm()), what + ": x");

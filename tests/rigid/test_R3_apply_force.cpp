@@ -22,20 +22,11 @@ constexpr double kTol = 1e-13;
 // same format (tests/common/params.h): short decimals within half of the published value either
 // side (a published 0 within 0.5 of it), the orientations from quaternions of short decimals
 // (the identity where the public test has it); the expected values are the same definitions.
-Vec3 v3(const wbtest::Params& p, const Vec3& published) {
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    const double x = published[i], w = x == 0 ? 0.5 : 0.5 * std::abs(x);
-    v[i] = p.num(x, x - w, x + w);
-  }
-  return v;
-}
-
 void through_centre(const wbtest::Params& p) {
-  Body b = make_body(p.num(2.0, 1.0, 3.0), v3(p, Vec3(1, 2, 3)),
+  Body b = make_body(p.num(2.0, 1.0, 3.0), num3(p, Vec3(1, 2, 3)),
                      quat(1, p.num(0.2, 0.0, 0.4), p.num(0.3, 0.1, 0.5), p.num(0, -0.2, 0.2)),
-                     Vec3::Zero(), v3(p, Vec3(1, -2, 0.5)));
-  const Vec3 F = v3(p, Vec3(3.0, -1.0, 2.0));
+                     Vec3::Zero(), num3(p, Vec3(1, -2, 0.5)));
+  const Vec3 F = num3(p, Vec3(3.0, -1.0, 2.0));
   const double s = p.num(2.5, 1.25, 3.75);
   INFO("F = " << str(F) << " at x + " << s << " F, x = " << str(b.x));
   apply_force(b, F, b.x + s * F);  // the point lies on the line of action through x
@@ -45,10 +36,10 @@ void through_centre(const wbtest::Params& p) {
 }
 
 void lever_arms(const wbtest::Params& p) {
-  const Vec3 x0 = v3(p, Vec3(1, 1, 1));
+  const Vec3 x0 = num3(p, Vec3(1, 1, 1));
   Body b =
-      make_body(p.num(2.0, 1.0, 3.0), v3(p, Vec3(1, 2, 3)), quat(1, 0, 0, 0), Vec3::Zero(), x0);
-  const Vec3 f0 = v3(p, Vec3(0.5, 0.0, -1.0)), tau0 = v3(p, Vec3(0.25, 1.0, 0.0));
+      make_body(p.num(2.0, 1.0, 3.0), num3(p, Vec3(1, 2, 3)), quat(1, 0, 0, 0), Vec3::Zero(), x0);
+  const Vec3 f0 = num3(p, Vec3(0.5, 0.0, -1.0)), tau0 = num3(p, Vec3(0.25, 1.0, 0.0));
   b.f = f0;
   b.tau = tau0;
   // Lever arm a along x, force F along z: tau = a e_x x F e_z = -a F e_y.
@@ -70,11 +61,11 @@ void lever_arms(const wbtest::Params& p) {
 
 void gravity(const wbtest::Params& p) {
   const double m = p.num(2.5, 1.25, 3.75);
-  const Vec3 omega = v3(p, Vec3(1, 2, 3)), x0 = v3(p, Vec3(4, 5, 6));
-  Body b = make_body(m, v3(p, Vec3(1, 2, 3)),
+  const Vec3 omega = num3(p, Vec3(1, 2, 3)), x0 = num3(p, Vec3(4, 5, 6));
+  Body b = make_body(m, num3(p, Vec3(1, 2, 3)),
                      quat(p.num(0.3, 0.1, 0.5), p.num(0.2, 0.0, 0.4), p.num(0.9, 0.7, 1.0), 0),
                      omega, x0);
-  const Vec3 f0 = v3(p, Vec3(1.0, 0.0, 0.0)), tau0 = v3(p, Vec3(0.0, 2.0, 0.0));
+  const Vec3 f0 = num3(p, Vec3(1.0, 0.0, 0.0)), tau0 = num3(p, Vec3(0.0, 2.0, 0.0));
   b.f = f0;
   b.tau = tau0;
   const Vec3 g(p.num(0.0, -0.5, 0.5), p.num(-1.0, -1.5, -0.5), p.num(-9.81, -12.0, -7.5));

@@ -43,20 +43,6 @@ double orthonormality_error(const Mat3& R) {
 // public calls' largest number is often the moment 3, and a drawn one would tell them apart.
 // The held-out runs are shorter (the share of calls the public tests have, as tools/adversary
 // --inputs samples them).
-Vec3 v3(const wbtest::Params& p, const Vec3& published) {
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    const double x = published[i], w = x == 0 ? 0.5 : 0.5 * std::abs(x);
-    v[i] = p.num(x, x - w, x + w);
-  }
-  return v;
-}
-
-Eigen::Quaterniond q_near(const wbtest::Params& p, double w, double x, double y, double z) {
-  return quat(p.num(w, w - 0.2, w + 0.2), p.num(x, x - 0.2, x + 0.2), p.num(y, y - 0.2, y + 0.2),
-              p.num(z, z - 0.2, z + 0.2));
-}
-
 // A slow turn (omega h = 0.02 rad per step) or a fast spin (omega h = 1 rad per step), 1000 steps
 // of 0.01 s; held-out: 25 of them from a drawn point of the same run (reached by the test's
 // own update, rigidtest::ref_position), so that the states are the public run's, in its format
@@ -64,10 +50,10 @@ Eigen::Quaterniond q_near(const wbtest::Params& p, double w, double x, double y,
 void constant_omega(const wbtest::Params& p, double published_speed) {
   const double speed = p.num(published_speed, 0.5 * published_speed, 1.5 * published_speed);
   INFO("|omega| = " << speed << " rad/s");
-  const Vec3 w = speed * v3(p, Vec3(0.4, -1.1, 2.0)).normalized(),
-             v = v3(p, Vec3(1.0, -0.5, 2.0));
-  Body b = make_body(1.5, Vec3(1, 2, 3), q_near(p, 0.6, 0.2, -0.5, 0.3), w,
-                     v3(p, Vec3(0.1, 0.2, 0.3)), v);
+  const Vec3 w = speed * num3(p, Vec3(0.4, -1.1, 2.0)).normalized(),
+             v = num3(p, Vec3(1.0, -0.5, 2.0));
+  Body b = make_body(1.5, Vec3(1, 2, 3), quat_near(p, 0.6, 0.2, -0.5, 0.3), w,
+                     num3(p, Vec3(0.1, 0.2, 0.3)), v);
   const double h = p.num(0.01, 0.005, 0.015);
   const long skipped = p.count(0, 0, 975), n = p.steps(1000, 25);
   for (long k = 0; k < skipped; ++k) ref_position(b, h);
@@ -92,8 +78,8 @@ void constant_omega(const wbtest::Params& p, double published_speed) {
 // turn of ~1e-8 rad, far above the comparison's 1e-11), a spin along the body's first axis
 // (100 steps; held-out 4).
 void zero_tiny_axis(const wbtest::Params& p) {
-  const Eigen::Quaterniond q0 = q_near(p, 0.9, 0.1, 0.3, -0.2);
-  const Vec3 I(1, 2, 3), v = v3(p, Vec3(0.0, 3.0, 0.0));
+  const Eigen::Quaterniond q0 = quat_near(p, 0.9, 0.1, 0.3, -0.2);
+  const Vec3 I(1, 2, 3), v = num3(p, Vec3(0.0, 3.0, 0.0));
   const double m = 1.0, h0 = p.num(0.5, 0.25, 0.75);
   Body b = make_body(m, I, q0, Vec3::Zero(), Vec3::Zero(), v);
   integrate_position(b, h0);
@@ -136,8 +122,8 @@ void long_run(const wbtest::Params& p) {
   // A constant omega: every step multiplies by the same dq, so whatever rounding
   // |dq| carries adds up steadily instead of averaging out (a changing omega
   // would hide a missing renormalisation).
-  const Eigen::Quaterniond q0 = q_near(p, 0.5, 0.5, -0.5, 0.5);
-  const Vec3 w = v3(p, Vec3(3.0, -2.0, 5.0));
+  const Eigen::Quaterniond q0 = quat_near(p, 0.5, 0.5, -0.5, 0.5);
+  const Vec3 w = num3(p, Vec3(3.0, -2.0, 5.0));
   Body b = make_body(1.0, Vec3(1, 2, 3), q0, w);
   const double h = p.num(1e-3, 5e-4, 1.5e-3);
   const long n = p.steps(1000000, 10000);

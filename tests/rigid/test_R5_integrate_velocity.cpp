@@ -88,26 +88,12 @@ VelocityStep step_of(const wbtest::Params& p, bool implicit) {
 // the held-out ones take a few of the same run's steps (the share of calls the public tests
 // have, as tools/adversary --inputs samples them), after a drawn number taken by the test's own
 // update, and check every call against the header's update (check_velocity).
-Vec3 v3(const wbtest::Params& p, const Vec3& published) {
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    const double x = published[i], w = x == 0 ? 0.5 : 0.5 * std::abs(x);
-    v[i] = p.num(x, x - w, x + w);
-  }
-  return v;
-}
-
-Eigen::Quaterniond q_near(const wbtest::Params& p, double w, double x, double y, double z) {
-  return quat(p.num(w, w - 0.2, w + 0.2), p.num(x, x - 0.2, x + 0.2), p.num(y, y - 0.2, y + 0.2),
-              p.num(z, z - 0.2, z + 0.2));
-}
-
 // A tumbling body with three different moments (kg m^2), turned and spinning. The largest
 // moment stays 3 in the held-out test too (as in principal_axes): it is the largest number of
 // most of the public runs' calls, and a drawn one would tell the held-out calls apart.
 Body tumbling(const wbtest::Params& p) {
   return make_body(p.num(2.0, 1.0, 3.0), Vec3(p.num(1.0, 0.8, 1.2), p.num(2.0, 1.6, 2.4), 3.0),
-                   q_near(p, 0.7, 0.1, -0.4, 0.3), v3(p, Vec3(1.0, -0.5, 2.0)));
+                   quat_near(p, 0.7, 0.1, -0.4, 0.3), num3(p, Vec3(1.0, -0.5, 2.0)));
 }
 
 // Held-out: the state after a drawn number of the run's steps (0 in the public test), taken by
@@ -124,11 +110,11 @@ void skip_ahead(const wbtest::Params& p, Body& b, double h, bool implicit) {
 void from_rest(const wbtest::Params& p) {
   for (const Variant& var : kVariants) {
     INFO(var.name << " gyroscopic term");
-    const Eigen::Quaterniond q0 = q_near(p, 0.7, 0.1, -0.4, 0.3);
-    const Vec3 x0 = v3(p, Vec3(1, 2, 3)), f = v3(p, Vec3(4.0, -2.0, 1.0)),
-               tau = v3(p, Vec3(0.5, 1.5, -2.0));
-    Body b = make_body(p.num(2.0, 1.0, 3.0), v3(p, Vec3(1.0, 2.0, 3.0)), q0, Vec3::Zero(), x0,
-                       v3(p, Vec3(0.5, 0.0, -1.0)));
+    const Eigen::Quaterniond q0 = quat_near(p, 0.7, 0.1, -0.4, 0.3);
+    const Vec3 x0 = num3(p, Vec3(1, 2, 3)), f = num3(p, Vec3(4.0, -2.0, 1.0)),
+               tau = num3(p, Vec3(0.5, 1.5, -2.0));
+    Body b = make_body(p.num(2.0, 1.0, 3.0), num3(p, Vec3(1.0, 2.0, 3.0)), q0, Vec3::Zero(), x0,
+                       num3(p, Vec3(0.5, 0.0, -1.0)));
     b.f = f;
     b.tau = tau;
     const double h = p.num(0.1, 0.05, 0.15);
@@ -149,7 +135,7 @@ void from_rest(const wbtest::Params& p) {
 
 void explicit_one_step(const wbtest::Params& p) {
   Body b = tumbling(p);
-  b.tau = v3(p, Vec3(0.3, -0.2, 0.1));
+  b.tau = num3(p, Vec3(0.3, -0.2, 0.1));
   const double h = p.num(0.05, 0.025, 0.075);
   const Vec3 w = b.omega;
   const Vec3 expected = w + h * inverse_inertia(b) * (b.tau - w.cross(inertia(b) * w));
@@ -160,7 +146,7 @@ void explicit_one_step(const wbtest::Params& p) {
 
 void implicit_one_step(const wbtest::Params& p) {
   Body b = tumbling(p);
-  b.tau = v3(p, Vec3(0.3, -0.2, 0.1));
+  b.tau = num3(p, Vec3(0.3, -0.2, 0.1));
   const double h = p.num(0.05, 0.025, 0.075);
   const Mat3 R = rot(b), Ib = b.I_body;
   const Vec3 w = R.transpose() * b.omega;
@@ -215,7 +201,7 @@ void energy(const wbtest::Params& p) {
   // The same on a thin rod (inertia ratio 1:10^4) tumbling while it spins: the
   // explicit step gains at every step, the implicit one never does.
   Body rod_e = make_body(p.num(1.0, 0.5, 1.5), Vec3(1.0, 1.0, p.num(1e-4, 0.5e-4, 1.5e-4)),
-                         q_near(p, 0.9, 0.2, 0.3, 0.1), v3(p, Vec3(3.0, 0.5, 20.0)));
+                         quat_near(p, 0.9, 0.2, 0.3, 0.1), num3(p, Vec3(3.0, 0.5, 20.0)));
   const double h_rod = p.num(1e-3, 5e-4, 1.5e-3);
   skip_ahead(p, rod_e, h_rod, false);
   Body rod_i = rod_e;
@@ -276,7 +262,7 @@ void symmetric_top(const wbtest::Params& p) {
   const double h = p.num(1e-4, 5e-5, 1.5e-4), T = 1.0;
   for (const Variant& var : kVariants) {
     INFO(var.name << " gyroscopic term");
-    const Eigen::Quaterniond q0 = q_near(p, 0.9, 0.3, -0.2, 0.1);
+    const Eigen::Quaterniond q0 = quat_near(p, 0.9, 0.3, -0.2, 0.1);
     Body b = make_body(p.num(1.0, 0.5, 1.5), Vec3(I1, I1, I3), q0,
                        q0.toRotationMatrix() * Vec3(w1, 0.0, w3));
     skip_ahead(p, b, h, var.implicit);
@@ -308,7 +294,7 @@ void principal_axes(const wbtest::Params& p) {
       INFO(var.name << " gyroscopic term, spin about body axis " << axis);
       Vec3 wb = Vec3::Constant(eps);
       wb[axis] = w;
-      const Eigen::Quaterniond q0 = q_near(p, 0.8, 0.4, 0.2, -0.4);
+      const Eigen::Quaterniond q0 = quat_near(p, 0.8, 0.4, 0.2, -0.4);
       Body b = make_body(p.num(1.0, 0.5, 1.5), I, q0, q0.toRotationMatrix() * wb);
       skip_ahead(p, b, h, var.implicit);
       double max_perturbation = 0, min_spin = w;

@@ -40,20 +40,6 @@ Vec3 point_velocity(const Body& b, const Vec3& p) { return b.v + b.omega.cross(p
 // 1 kg is the largest number of most of the public pendulums' calls and their moments are never
 // short decimals, which drawn sizes sometimes make them (the other scenarios and the random
 // bodies draw theirs); their states, steps and the plate's axis are drawn.
-Vec3 v3(const wbtest::Params& p, const Vec3& published) {
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    const double x = published[i], w = x == 0 ? 0.5 : 0.5 * std::abs(x);
-    v[i] = p.num(x, x - w, x + w);
-  }
-  return v;
-}
-
-Eigen::Quaterniond q_near(const wbtest::Params& p, double w, double x, double y, double z) {
-  return quat(p.num(w, w - 0.2, w + 0.2), p.num(x, x - 0.2, x + 0.2), p.num(y, y - 0.2, y + 0.2),
-              p.num(z, z - 0.2, z + 0.2));
-}
-
 // The header's point joint, written here: K P = -(v + omega x r + beta/h C),
 // K = E/m - [r]x I^-1 [r]x; v += P / m, omega += I^-1 (r x P).
 void check_hinge(Body& b, const Vec3& r_body, const Vec3& anchor, double h, double beta) {
@@ -162,10 +148,10 @@ std::pair<double, double> swing_phase(const wbtest::Params& p, double A, double 
 }
 
 void one_impulse(const wbtest::Params& p) {
-  Body b = make_body(p.num(2.0, 1.0, 3.0), v3(p, Vec3(0.5, 1.0, 1.25)),
-                     q_near(p, 0.8, 0.3, -0.2, 0.4), v3(p, Vec3(1.0, -2.0, 0.5)),
-                     v3(p, Vec3(0.3, 0.1, -0.2)), v3(p, Vec3(1.5, -0.5, 2.0)));
-  const Vec3 r_body = v3(p, Vec3(0.4, -0.3, 0.6));
+  Body b = make_body(p.num(2.0, 1.0, 3.0), num3(p, Vec3(0.5, 1.0, 1.25)),
+                     quat_near(p, 0.8, 0.3, -0.2, 0.4), num3(p, Vec3(1.0, -2.0, 0.5)),
+                     num3(p, Vec3(0.3, 0.1, -0.2)), num3(p, Vec3(1.5, -0.5, 2.0)));
+  const Vec3 r_body = num3(p, Vec3(0.4, -0.3, 0.6));
   const Vec3 anchor = b.x + rot(b) * r_body;  // pinned where it is
   const Vec3 L0 = momentum_about(b, anchor), mv0 = b.m * b.v;
   INFO("m = " << b.m << ", v = " << str(b.v) << ", omega = " << str(b.omega)
@@ -213,11 +199,11 @@ void hinged_period(const wbtest::Params& p) {
 void drift_correction(const wbtest::Params& p) {
   // One impulse sets the pinned point's velocity to -(beta/h) C.
   {
-    Body b =
-        make_body(p.num(1.0, 0.5, 1.5), v3(p, Vec3(1.0, 2.0, 3.0)), q_near(p, 0.9, 0.1, 0.2, 0.3),
-                  v3(p, Vec3(0.2, 0.1, -0.3)), Vec3::Zero(), v3(p, Vec3(0.1, 0.0, 0.0)));
+    Body b = make_body(p.num(1.0, 0.5, 1.5), num3(p, Vec3(1.0, 2.0, 3.0)),
+                       quat_near(p, 0.9, 0.1, 0.2, 0.3), num3(p, Vec3(0.2, 0.1, -0.3)),
+                       Vec3::Zero(), num3(p, Vec3(0.1, 0.0, 0.0)));
     const Vec3 r_body(0.0, 0.0, p.num(0.5, 0.25, 0.75));
-    const Vec3 C = v3(p, Vec3(0.01, -0.02, 0.005));
+    const Vec3 C = num3(p, Vec3(0.01, -0.02, 0.005));
     const Vec3 anchor = b.x + rot(b) * r_body - C;
     const double h = p.num(0.01, 0.005, 0.015), beta = p.num(0.3, 0.15, 0.45);
     INFO("drift C = " << str(C) << ", h = " << h << ", beta = " << beta);
@@ -301,12 +287,12 @@ struct Plate {
 void revolute_beta0(const wbtest::Params& p) {
   // A body with omega off the axis in BOTH directions perpendicular to it (whatever
   // basis b1, b2 is used), pinned where it is with its axis along the hinge.
-  Body b = make_body(p.num(2.0, 1.0, 3.0), v3(p, Vec3(0.5, 1.0, 1.25)),
-                     q_near(p, 0.8, 0.3, -0.2, 0.4), v3(p, Vec3(1.0, -2.0, 0.5)),
-                     v3(p, Vec3(0.3, 0.1, -0.2)), v3(p, Vec3(1.5, -0.5, 2.0)));
-  const Vec3 r_body = v3(p, Vec3(0.4, -0.3, 0.6));
+  Body b = make_body(p.num(2.0, 1.0, 3.0), num3(p, Vec3(0.5, 1.0, 1.25)),
+                     quat_near(p, 0.8, 0.3, -0.2, 0.4), num3(p, Vec3(1.0, -2.0, 0.5)),
+                     num3(p, Vec3(0.3, 0.1, -0.2)), num3(p, Vec3(1.5, -0.5, 2.0)));
+  const Vec3 r_body = num3(p, Vec3(0.4, -0.3, 0.6));
   const Vec3 anchor = b.x + rot(b) * r_body;
-  const Vec3 a = v3(p, Vec3(0.2, 0.9, -0.4)).normalized();
+  const Vec3 a = num3(p, Vec3(0.2, 0.9, -0.4)).normalized();
   const Vec3 axis_body = rot(b).transpose() * a;
   const Vec3 mv0 = b.m * b.v, Iw0 = inertia(b) * b.omega;
   const double La0 = momentum_about(b, anchor).dot(a);
@@ -331,16 +317,16 @@ void revolute_drift(const wbtest::Params& p) {
   // The point is off its anchor by C and the body's axis off the hinge axis by a small
   // turn: after one impulse the point moves at -(beta/h) C and the part of omega
   // across the axis is -(beta/h) (a x u).
-  Body b =
-      make_body(p.num(1.0, 0.5, 1.5), v3(p, Vec3(1.0, 2.0, 3.0)), q_near(p, 0.9, 0.1, 0.2, 0.3),
-                v3(p, Vec3(0.2, 0.1, -0.3)), Vec3::Zero(), v3(p, Vec3(0.1, 0.0, 0.0)));
+  Body b = make_body(p.num(1.0, 0.5, 1.5), num3(p, Vec3(1.0, 2.0, 3.0)),
+                     quat_near(p, 0.9, 0.1, 0.2, 0.3), num3(p, Vec3(0.2, 0.1, -0.3)),
+                     Vec3::Zero(), num3(p, Vec3(0.1, 0.0, 0.0)));
   const Vec3 r_body(0.0, 0.0, p.num(0.5, 0.25, 0.75));
-  const Vec3 C = v3(p, Vec3(0.01, -0.02, 0.005));
+  const Vec3 C = num3(p, Vec3(0.01, -0.02, 0.005));
   const Vec3 anchor = b.x + rot(b) * r_body - C;
-  const Vec3 a = v3(p, Vec3(1, 1, 1)).normalized();
+  const Vec3 a = num3(p, Vec3(1, 1, 1)).normalized();
   const Vec3 axis_body =
       rot(b).transpose() *
-      (Eigen::AngleAxisd(p.num(0.02, 0.01, 0.03), v3(p, Vec3(1, -1, 0)).normalized()) * a);
+      (Eigen::AngleAxisd(p.num(0.02, 0.01, 0.03), num3(p, Vec3(1, -1, 0)).normalized()) * a);
   const Vec3 u = rot(b) * axis_body;
   const double h = p.num(0.01, 0.005, 0.015), beta = p.num(0.3, 0.15, 0.45);
   INFO("drift C = " << str(C) << ", axis " << str(a) << ", the body's axis " << str(u)
@@ -364,7 +350,7 @@ void revolute_pendulum(const wbtest::Params& p) {
   constexpr double kAnchorTol = 1e-4;  // m
   const double alpha = p.num(0.4, 0.2, 0.6);
   const Vec3 a(std::cos(alpha), std::sin(alpha), 0.0);
-  const Vec3 kick = v3(p, Vec3(0.3, -0.2, 0.5));
+  const Vec3 kick = num3(p, Vec3(0.3, -0.2, 0.5));
   const double h = p.num(1e-3, 5e-4, 1.5e-3), A = p.num(0.05, 0.025, 0.075),
                beta = p.num(0.2, 0.1, 0.3);
   const PlateSize size;  // as published: see above
