@@ -2,8 +2,11 @@
 // (labs/rigid/integrate_position.cpp). Expected values: rotations about a fixed
 // axis compose by adding angles, and rotation matrices are orthonormal.
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "integrate_position.h"
+#include "params.h"
 #include "rigid_kernels.h"
 #include "rigid_test_helpers.h"
 
@@ -32,78 +35,99 @@ double orthonormality_error(const Mat3& R) {
                           std::abs(R.determinant() - 1.0));
 }
 
-}  // namespace
-
-TEST_CASE("R4 constant omega: after n steps the body has turned by n h |omega| about omega",
-          "[rigid][R4][3pts]") {
-  // A slow turn (omega h = 0.02 rad per step) and a fast spin (omega h = 1 rad per step).
-  for (double speed : {2.0, 100.0}) {
-    INFO("|omega| = " << speed << " rad/s");
-    const Eigen::Quaterniond q0 = quat(0.6, 0.2, -0.5, 0.3);
-    const Vec3 w = speed * Vec3(0.4, -1.1, 2.0).normalized(), v(1.0, -0.5, 2.0),
-               x0(0.1, 0.2, 0.3);
-    Body b = make_body(1.5, Vec3(1, 2, 3), q0, w, x0, v);
-    const double h = 0.01;
-    const int n = 1000;
-    for (int k = 0; k < n; ++k) integrate_position(b, h);
-    // Rotations about one fixed (world) axis add their angles; the world-frame omega
-    // turns the body AFTER its current orientation: R_n = Rot(n h |w|, w) R_0.
-    const Mat3 expected = Eigen::AngleAxisd(n * h * w.norm(), w.normalized()).toRotationMatrix() *
-                          q0.toRotationMatrix();
-    require_near(
-        rot(b), expected, kComposeTol,
-        "R after n steps = rotation by n h |omega| about omega (world frame), times R_0");
-    require_near(b.x, Vec3(x0 + n * h * v), kComposeTol, "x after n steps = x0 + n h v",
-                 kComposeTol);
-    require_near(b.omega, w, 0.0, "omega is not changed by the position update");
-  }
+// The scenarios of the public tests below, each a function of its parameters: the public test
+// runs it with the published ones (wbtest::Params()), the held-out test with drawn ones in the
+// same format (tests/common/params.h): short decimals within half of the published value either
+// side (quaternion components within 0.2), the orientations from quaternions of short decimals.
+// The mass and the moments, which the position update does not read, stay as published: the
+// public calls' largest number is often the moment 3, and a drawn one would tell them apart.
+// The held-out runs are shorter (the share of calls the public tests have, as tools/adversary
+// --inputs samples them).
+// A slow turn (omega h = 0.02 rad per step) or a fast spin (omega h = 1 rad per step), 1000 steps
+// of 0.01 s; held-out: 25 of them from a drawn point of the same run (reached by the test's
+// own update, rigidtest::ref_position), so that the states are the public run's, in its format
+// and magnitudes.
+void constant_omega(const wbtest::Params& p, double published_speed) {
+  const double speed = p.num(published_speed, 0.5 * published_speed, 1.5 * published_speed);
+  INFO("|omega| = " << speed << " rad/s");
+  const Vec3 w = speed * num3(p, Vec3(0.4, -1.1, 2.0)).normalized(),
+             v = num3(p, Vec3(1.0, -0.5, 2.0));
+  Body b = make_body(1.5, Vec3(1, 2, 3), quat_near(p, 0.6, 0.2, -0.5, 0.3), w,
+                     num3(p, Vec3(0.1, 0.2, 0.3)), v);
+  const double h = p.num(0.01, 0.005, 0.015);
+  const long skipped = p.count(0, 0, 975), n = p.steps(1000, 25);
+  for (long k = 0; k < skipped; ++k) ref_position(b, h);
+  const Eigen::Quaterniond q0 = b.q;
+  const Vec3 x0 = b.x;
+  INFO(n << " steps of h = " << h << " from the state after " << skipped
+         << " steps: x = " << str(x0) << ", q = " << q0.coeffs().transpose());
+  for (long k = 0; k < n; ++k) integrate_position(b, h);
+  // Rotations about one fixed (world) axis add their angles; the world-frame omega
+  // turns the body AFTER its current orientation: R_n = Rot(n h |w|, w) R_0.
+  const Mat3 expected =
+      Eigen::AngleAxisd(double(n) * h * w.norm(), w.normalized()).toRotationMatrix() *
+      q0.toRotationMatrix();
+  require_near(rot(b), expected, kComposeTol,
+               "R after n steps = rotation by n h |omega| about omega (world frame), times R_0");
+  require_near(b.x, Vec3(x0 + double(n) * h * v), kComposeTol, "x after n steps = x0 + n h v",
+               kComposeTol);
+  require_near(b.omega, w, 0.0, "omega is not changed by the position update");
 }
 
-TEST_CASE(
-    "R4 omega zero or along a principal axis: no NaN from a zero angle and the centre moves",
-    "[rigid][R4][3pts]") {
-  const Eigen::Quaterniond q0 = quat(0.9, 0.1, 0.3, -0.2);
-  Body b = make_body(1.0, Vec3(1, 2, 3), q0, Vec3::Zero(), Vec3::Zero(), Vec3(0.0, 3.0, 0.0));
-  integrate_position(b, 0.5);
+// omega = 0 (one step), a tiny omega (1000 steps of 1 s; held-out 45 steps of 0.5 to 1.5 s: a
+// turn of ~1e-8 rad, far above the comparison's 1e-11), a spin along the body's first axis
+// (100 steps; held-out 4).
+void zero_tiny_axis(const wbtest::Params& p) {
+  const Eigen::Quaterniond q0 = quat_near(p, 0.9, 0.1, 0.3, -0.2);
+  const Vec3 I(1, 2, 3), v = num3(p, Vec3(0.0, 3.0, 0.0));
+  const double m = 1.0, h0 = p.num(0.5, 0.25, 0.75);
+  Body b = make_body(m, I, q0, Vec3::Zero(), Vec3::Zero(), v);
+  integrate_position(b, h0);
   INFO("omega = 0: q = " << b.q.coeffs().transpose()
                          << ", expected finite: the rotation by a zero angle is the identity "
                             "(do not divide by |omega| when it is 0)");
   REQUIRE(b.q.coeffs().allFinite());
   require_near(rot(b), q0.toRotationMatrix(), kComposeTol, "omega = 0: the orientation stays");
-  require_near(b.x, Vec3(0.0, 1.5, 0.0), kComposeTol, "x = x0 + h v");
+  require_near(b.x, Vec3(h0 * v), kComposeTol, "x = x0 + h v");
   // A tiny omega (1e-10 rad/s) is not zero: over 1000 steps of 1 s the body turns
   // by 1e-7 rad, which the comparison sees (a threshold on |omega| would not turn it).
-  const Vec3 tiny = 1e-10 * Vec3(0.6, 0.0, -0.8);
-  Body t = make_body(1.0, Vec3(1, 2, 3), q0, tiny);
-  for (int k = 0; k < 1000; ++k) integrate_position(t, 1.0);
-  INFO("q after 1000 steps at omega = 1e-10 rad/s: " << t.q.coeffs().transpose()
-                                                     << ", expected finite");
+  const Vec3 tiny(p.num(6e-11, 3e-11, 9e-11), 0.0, p.num(-8e-11, -1.2e-10, -4e-11));
+  const double h1 = p.num(1.0, 0.5, 1.5);
+  const long n1 = p.steps(1000, 45);
+  Body t = make_body(m, I, q0, tiny);
+  for (long k = 0; k < n1; ++k) integrate_position(t, h1);
+  INFO("q after " << n1 << " steps of " << h1 << " s at omega = " << str(tiny)
+                  << " rad/s: " << t.q.coeffs().transpose() << ", expected finite");
   REQUIRE(t.q.coeffs().allFinite());
-  require_near(rot(t),
-               Mat3(Eigen::AngleAxisd(1000 * tiny.norm(), tiny.normalized()).toRotationMatrix() *
-                    q0.toRotationMatrix()),
-               kComposeTol,
-               "omega = 1e-10 rad/s for 1000 s: turned by 1e-7 rad (only omega = 0 exactly "
-               "means no turn)");
+  require_near(
+      rot(t),
+      Mat3(
+          Eigen::AngleAxisd(double(n1) * h1 * tiny.norm(), tiny.normalized()).toRotationMatrix() *
+          q0.toRotationMatrix()),
+      kComposeTol,
+      "omega ~ 1e-10 rad/s: turned by n h |omega| (only omega = 0 exactly means no turn)");
   // A spin exactly along the body's first axis: the axis does not move.
-  Body s = make_body(1.0, Vec3(1, 2, 3), q0, Vec3(5.0 * q0.toRotationMatrix().col(0)));
-  for (int k = 0; k < 100; ++k) integrate_position(s, 0.01);
-  INFO("spin along a principal axis, 100 steps: q = " << s.q.coeffs().transpose()
-                                                      << ", expected finite");
+  Body s = make_body(m, I, q0, Vec3(p.num(5.0, 2.5, 7.5) * q0.toRotationMatrix().col(0)));
+  const double h2 = p.num(0.01, 0.005, 0.015);
+  for (long k = 0; k < p.steps(100, 4); ++k) integrate_position(s, h2);
+  INFO("spin along a principal axis: q = " << s.q.coeffs().transpose() << ", expected finite");
   REQUIRE(s.q.coeffs().allFinite());
   require_near(Vec3(rot(s).col(0)), Vec3(q0.toRotationMatrix().col(0)), kComposeTol,
                "spinning about its own axis 0, the body's axis 0 stays where it was");
 }
 
-TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid][R4][4pts]") {
+// A constant omega for 10^6 steps (held-out: 10^4, one call either way: its length is no
+// input's property, and the held-out test's time stays small).
+void long_run(const wbtest::Params& p) {
   // A constant omega: every step multiplies by the same dq, so whatever rounding
   // |dq| carries adds up steadily instead of averaging out (a changing omega
   // would hide a missing renormalisation).
-  const Eigen::Quaterniond q0 = quat(0.5, 0.5, -0.5, 0.5);
-  const Vec3 w(3.0, -2.0, 5.0);
+  const Eigen::Quaterniond q0 = quat_near(p, 0.5, 0.5, -0.5, 0.5);
+  const Vec3 w = num3(p, Vec3(3.0, -2.0, 5.0));
   Body b = make_body(1.0, Vec3(1, 2, 3), q0, w);
-  const double h = 1e-3;
-  const long n = 1000000;
+  const double h = p.num(1e-3, 5e-4, 1.5e-3);
+  const long n = p.steps(1000000, 10000);
+  const std::string run = p.held_out() ? "the held-out run" : "10^6 steps";
   const Body b0 = b;
   const long every = 1000;
   std::vector<Body> states;  // the student's steps as one call, every 1000th body kept
@@ -147,29 +171,58 @@ TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid
     // about 1e-13, a margin of 100.
     require_body(states[c + 1], r, 1e-11, "the checkpoint");
   }
-  const Mat3 expected = Eigen::AngleAxisd(n * h * w.norm(), w.normalized()).toRotationMatrix() *
-                        q0.toRotationMatrix();
+  const Mat3 expected =
+      Eigen::AngleAxisd(double(n) * h * w.norm(), w.normalized()).toRotationMatrix() *
+      q0.toRotationMatrix();
   require_near(rot(b), expected, kSameMotionTol,
-               "after 10^6 steps R = rotation by n h |omega| about omega, times R_0");
-  INFO("after 10^6 steps q = " << b.q.coeffs().transpose() << ", expected finite");
+               "after " + run + " R = rotation by n h |omega| about omega, times R_0");
+  INFO("after " << run << " q = " << b.q.coeffs().transpose() << ", expected finite");
   REQUIRE(b.q.coeffs().allFinite());
   const double err = orthonormality_error(rot(b));
-  INFO("max(|R^T R - E|, |det R - 1|) after 10^6 steps = " << err << ", expected <= " << kOrthoTol
-                                                           << " (renormalise q every step)");
+  INFO("max(|R^T R - E|, |det R - 1|) after "
+       << run << " = " << err << ", expected <= " << kOrthoTol << " (renormalise q every step)");
   REQUIRE(wbtest::finite(err) <= kOrthoTol);
-  INFO("|q| after 10^6 steps = " << b.q.norm());
+  INFO("|q| after " << run << " = " << b.q.norm());
   REQUIRE(std::abs(wbtest::finite(b.q.norm()) - 1.0) <= kOrthoTol);
 }
 
+}  // namespace
+
+TEST_CASE("R4 constant omega: after n steps the body has turned by n h |omega| about omega",
+          "[rigid][R4][3pts]") {
+  for (double speed : {2.0, 100.0}) constant_omega(wbtest::Params(), speed);
+}
+
+TEST_CASE(
+    "R4 omega zero or along a principal axis: no NaN from a zero angle and the centre moves",
+    "[rigid][R4][3pts]") {
+  zero_tiny_axis(wbtest::Params());
+}
+
+TEST_CASE("R4 R stays orthonormal with det R = 1 after a million steps", "[rigid][R4][4pts]") {
+  long_run(wbtest::Params());
+}
+
+// The public scenarios again, their parameters drawn from the held-out seed in the public tests'
+// format, in the share of calls they have there; then the header's update, one step at a time,
+// on random bodies (short decimals too: rigidtest::random_body), among them the cases a mistake
+// needs (omega = 0, a very slow spin, q off unit length by what a run's rounding leaves).
 TEST_CASE("R4 held-out: random spins turn q on the left by |omega| h and renormalise",
           "[rigid][R4][held-out][2pts]") {
   for (wbtest::HeldOut& g : wbtest::held_out("R4")) {
     INFO(g.replay());
+    const wbtest::Params p(g);
+    for (double speed : {2.0, 100.0}) constant_omega(p, speed);
+    zero_tiny_axis(p);
+    long_run(p);
+    const auto d = [](double x) { return wbtest::Params::short_decimal(x); };
     for (int s = 0; s < 6; ++s) {
       Body b0 = rigidtest::random_body(g);
-      const double h = s == 2 ? g.uniform(1.0, 100.0) : g.log_uniform(1e-3, 0.2);
-      if (s == 1) b0.omega.setZero();                                 // no axis: q stays
-      if (s == 2) b0.omega = g.log_uniform(1e-11, 1e-9) * g.unit3();  // a very slow spin
+      const double h = d(s == 2 ? g.uniform(1.0, 100.0) : g.log_uniform(1e-3, 0.2));
+      if (s == 1) b0.omega.setZero();  // no axis: q stays
+      if (s == 2)                      // a very slow spin
+        b0.omega = Vec3(d(g.signed_uniform(1e-11, 1e-9)), d(g.signed_uniform(1e-11, 1e-9)),
+                        d(g.signed_uniform(1e-11, 1e-9)));
       // q slightly off unit length (rounding builds up over a run): a turn renormalises it
       // (with omega = 0 the header lets q stay as it is: left unit there), however little it
       // is off (draw 3: 1e-12 to 1e-9, what a run's rounding leaves; a step that renormalises
