@@ -247,35 +247,63 @@ def record_inputs(built, lab, tests, cwd, seeds, per_test=300):
     return out
 
 
-def stump(public, held):
-    """The best one-feature threshold rule trained on the even calls of each class, and its
-    balanced accuracy on the odd ones: (accuracy, feature, threshold)."""
-    def balanced(rule, a, b):
-        return (sum(map(rule, a)) / len(a) + sum(not rule(x) for x in b) / len(b)) / 2
-    # The halves at random (a fixed seed: the same table every run), not by the calls' order: a
-    # test that makes its large calls first and its small ones after would otherwise train on
-    # one kind and be tried on the other (F8's turning sense, 2026-12-07).
-    import random
-    public, held = list(public), list(held)
-    random.Random(42).shuffle(public)
-    random.Random(43).shuffle(held)
-    train_a, test_a, train_b, test_b = public[::2], public[1::2], held[::2], held[1::2]
-    if not (train_a and test_a and train_b and test_b):
-        return None
-    best = (0.0, None, None)
+SPLITS = 20  # random halvings a task's accuracy is the mean of
+
+
+def train_stump(train_a, train_b):
+    """The best one-feature threshold rule on these calls, by balanced accuracy: (feature
+    index, threshold, sign), or None when no feature differs. Each feature's calls sorted once,
+    every threshold between two values counted in one pass."""
+    best, rule = -1.0, None
     for k in range(len(FEATURES)):
-        values = sorted({x[k] for x in train_a + train_b})
-        for lo, hi in zip(values, values[1:]):
-            t = (lo + hi) / 2
-            for sign in (1, -1):
-                rule = (lambda x, k=k, t=t, sign=sign: sign * (x[k] - t) > 0)
-                acc = balanced(rule, train_a, train_b)
-                if acc > best[0]:
-                    best = (acc, (k, t, sign), rule)
-    if best[2] is None:
+        calls = sorted([(x[k], 1) for x in train_a] + [(x[k], 0) for x in train_b])
+        below_a = below_b = 0
+        for i, (value, is_a) in enumerate(calls[:-1]):
+            below_a += is_a
+            below_b += 1 - is_a
+            if calls[i + 1][0] == value:
+                continue
+            # "public if x > t": the public calls above t, the held-out ones at or below it
+            acc = ((len(train_a) - below_a) / len(train_a) + below_b / len(train_b)) / 2
+            t = (value + calls[i + 1][0]) / 2
+            for a, sign in ((acc, 1), (1 - acc, -1)):
+                if a > best:
+                    best, rule = a, (k, t, sign)
+    return rule
+
+
+def stump(public, held):
+    """The best one-feature threshold rule trained on a random half of each class's calls, its
+    balanced accuracy on the other half, as the mean over SPLITS halvings (fixed seeds: the
+    same table every run): (accuracy, feature, threshold) of the first halving's rule.
+
+    At random, not by the calls' order: a test that makes its large calls first and its small
+    ones after would otherwise train on one kind and be tried on the other (F8's turning sense,
+    2026-12-07). Over many halvings: a task with 14 public calls is tried on 7 of them, and one
+    halving's accuracy then swings by 0.1 for calls that no rule tells apart (C2, C3 and C5
+    read 0.40 to 0.61 on single halvings of the same calls, 2026-12-07)."""
+    import random
+    if len(public) < 2 or len(held) < 2:
+        return None
+    accs, first = [], None
+    for split in range(SPLITS):
+        a, b = list(public), list(held)
+        random.Random(2 * split + 42).shuffle(a)
+        random.Random(2 * split + 43).shuffle(b)
+        train_a, test_a, train_b, test_b = a[::2], a[1::2], b[::2], b[1::2]
+        rule = train_stump(train_a, train_b)
+        if rule is None:
+            accs.append(CHANCE)
+            continue
+        k, t, sign = rule
+        hit = (lambda x: sign * (x[k] - t) > 0)
+        accs.append((sum(map(hit, test_a)) / len(test_a) +
+                     sum(not hit(x) for x in test_b) / len(test_b)) / 2)
+        first = first or rule
+    if first is None:
         return CHANCE, "no feature differs", None
-    k, t, sign = best[1]
-    return balanced(best[2], test_a, test_b), FEATURES[k], f"{'>' if sign > 0 else '<'} {t:.3g}"
+    k, t, sign = first
+    return sum(accs) / len(accs), FEATURES[k], f"{'>' if sign > 0 else '<'} {t:.3g}"
 
 
 TYPICAL = (0.05, 0.95)  # a public call's mid-rank among the held-out calls, on every feature
@@ -298,39 +326,45 @@ def atypical(public, held):
     return None
 
 
-def inputs_report(labs, built, cwd, seeds):
-    """The --inputs table; False when a task's calls can be told apart."""
+def inputs_report(labs, built, cwd, seeds, known=()):
+    """The --inputs table; False when a task's calls can be told apart, unless the task is in
+    `known` (a task still open, named on the command line: reported as such), or when a task in
+    `known` is no longer told apart (the list is stale: a ratchet, not an exemption)."""
     ok = True
     print(f"{'task':<6} {'public calls':>12} {'held-out calls':>14}  best rule (public if)"
           f"{'':<28} balanced accuracy")
+    seen = set()
     for lab in labs:
         tests = list_tests(lab, built[lab][0])
         for task, calls in sorted(record_inputs(built[lab], lab, tests, cwd, seeds).items()):
-            got = stump(calls["public"], calls["held-out"])
-            if 0 < len(calls["public"]) < MIN_CALLS <= len(calls["held-out"]):
+            seen.add(task)
+            n_pub, n_held = len(calls["public"]), len(calls["held-out"])
+            if 0 < n_pub < MIN_CALLS <= n_held:
                 odd = atypical(calls["public"], calls["held-out"])
-                ok &= odd is None
-                verdict = ("every public call typical of the held-out ones" if odd is None else
-                           f"public call {odd[0] + 1}: {odd[1]} at rank {odd[2]:.2f}")
-                print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
-                      f"{verdict:<49} {'ok' if odd is None else 'TOLD APART'}")
-                continue
-            if min(len(calls["public"]), len(calls["held-out"])) < MIN_CALLS:
-                got = None
-            if got is None:
-                print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
-                      f"(too few calls to measure: fewer than {MIN_CALLS} of a class)")
-                ok = False
-                continue
-            acc, feature, rule = got
-            good = not told_apart(acc)
-            ok &= good
-            print(f"{task:<6} {len(calls['public']):>12} {len(calls['held-out']):>14}  "
-                  f"{feature + ' ' + (rule or ''):<49} {acc:.2f} {'ok' if good else 'TOLD APART'}")
+                good = odd is None
+                what = ("every public call typical of the held-out ones" if good else
+                        f"public call {odd[0] + 1}: {odd[1]} at rank {odd[2]:.2f}")
+            elif min(n_pub, n_held) < MIN_CALLS or stump(calls["public"], calls["held-out"]) is None:
+                good, what = False, f"(too few calls to measure: fewer than {MIN_CALLS} of a class)"
+            else:
+                acc, feature, rule = stump(calls["public"], calls["held-out"])
+                good = not told_apart(acc)
+                what = f"{feature + ' ' + (rule or ''):<49} {acc:.2f}"
+            if task in known:
+                verdict = ("ok, but listed as still told apart: take it off --known-told-apart"
+                           if good else "TOLD APART (known, still open)")
+                ok &= not good
+            else:
+                verdict = "ok" if good else "TOLD APART"
+                ok &= good
+            print(f"{task:<6} {n_pub:>12} {n_held:>14}  {what:<49} {verdict}")
+    for task in sorted(set(known) - seen):
+        print(f"{task:<6} --known-told-apart names a task with no calls here")
+        ok = False
     print(f"aim: no better than chance ({CHANCE:.1f} \u00b1 {MARGIN:.1f}) for every task, "
-          f"measured on at least {MIN_CALLS} calls of each class; a task with fewer public "
-          f"calls: each of them typical of the held-out ones (on every feature, a mid-rank "
-          f"within [{TYPICAL[0]}, {TYPICAL[1]}])")
+          f"the mean over {SPLITS} random halvings, measured on at least {MIN_CALLS} calls of "
+          f"each class; a task with fewer public calls: each of them typical of the held-out ones "
+          f"(on every feature, a mid-rank within [{TYPICAL[0]}, {TYPICAL[1]}])")
     return ok
 
 
@@ -365,6 +399,10 @@ def main(argv):
                          "classifier tells each task's public calls from its held-out ones")
     ap.add_argument("--inputs-seeds", type=int, default=20, metavar="N",
                     help="with --inputs: the held-out tests' seeds (default 20)")
+    ap.add_argument("--known-told-apart", metavar="TASKS",
+                    help="with --inputs: tasks (comma-separated, e.g. R6) still told apart, "
+                         "an open issue: reported, not failed; fails if one is no longer told "
+                         "apart, so that the list only shrinks")
     args = ap.parse_args(argv)
     if args.inputs and args.build_dir == ap.get_default("build_dir"):
         args.build_dir = os.path.join(REPO, "build-fuzz", "inputs")
@@ -385,7 +423,8 @@ def main(argv):
     cwd = tempfile.mkdtemp(prefix="wb-adversary-")
     if args.inputs:
         try:
-            return 0 if inputs_report(labs, built, cwd, args.inputs_seeds) else 1
+            known = [t for t in (args.known_told_apart or "").split(",") if t]
+            return 0 if inputs_report(labs, built, cwd, args.inputs_seeds, known) else 1
         finally:
             shutil.rmtree(cwd, ignore_errors=True)
     findings, notes, t0 = [], [], time.monotonic()
