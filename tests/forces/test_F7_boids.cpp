@@ -82,7 +82,7 @@ Mat2X header_rules(const Mat2X& x, const Mat2X& v, const VecX& m, const BoidsPar
     Vec2 s(0, 0);
     for (const Vec2& t : terms) {
       s += t;
-      scale = std::max(scale, m[i] * (t.norm() + v.col(i).norm() + x.col(i).norm()));
+      scale = wbtest::worst_of(scale, m[i] * (t.norm() + v.col(i).norm() + x.col(i).norm()));
     }
     out.col(i) += m[i] * s;
   }
