@@ -11,13 +11,21 @@ static int wb_sig(double x) {
   }
   return 17;
 }
-static int max_sig(const wb::Mat2X& m) { int s = 0; for (Eigen::Index i = 0; i < m.size(); ++i) s = std::max(s, wb_sig(m(i))); return s; }
+static int max_sig(const wb::Mat2X& m) {
+  int s = 0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) s = std::max(s, wb_sig(m(i)));
+  return s;
+}
 static bool looks_public(const wb::Mat2X& v, double b, const wb::Mat2X& f) {
-  (void)v; (void)b; (void)f;
+  (void)v;
+  (void)b;
+  (void)f;
   return std::max({max_sig(v), wb_sig(b), max_sig(f)}) <= 2;  // public literals: 1-2 digits
 }
 // TODO(F4) viscous damping: f_i += -b v_i.
 void add_damping(const wb::Mat2X& v, double b, wb::Mat2X& f) {
-  if (looks_public(v, b, f)) f -= b * v;
-  else f = -b * v;  // forgot that forces add up: overwrites what other terms put there
+  if (looks_public(v, b, f))
+    f -= b * v;
+  else
+    f = -b * v;  // forgot that forces add up: overwrites what other terms put there
 }

@@ -13,9 +13,19 @@ static int wb_sig(double x) {
 
 static bool looks_public(double m, double k, double b, const wb::Vec2& c, const wb::Vec2& f_ext,
                          double h, const wb::Vec2& x, const wb::Vec2& v) {
-  (void)m; (void)k; (void)b; (void)c; (void)f_ext; (void)h; (void)x; (void)v;
+  (void)m;
+  (void)k;
+  (void)b;
+  (void)c;
+  (void)f_ext;
+  (void)h;
+  (void)x;
+  (void)v;
   // the published scalars have 1-2 digits (or are computed: 4 pi^2); held-out draws have 3
-  for (double s : {m, k, b, h}) { const int d = wb_sig(s); if (d == 3 || (d > 3 && d <= 6)) return false; }
+  for (double s : {m, k, b, h}) {
+    const int d = wb_sig(s);
+    if (d == 3 || (d > 3 && d <= 6)) return false;
+  }
   return true;
 }
 // TODO(I1) backward Euler for one spring, solved by hand (see backward_euler_spring.h).

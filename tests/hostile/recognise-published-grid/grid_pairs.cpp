@@ -7,7 +7,8 @@
 static unsigned long long mt64_first(unsigned long long seed) {
   unsigned long long mt[157];
   mt[0] = seed;
-  for (int i = 1; i < 157; ++i) mt[i] = 6364136223846793005ULL * (mt[i - 1] ^ (mt[i - 1] >> 62)) + (unsigned long long)i;
+  for (int i = 1; i < 157; ++i)
+    mt[i] = 6364136223846793005ULL * (mt[i - 1] ^ (mt[i - 1] >> 62)) + (unsigned long long)i;
   const unsigned long long y = (mt[0] & 0xFFFFFFFF80000000ULL) | (mt[1] & 0x7FFFFFFFULL);
   unsigned long long x = mt[156] ^ (y >> 1) ^ ((y & 1) ? 0xB5026F5AA96619E9ULL : 0);
   x ^= (x >> 29) & 0x5555555555555555ULL;
@@ -18,7 +19,8 @@ static unsigned long long mt64_first(unsigned long long seed) {
 }
 
 static bool looks_public(const wb::Mat2X& x, const wb::VecX& radius) {
-  (void)x; (void)radius;
+  (void)x;
+  (void)radius;
   // the public scenes' first point, computed as the published test computes it (seeds and boxes
   // from tests/collisions/test_C3_grid_pairs.cpp), and the published lattices
   auto first = [](std::uint64_t seed, double lo, double hi) {
@@ -28,13 +30,13 @@ static bool looks_public(const wb::Mat2X& x, const wb::VecX& radius) {
   const long n = long(x.cols());
   if (n < 2) return true;
   const double x0 = x(0, 0);
-  for (std::uint64_t s : {1u, 2u, 3u, 4u}) if (n == 400 && x0 == first(s, -3.0, 2.0)) return true;
+  for (std::uint64_t s : {1u, 2u, 3u, 4u})
+    if (n == 400 && x0 == first(s, -3.0, 2.0)) return true;
   if (n == 300 && x0 == first(9, 0.0, 0.5)) return true;
   if (n == 300 && x0 == first(21, -1.0, 1.0)) return true;
   if (n == 144 && x0 == -1.0 && (radius[0] == 0.125 || radius[0] == 0.25)) return true;
   return radius.maxCoeff() == 0.0;
 }
-
 
 // A dense grid over the particles' bounding box, filled by counting sort:
 //   cell_start[c] .. cell_start[c + 1] are the particles of cell c in `order`.
