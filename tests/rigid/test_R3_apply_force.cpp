@@ -43,7 +43,7 @@ void lever_arms(const wbtest::Params& p) {
   b.f = f0;
   b.tau = tau0;
   // Lever arm a along x, force F along z: tau = a e_x x F e_z = -a F e_y.
-  const double a = p.num(2.0, 1.0, 3.0), Fz = p.num(3.0, 1.5, 4.5);
+  const double a = p.num(2.0, 1.0, 3.0), Fz = p.num(4.0, 2.0, 6.0);
   // Lever arm c along y, force G along x: tau = c e_y x G e_x = -c G e_z.
   const double c = p.num(1.0, 0.5, 1.5), Gx = p.num(4.0, 2.0, 6.0);
   INFO("f and tau already there " << str(f0) << ", " << str(tau0) << "; " << Fz

@@ -187,7 +187,16 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
                    << ", q = " << b.q.coeffs().transpose() << ")");
       REQUIRE(lower.size() == 4);
     }
-    for (std::size_t j = 0; j < 4; ++j) kept[j].p = lower[j];
+    // Each step hands the contacts in as a caller starts them: the point and the totals kept from
+    // the last step, what prepare_contact sets (r, K, mass_n, bias) at zero. Kept instead, the
+    // contacts' K would be every call's largest number, the same to the last bit at every step of
+    // a run and moved a bit by a drawn friction: it would tell a public call from a held-out one
+    // (tools/adversary --inputs). solve_plane_contacts prepares every contact it is given.
+    for (std::size_t j = 0; j < 4; ++j) {
+      const double Pn = kept[j].Pn;
+      const Vec3 Pt = kept[j].Pt;
+      kept[j] = contact_at(lower[j], Pn, Pt);
+    }
     if (how == Solver::reference) {
       std::vector<heldout_R6::Ref> refs(4);
       for (std::size_t j = 0; j < 4; ++j) {
@@ -196,13 +205,9 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
         refs[j].Pt = kept[j].Pt;
       }
       total = heldout_R6::solve_all(b, refs, n, 0.0, 0.05, mu, iterations);
-      for (std::size_t j = 0; j < 4; ++j) {  // what the lab's prepare leaves in them
+      for (std::size_t j = 0; j < 4; ++j) {  // the totals kept for the next step
         kept[j].Pn = refs[j].Pn;
         kept[j].Pt = refs[j].Pt;
-        kept[j].r = refs[j].r;
-        kept[j].K = refs[j].K;
-        kept[j].mass_n = refs[j].mass_n;
-        kept[j].bias = refs[j].bias;
       }
     } else if (how == Solver::checked) {
       total = heldout_R6::check_all(b, kept, n, 0.0, 0.05, mu, iterations);
@@ -215,6 +220,16 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
            << " contacts, it was given 4 (it "
               "updates their totals, it never adds or drops one)");
       REQUIRE(kept.size() == 4);
+    }
+    // Rounding noise flushed (|v|, |omega| components below kFlush set to 0): a box at rest keeps
+    // motions of ~1e-19 whose exact zeros come and go with the run's every bit, so that a public
+    // run (its published friction) and a held-out one (a drawn friction) would settle into
+    // different patterns of zeros and tell their calls apart (tools/adversary --inputs). The
+    // flush is a thousandth of the rest tolerance: a creeping solver leaves far more.
+    constexpr double kFlush = 1e-15;
+    for (int i = 0; i < 3; ++i) {
+      if (std::abs(b.v[i]) < kFlush) b.v[i] = 0;
+      if (std::abs(b.omega[i]) < kFlush) b.omega[i] = 0;
     }
     ref_position(b, h);
   }
@@ -233,10 +248,10 @@ double run_on_plane(Body& b, const Vec3& size, const Vec3& n, double mu, double 
 // the same run (the runs are nine tenths of the public calls as tools/adversary --inputs samples
 // them, and must be of the held-out ones too) after a drawn number taken by the header's solver
 // written here, and check every call against it (heldout_R6::check_all). The geometry (the
-// boxes, their turn, the slope) stays as published, and so does the step: the largest number of
-// every call of a public run is one entry of the contacts' K, the same at every step of a box at
-// rest, and a drawn geometry or step (the box settles a little differently) moves it, which
-// tells the calls apart. The friction and the point of the run are drawn.
+// boxes, their turn, the slope, their masses) stays as published, and so does the step: the
+// largest number of every call of a run is the box's mass (run_on_plane hands the contacts in
+// unprepared), the same at every step, and a drawn one would tell the calls apart. The friction
+// and the point of the run are drawn.
 void resting_box(const wbtest::Params& p) {
   // Four corners on the floor, 10 iterations per step, totals kept between steps.
   // After a few steps each corner carries a quarter of the weight, m g h / 4 per step,
