@@ -308,27 +308,35 @@ struct ServeAdversary<R(A...)> {
 // solution's, in that scratch build) that writes, for every call, what its inputs look like
 // to a file named by WB_RECORD, then serves the call as the grader's worker does. What is
 // recorded: how many numbers the call carried, how many of them are short decimals (at most
-// 6 significant digits), the largest magnitude, and the particles (columns of its first
-// 2 x n argument). tools/wbtools/adversary.py's classifier asks whether these tell a public
-// test's call from a held-out one.
+// 6 significant digits), the largest magnitude, the particles (columns of its first 2 x n
+// argument), and the significant digits of its short decimals, summed (a public test writes
+// 0.5 and 9.81; a held-out draw must not always write 0.517). tools/wbtools/adversary.py's
+// classifier asks whether these tell a public test's call from a held-out one.
 namespace wbrpc {
 
 struct Observed {
-  long numbers = 0, short_decimals = 0;
+  long numbers = 0, short_decimals = 0, digits = 0;
   double largest = 0;
   Eigen::Index particles = -1;
 };
-inline bool short_decimal(double v) {
-  if (!std::isfinite(v)) return false;
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return std::strtod(buf, nullptr) == v;
+// The fewest significant digits (1 to 6) that write v exactly, or 0: not a short decimal. Zero
+// counts as one digit.
+inline int significant_digits(double v) {
+  if (!std::isfinite(v)) return 0;
+  for (int d = 1; d <= 6; ++d) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.*g", d, v);
+    if (std::strtod(buf, nullptr) == v) return d;
+  }
+  return 0;
 }
 template <class T>
 void observe(Observed&, const T&) {}
 inline void observe(Observed& o, const double& v) {
   ++o.numbers;
-  o.short_decimals += short_decimal(v);
+  const int d = significant_digits(v);
+  o.short_decimals += d > 0;
+  o.digits += d;
   if (std::isfinite(v)) o.largest = std::max(o.largest, std::abs(v));
 }
 template <class S, int R, int C, int O, int MR, int MC>
@@ -359,8 +367,8 @@ void serve_recorded_impl(R (*fn)(A...), std::int32_t id, In& in, std::index_sequ
   (observe(seen, std::get<I>(args)), ...);
   if (const char* path = std::getenv("WB_RECORD")) {
     if (std::FILE* f = std::fopen(path, "a")) {
-      std::fprintf(f, "%d %ld %ld %.17g %ld\n", int(id), seen.numbers, seen.short_decimals,
-                   seen.largest, long(seen.particles));
+      std::fprintf(f, "%d %ld %ld %.17g %ld %ld\n", int(id), seen.numbers, seen.short_decimals,
+                   seen.largest, long(seen.particles), seen.digits);
       std::fclose(f);
     }
   }

@@ -51,6 +51,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 MAX_LINE = 1100  # messages are cut to 1000 bytes (kMaxMessageBytes) plus the "<exe>: error: " prefix
 TIME_LIMIT_S = 20.0  # each case is refused in well under a second; this is a hang detector
+# The hang detector counts the run's CPU time, not the wall clock: on a loaded machine (a nice
+# 10 check beside two busy cores) a 2 s budget run took more than 20 s of wall time (the
+# rehearsal of 2026-12-07). A run that is over TIME_LIMIT_S of wall time is a hang only while
+# it computes nothing (less than IDLE_CPU_S of CPU in the last IDLE_WINDOW_S), and whatever it
+# does after HANG_WALL_FACTOR times the limit.
+IDLE_WINDOW_S, IDLE_CPU_S, HANG_WALL_FACTOR = 2.0, 0.02, 10
 MEMORY_LIMIT_BYTES = 2 << 30  # a refused scene must not allocate gigabytes first
 BUDGET_SLACK = 1.1  # a run stopped by its budget passes its limits by at most 10 % (issue 45)
 PR_CAPBSET_DROP, CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH = 24, 1, 2  # <linux/prctl.h>, capability.h
@@ -232,9 +238,23 @@ def without_dac_override():
             raise OSError(ctypes.get_errno(), "prctl(PR_CAPBSET_DROP)")
 
 
-def communicate(proc, timeout):
+def cpu_seconds(pid):
+    """The CPU time of process pid and of its waited-for children so far (/proc/pid/stat), or
+    None once it is gone."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+    return sum(int(x) for x in fields[11:15]) / os.sysconf("SC_CLK_TCK")
+
+
+def communicate(proc, timeout, by_cpu=False):
     """proc.communicate(timeout), and the child's own resource usage (os.wait4): its CPU
-    time and peak resident size, which RUSAGE_CHILDREN cannot give one child at a time."""
+    time and peak resident size, which RUSAGE_CHILDREN cannot give one child at a time.
+    by_cpu: `timeout` is a hang detector (see IDLE_WINDOW_S): past it, the run times out once
+    it has used `timeout` seconds of CPU, or computed nothing for IDLE_WINDOW_S, or reached
+    HANG_WALL_FACTOR times `timeout` of wall time."""
     # The readers are the process's own, started once: a second call (after a timeout,
     # the process killed or signalled) keeps what the first read.
     if not hasattr(proc, "wb_readers"):
@@ -248,12 +268,24 @@ def communicate(proc, timeout):
         for t in proc.wb_readers:
             t.start()
     got, readers = proc.wb_got, proc.wb_readers
-    deadline = time.monotonic() + timeout
+    start = time.monotonic()
+    deadline = start + timeout
+    seen = []  # (wall, cpu) of the last IDLE_WINDOW_S, by_cpu only
     while True:
         pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
         if pid:
             break
-        if time.monotonic() > deadline:
+        now = time.monotonic()
+        if by_cpu:
+            cpu = cpu_seconds(proc.pid)
+            if cpu is not None:
+                seen = [(w, c) for w, c in seen if w >= now - IDLE_WINDOW_S] + [(now, cpu)]
+            idle = (cpu is not None and now - seen[0][0] >= IDLE_WINDOW_S * 0.9 and
+                    cpu - seen[0][1] < IDLE_CPU_S)
+            if now > deadline and (idle or (cpu or 0) > timeout or
+                                   now > start + HANG_WALL_FACTOR * timeout):
+                raise subprocess.TimeoutExpired(proc.args, timeout)
+        elif now > deadline:
             raise subprocess.TimeoutExpired(proc.args, timeout)
         time.sleep(0.01)
     proc.returncode = os.waitstatus_to_exitcode(status)
@@ -325,7 +357,8 @@ def run_case(case, args):
                                 preexec_fn=preexec)
         usage = None
         try:
-            out, err_bytes, usage = communicate(proc, kill_after or stop_after or limit)
+            out, err_bytes, usage = communicate(proc, kill_after or stop_after or limit,
+                                                by_cpu=not (kill_after or stop_after))
             code = proc.returncode
             if kill_after and case.get("may_finish") and code == 0:
                 code = "killed"  # a skeleton's stub does no work: it may finish in time
@@ -336,7 +369,8 @@ def run_case(case, args):
             if not (kill_after or stop_after):
                 proc.kill()
                 proc.communicate()
-                return [f"took more than {limit} s"]
+                return [f"took more than {limit} s (and was computing nothing, or used that much "
+                        f"CPU, or ran {HANG_WALL_FACTOR} times as long)"]
             if stop_after:
                 proc.send_signal(getattr(signal, case.get("stop_signal", "SIGTERM")))
             else:

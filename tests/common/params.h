@@ -12,10 +12,13 @@
 //   TEST_CASE("E1 free fall ...") { free_fall(wbtest::Params()); }       // the published values
 //   for (wbtest::HeldOut& g : wbtest::held_out("E1")) free_fall(wbtest::Params(g));  // drawn
 //
-// A drawn number is a short decimal (kDigits significant digits, as the public tests write
-// theirs) in [lo, hi]; the ranges are each scenario's, chosen so that its closed forms stay
-// valid and well conditioned. Published values need not lie in the range: the range is what
-// the held-out draws need, and a value that equals a published one is as likely as any other.
+// A drawn number is a short decimal in [lo, hi] with as many significant digits as the published
+// value it stands for (0.5 draws 0.3 or 2, 9.81 draws 7.46): the public tests write most of
+// their numbers with one digit, and a draw that always wrote three told every held-out call
+// apart by its digits alone. The ranges are each scenario's, chosen so that its closed forms
+// stay valid and well conditioned. Published values need not lie in the range: the range is
+// what the held-out draws need, and a value that equals a published one is as likely as any
+// other.
 #pragma once
 #include <cmath>
 #include <cstdio>
@@ -31,21 +34,23 @@ namespace {
 
 class Params {
  public:
-  static constexpr int kDigits = 3;  // the public tests' numbers: 0.25, 9.81, 2.5, 1e-3
+  static constexpr int kDigits = 3;  // short_decimal's digits: a derived value, as 2.45 or 0.125
 
   Params() = default;                      // a public test: every value as published
   explicit Params(HeldOut& g) : g_(&g) {}  // a held-out test: every value drawn from g
   bool held_out() const { return g_ != nullptr; }
 
-  // `published` in a public test; else a short decimal (kDigits significant digits) in [lo, hi]:
-  // a draw that rounds outside is drawn again (lo itself after 64 tries, which takes a range
-  // narrower than its own rounding).
+  // `published` in a public test; else a short decimal in [lo, hi] with exactly the published
+  // value's significant digits (digits(published)): a draw that rounds outside the range, or to
+  // fewer digits (0.3 drawn for 0.25), is drawn again; a range with no such number in 64 tries
+  // takes one digit more, and lo itself after 17.
   double num(double published, double lo, double hi) const {
     if (!g_) return published;
-    for (int tries = 0; tries < 64; ++tries) {
-      const double x = short_decimal(g_->uniform(lo, hi));
-      if (x >= lo && x <= hi) return x;
-    }
+    for (int d = digits(published); d <= 17; ++d)
+      for (int tries = 0; tries < 64; ++tries) {
+        const double x = rounded(g_->uniform(lo, hi), d);
+        if (x >= lo && x <= hi && (d == 17 || digits(x) == d)) return x;
+      }
     return lo;
   }
   // `published` in a public test; else an integer in [lo, hi].
@@ -60,10 +65,20 @@ class Params {
     return g_ ? g_->pick(std::vector<double>(options)) : *options.begin();
   }
   // x rounded to kDigits significant digits (a derived start written as a public test would).
-  static double short_decimal(double x) {
+  static double short_decimal(double x) { return rounded(x, kDigits); }
+  // x rounded to d significant digits.
+  static double rounded(double x, int d) {
     char buf[40];
-    std::snprintf(buf, sizeof buf, "%.*g", kDigits, x);
+    std::snprintf(buf, sizeof buf, "%.*g", d, x);
     return std::strtod(buf, nullptr);
+  }
+  // The fewest significant digits (1 to 17) that write x exactly; 0 counts as one, and so do
+  // non-finite values.
+  static int digits(double x) {
+    if (!std::isfinite(x)) return 1;
+    for (int d = 1; d < 17; ++d)
+      if (rounded(x, d) == x) return d;
+    return 17;
   }
 
  private:

@@ -212,14 +212,15 @@ def told_apart(acc):
     would be above: its reverse tells them apart just as well (a balanced accuracy of 0.23 is
     0.77 read the other way)."""
     return abs(acc - CHANCE) > MARGIN
-FEATURES = ("share of short decimals", "log2 particles", "log10 largest |number|")
+FEATURES = ("share of short decimals", "log2 particles", "log10 largest |number|",
+            "mean digits of short decimals")
 
 
 def call_features(line):
-    numbers, short, largest, particles = line.split()[1:5]
-    n = int(numbers)
-    return (int(short) / n if n else 1.0, math.log2(1 + max(int(particles), 0)),
-            math.log10(float(largest) + 1e-300))
+    numbers, short, largest, particles, digits = line.split()[1:6]
+    n, s = int(numbers), int(short)
+    return (s / n if n else 1.0, math.log2(1 + max(int(particles), 0)),
+            math.log10(float(largest) + 1e-300), int(digits) / s if s else 0.0)
 
 
 def record_inputs(built, lab, tests, cwd, seeds, per_test=300):

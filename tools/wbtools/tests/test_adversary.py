@@ -62,17 +62,23 @@ def test_the_inputs_classifier_tells_apart_only_what_differs():
     the case of issue 42)."""
     import random
     rng = random.Random(1)
-    same = [(rng.random(), rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(400)]
+    same = [(rng.random(), rng.uniform(1, 4), rng.uniform(-1, 2), 2.0) for _ in range(400)]
     acc, _, _ = adversary.stump(same[:200], same[200:])
     assert acc <= adversary.CHANCE + adversary.MARGIN
-    public = [(1.0, rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(200)]
-    held = [(0.0, rng.uniform(1, 4), rng.uniform(-1, 2)) for _ in range(200)]
+    public = [(1.0, rng.uniform(1, 4), rng.uniform(-1, 2), 2.0) for _ in range(200)]
+    held = [(0.0, rng.uniform(1, 4), rng.uniform(-1, 2), 2.0) for _ in range(200)]
     acc, feature, _ = adversary.stump(public, held)
     assert acc == 1.0 and feature == "share of short decimals"
     # a rule that is wrong on the other half as often as a good one is right tells them apart
     assert adversary.told_apart(0.23) and adversary.told_apart(0.77)
     assert not adversary.told_apart(0.5) and not adversary.told_apart(0.45)
-    assert adversary.call_features("3 10 4 2.5 3") == pytest.approx((0.4, 2.0, 0.39794), 1e-4)
+    assert adversary.call_features("3 10 4 2.5 3 9") == pytest.approx(
+        (0.4, 2.0, 0.39794, 2.25), 1e-4)
+    # the digits alone: public calls of one or two digits, held-out draws of three
+    public = [(1.0, 2.0, 0.5, rng.choice((1.0, 1.5, 2.0))) for _ in range(100)]
+    held = [(1.0, 2.0, 0.5, rng.choice((2.5, 3.0))) for _ in range(100)]
+    acc, feature, _ = adversary.stump(public, held)
+    assert acc == 1.0 and feature == "mean digits of short decimals"
 
 
 def test_few_public_calls_are_measured_by_where_they_fall_among_the_held_out_ones():
@@ -81,12 +87,12 @@ def test_few_public_calls_are_measured_by_where_they_fall_among_the_held_out_one
     range or at its edge (a call told apart by that alone)."""
     import random
     rng = random.Random(2)
-    held = [(1.0, 2.0, rng.uniform(0.0, 1.0)) for _ in range(100)]
-    assert adversary.atypical([(1.0, 2.0, 0.5), (1.0, 2.0, 0.3)], held) is None
-    assert adversary.atypical([(1.0, 2.0, 0.5), (1.0, 2.0, 1.5)], held)[:2] == (
+    held = [(1.0, 2.0, rng.uniform(0.0, 1.0), 2.0) for _ in range(100)]
+    assert adversary.atypical([(1.0, 2.0, 0.5, 2.0), (1.0, 2.0, 0.3, 2.0)], held) is None
+    assert adversary.atypical([(1.0, 2.0, 0.5, 2.0), (1.0, 2.0, 1.5, 2.0)], held)[:2] == (
         1, "log10 largest |number|")
-    assert adversary.atypical([(1.0, 2.0, 0.001)], held) is not None  # at the range's edge
-    assert adversary.atypical([(1.0, 3.0, 0.5)], held)[1] == "log2 particles"  # another size
+    assert adversary.atypical([(1.0, 2.0, 0.001, 2.0)], held) is not None  # at the range's edge
+    assert adversary.atypical([(1.0, 3.0, 0.5, 2.0)], held)[1] == "log2 particles"  # another size
 
 
 def test_the_halves_do_not_follow_the_calls_order():
@@ -95,7 +101,7 @@ def test_the_halves_do_not_follow_the_calls_order():
     reverse against held-out calls of the same two kinds in any order."""
     import random
     rng = random.Random(3)
-    public = [(1.0, 2.0, 1.0), (1.0, 2.0, -1.0)] * 50
-    held = [(1.0, 2.0, rng.choice((1.0, -1.0))) for _ in range(100)]
+    public = [(1.0, 2.0, 1.0, 2.0), (1.0, 2.0, -1.0, 2.0)] * 50
+    held = [(1.0, 2.0, rng.choice((1.0, -1.0)), 2.0) for _ in range(100)]
     acc, _, _ = adversary.stump(public, held)
     assert not adversary.told_apart(acc)
