@@ -88,17 +88,40 @@ inline double kepler_error(StepFn step, double phase, double h, long N) {
   return std::sqrt(ex * ex + ev * ev);  // NaN stays NaN and fails below
 }
 
+// A drawn h0 (Params::num) whose halvings h0 / 2^k (k < kOrderSteps.size()) are written with as
+// many digits as the published ones (0.025, 0.0125, 0.00625, 0.003125: 2, 3, 3 and 4), drawn
+// again until they are: 0.021, 0.023, ..., 0.029 (an even last digit halves to shorter numbers,
+// 0.024 to 0.006 and 0.003, and the Kepler runs, most of the calls, told the held-out test
+// apart by their digits alone: M1 0.60, 2026-12-07). 64 tries fail with probability (4/9)^64.
+inline double drawn_halvings(const wbtest::Params& p, double published, double lo, double hi) {
+  auto same_digits = [published](double h) {
+    for (std::size_t k = 0; k < kOrderSteps.size(); ++k)
+      if (wbtest::Params::digits(std::ldexp(h, -int(k))) !=
+          wbtest::Params::digits(std::ldexp(published, -int(k))))
+        return false;
+    return true;
+  };
+  double h = p.num(published, lo, hi);
+  for (int tries = 1; tries < 64 && !same_digits(h); ++tries) h = p.num(published, lo, hi);
+  return h;
+}
+
 // Held-out: the start at a drawn angle in [-0.25, 1.75] (the runs' angles then cover the
-// published run's [0, 2] about as densely), the largest h drawn around 0.025 and halved as
-// published, with a quarter of the steps (a quarter of the time T: the share of calls the
-// public test has among the task's, as tools/adversary --inputs samples them). The steps are
-// the published ones' sizes, so the O(h) drift above holds (a shorter run does not change the
-// expansion e = C h^2 (1 + D h); measured: under 0.007 for every draw). GM and the radius stay
-// 1: the largest number of every public call here is at most 1, and a drawn radius or speed
-// above it would tell the held-out calls apart.
+// published run's [0, 2] about as densely), the largest h drawn around 0.025 (drawn_halvings)
+// and halved as published, with a quarter of the steps (a quarter of the time T: the share of
+// calls the public test has among the task's, as tools/adversary --inputs samples them). The
+// steps are the published ones' sizes, so the O(h) drift above holds (a shorter run does not
+// change the expansion e = C h^2 (1 + D h); measured: under 0.007 for every draw). GM and the
+// radius stay 1: the largest number of every public call here is at most 1, and a drawn radius or
+// speed above it would tell the held-out calls apart.
+constexpr double kPhaseShift = 1.25;  // rad: see check_second_order's phase
 inline void check_second_order(const wbtest::Params& p, StepFn step, const std::string& method) {
-  const double phase = p.num(0.0, -0.25, 1.75);
-  const double h0 = p.num(kOrderT / kOrderSteps[0], 0.02, 0.03);
+  // 0 published; held-out, 1.25 less a three-digit draw in [1, 3]: the phase reaches the step
+  // only as cos and sin, never short decimals, so its digits tell nothing, and one-digit draws
+  // (the published 0's) would stop at 1 rad: the runs past 1.5 rad, where the largest number is
+  // above 0.92, told the public calls apart (M1 0.57, 2026-12-07).
+  const double phase = p.num(kPhaseShift, kPhaseShift - 0.25, kPhaseShift + 1.75) - kPhaseShift;
+  const double h0 = drawn_halvings(p, kOrderT / kOrderSteps[0], 0.02, 0.03);
   const long N0 = p.steps(kOrderSteps[0], kOrderSteps[0] / 4);
   const double T = double(N0) * h0;  // kOrderT in the public test (80 x 0.025 is 2 exactly)
   std::vector<long> steps;
