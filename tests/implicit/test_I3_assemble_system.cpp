@@ -368,7 +368,7 @@ TEST_CASE(
       for (const bool definite : {false, true}) {
         imtest::Network w = imtest::random_network(g, pin, true);
         const Eigen::Index n = w.net.n();
-        const double h = g.log_uniform(1e-3, 0.1);
+        const double h = imtest::public_log_decimal(g, 1e-3, 0.1);
         SparseSystem sys;
         for (int call = 0; call < 2; ++call) {
           Mat2X vl = w.v + g.points(n, -0.5, 0.5), xl = w.x + h * vl + g.points(n, -0.05, 0.05);
