@@ -252,7 +252,8 @@ inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.
 
 // External forces on small_network's four particles: gravity on each mass (m g, g = 9.8),
 // with a sideways push (push true) or without (false). Held-out: g and the push drawn, m g
-// written with the digits of the public test's 9.8 m (9.8, 19.6, 4.9, 14.7).
+// written with the digits of the public test's 9.8 m (9.8, 19.6 and 4.9; 9.8 * 1.5 computed is
+// 14.700000000000001, no short decimal, and so is the held-out one).
 inline Mat2X small_network_load(const wbtest::Params& p, const Eigen::VectorXd& m,
                                 bool push = true) {
   const double g = p.num(9.8, 9.6, 10.0);
@@ -260,10 +261,16 @@ inline Mat2X small_network_load(const wbtest::Params& p, const Eigen::VectorXd& 
   Mat2X f(2, 4);
   for (int q = 0; q < 4; ++q) {
     f(0, q) = push ? p.num(pushes[q], pushes[q] - 0.1, pushes[q] + 0.1) : 0.0;
-    const double published[4] = {-9.8, -19.6, -4.9, -14.7};
-    f(1, q) = p.held_out()
-                  ? -wbtest::Params::rounded(m[q] * g, wbtest::Params::digits(published[q]))
-                  : -9.8 * m[q];
+    f(1, q) = -9.8 * m[q];
+    if (p.held_out()) {
+      const double published[4] = {-9.8, -19.6, -4.9, -9.8 * 1.5};  // as the public test has them
+      const int d = wbtest::Params::digits(published[q]);
+      f(1, q) = -m[q] * g;
+      if (d <= 6)
+        f(1, q) = wbtest::Params::rounded(f(1, q), d);
+      else if (wbtest::Params::digits(f(1, q)) <= 6)  // -14.700000000000001: no short decimal
+        f(1, q) = std::nextafter(f(1, q), 0.0);
+    }
   }
   return f;
 }
