@@ -309,6 +309,21 @@ inline void anchored_pair(SpringNetwork& net, Mat2X& x, Mat2X& v, Mat2X& f) {
   anchored_pair(wbtest::Params(), net, x, v, f);
 }
 
+// The size of the terms one step of anchored_pair sums (x, c, v, h k (x - c) / m, h f / m):
+// a coordinate that cancels to about 0 (one-digit draws make exact cancellations likely) is
+// still rounded, and solved by CG, relative to them, not to itself.
+inline double pair_terms(const SpringNetwork& net, const Mat2X& x, const Mat2X& v, const Mat2X& f,
+                         double h) {
+  double s = 0;
+  for (Eigen::Index q = 0; q < net.n(); ++q) {
+    const NetworkSpring& sp = net.springs[std::size_t(q)];  // particle q's anchored spring
+    const double xc = wbtest::max_abs(x.col(q)) + wbtest::max_abs(sp.anchor);
+    s = std::max(s, xc + wbtest::max_abs(v.col(q)) +
+                        h * (sp.k * xc + wbtest::max_abs(f.col(q))) / net.m[q]);
+  }
+  return s;
+}
+
 // A network's workspace carried from step to step the way the grader carries it
 // (backward_euler.h, NewtonWorkspace): its data (the system, the warm start) kept,
 // its LDLT fresh at every step, so that a test reads the same here and through the

@@ -166,7 +166,7 @@ void random_springs(wbtest::HeldOut& g) {
   for (int s = 0; s < 12; ++s) {
     const Vec2 a = vec(-2, 2), va = vec(-3, 3), vb = vec(-3, 3);
     Vec2 b = a;
-    while (s != 0 && !((a - b).norm() >= 0.1)) {  // 0.1 to 2 m from a, in any direction
+    while (s != 0 && !((a - b).norm() >= 0.1)) {  // 0.1 to 2 m from a, then rounded
       const Vec2 d = g.uniform(0.1, 2.0) * g.unit2();
       b = Vec2(imtest::public_rounded(g, a.x() + d.x()),
                imtest::public_rounded(g, a.y() + d.y()));

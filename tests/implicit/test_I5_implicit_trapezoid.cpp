@@ -95,10 +95,11 @@ void cayley_step(const wbtest::Params& p) {
       ve(d, q) = X1[1];
     }
   }
+  const double tol = 1e-9 * imtest::pair_terms(net, x, v, f, h);  // a coordinate near 0
   NewtonWorkspace ws;
   implicit_trapezoid_step(net, f, h, options(), x, v, ws);
-  wbtest::require_near(x, xe, 0.0, "x' of the trapezoid rule on a linear spring", 1e-9);
-  wbtest::require_near(v, ve, 0.0, "v' of the trapezoid rule on a linear spring", 1e-9);
+  wbtest::require_near(x, xe, tol, "x' of the trapezoid rule on a linear spring", 1e-9);
+  wbtest::require_near(v, ve, tol, "v' of the trapezoid rule on a linear spring", 1e-9);
 }
 
 // w = 2 pi: the step keeps the amplitude and lags the phase by n (h w - 2
