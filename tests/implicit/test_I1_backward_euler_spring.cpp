@@ -126,12 +126,20 @@ void first_order(const wbtest::Params& p) {
 }
 
 // The held-out test's own check: springs far from the published ones (stiff, slack, no drag, no
-// load), in the public tests' format (one or two significant digits: imtest::public_decimal),
-// each step against the one linear equation in v'.
+// load), in the public tests' format (one or two significant digits: imtest::public_decimal;
+// the last with three, imtest::three_digit_decimal), each step against the one linear equation
+// in v'.
 void random_springs(wbtest::HeldOut& g) {
-  auto dec = [&](double lo, double hi) { return imtest::public_decimal(g, lo, hi); };
-  auto log_dec = [&](double lo, double hi) { return imtest::public_log_decimal(g, lo, hi); };
+  bool three = false;  // the last spring: every number with three digits
+  auto dec = [&](double lo, double hi) {
+    return three ? imtest::three_digit_decimal(g, lo, hi) : imtest::public_decimal(g, lo, hi);
+  };
+  auto log_dec = [&](double lo, double hi) {
+    return three ? wbtest::Params::short_decimal(g.log_uniform(lo, hi))
+                 : imtest::public_log_decimal(g, lo, hi);
+  };
   for (int s = 0; s < 6; ++s) {
+    three = s == 5;
     const double m = dec(0.1, 5.0), k = log_dec(0.1, 200.0), b = s == 0 ? 0.0 : dec(0.0, 3.0),
                  h = log_dec(1e-3, 1.0);
     const Vec2 c(dec(-2, 2), dec(-2, 2));

@@ -158,18 +158,25 @@ void coincident(const wbtest::Params& p) {
 }
 
 // The held-out test's own check: springs anywhere, stretched or compressed, every input written
-// as in the public tests (one or two significant digits: imtest::public_decimal); k as
-// published in two of three (see Spring), else drawn.
+// as in the public tests (one or two significant digits: imtest::public_decimal; one spring
+// with three, imtest::three_digit_decimal); k as published in two of three (see Spring), else
+// drawn.
 void random_springs(wbtest::HeldOut& g) {
-  auto dec = [&](double lo, double hi) { return imtest::public_decimal(g, lo, hi); };
+  bool three = false;  // spring 9 (compressed): every number with three digits
+  auto dec = [&](double lo, double hi) {
+    return three ? imtest::three_digit_decimal(g, lo, hi) : imtest::public_decimal(g, lo, hi);
+  };
   auto vec = [&](double lo, double hi) { return Vec2(dec(lo, hi), dec(lo, hi)); };
+  auto written = [&](double z) {
+    return three ? wbtest::Params::short_decimal(z) : imtest::public_rounded(g, z);
+  };
   for (int s = 0; s < 12; ++s) {
+    three = s == 9;
     const Vec2 a = vec(-2, 2), va = vec(-3, 3), vb = vec(-3, 3);
     Vec2 b = a;
     while (s != 0 && !((a - b).norm() >= 0.1)) {  // 0.1 to 2 m from a, then rounded
       const Vec2 d = g.uniform(0.1, 2.0) * g.unit2();
-      b = Vec2(imtest::public_rounded(g, a.x() + d.x()),
-               imtest::public_rounded(g, a.y() + d.y()));
+      b = Vec2(written(a.x() + d.x()), written(a.y() + d.y()));
     }
     const double kk = s % 3 == 1 ? dec(10.0, 50.0) : 30.0, kdd = dec(0.0, 5.0);
     const double L = (a - b).norm();
