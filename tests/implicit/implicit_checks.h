@@ -20,6 +20,30 @@ using wb::Mat2;
 using wb::Mat2X;
 using wb::Vec2;
 
+// A number of the held-out tests' own checks, drawn in [lo, hi] and written as the public tests
+// write theirs (issue 42, item 3): one significant digit, two in one draw of four (their
+// calls' numbers average 1.1 to 1.3 digits; wbtest::Params::num keeps the digits and the range).
+inline double public_decimal(wbtest::HeldOut& g, double lo, double hi) {
+  return wbtest::Params(g).num(g.integer(0, 3) == 0 ? 0.25 : 0.5, lo, hi);
+}
+// The same, spread over the decades of [lo, hi] (within 20 % of a log-uniform draw).
+inline double public_log_decimal(wbtest::HeldOut& g, double lo, double hi) {
+  const double x = g.log_uniform(lo, hi);
+  return public_decimal(g, 0.8 * x, 1.2 * x);
+}
+// x itself (a derived value, as a pinned particle's drawn speed) in that format.
+inline double public_rounded(wbtest::HeldOut& g, double x) {
+  return wbtest::Params::rounded(x, g.integer(0, 3) == 0 ? 2 : 1);
+}
+// A few of the own checks' calls (one spring of I1's six, one of I2's twelve, one network in
+// eight) write every number with three digits instead, as no public test does: a mistake made
+// only on numbers the public tests never write is caught there (the hostile case
+// recognise-digits-spring-step). So few among the held-out calls, they tell them apart no
+// better than chance (tools/adversary --inputs).
+inline double three_digit_decimal(wbtest::HeldOut& g, double lo, double hi) {
+  return wbtest::Params::short_decimal(g.uniform(lo, hi));
+}
+
 // A damped spring's force on end i and its blocks, from the formulas
 //   f = -(k (L - r) + kd (v_i - v_j).u) u
 //   K = -k ((1 - r/L) I + (r/L) u u^T)   (= -k (P + (1 - r/L)(I - P)))
@@ -236,7 +260,8 @@ inline void small_network(SpringNetwork& net, Mat2X& x, Mat2X& v, double kd = 0.
 
 // External forces on small_network's four particles: gravity on each mass (m g, g = 9.8),
 // with a sideways push (push true) or without (false). Held-out: g and the push drawn, m g
-// written as a short decimal (as 9.8 m is in the public tests).
+// written with the digits of the public test's 9.8 m (9.8, 19.6 and 4.9; 9.8 * 1.5 computed is
+// 14.700000000000001, no short decimal, and so is the held-out one).
 inline Mat2X small_network_load(const wbtest::Params& p, const Eigen::VectorXd& m,
                                 bool push = true) {
   const double g = p.num(9.8, 9.6, 10.0);
@@ -244,7 +269,16 @@ inline Mat2X small_network_load(const wbtest::Params& p, const Eigen::VectorXd& 
   Mat2X f(2, 4);
   for (int q = 0; q < 4; ++q) {
     f(0, q) = push ? p.num(pushes[q], pushes[q] - 0.1, pushes[q] + 0.1) : 0.0;
-    f(1, q) = p.held_out() ? -wbtest::Params::short_decimal(m[q] * g) : -9.8 * m[q];
+    f(1, q) = -9.8 * m[q];
+    if (p.held_out()) {
+      const double published[4] = {-9.8, -19.6, -4.9, -9.8 * 1.5};  // as the public test has them
+      const int d = wbtest::Params::digits(published[q]);
+      f(1, q) = -m[q] * g;
+      if (d <= 6)
+        f(1, q) = wbtest::Params::rounded(f(1, q), d);
+      else if (wbtest::Params::digits(f(1, q)) <= 6)  // -14.700000000000001: no short decimal
+        f(1, q) = std::nextafter(f(1, q), 0.0);
+    }
   }
   return f;
 }
@@ -283,6 +317,21 @@ inline void anchored_pair(SpringNetwork& net, Mat2X& x, Mat2X& v, Mat2X& f) {
   anchored_pair(wbtest::Params(), net, x, v, f);
 }
 
+// The size of the terms one step of anchored_pair sums (x, c, v, h k (x - c) / m, h f / m):
+// a coordinate that cancels to about 0 (one-digit draws make exact cancellations likely) is
+// still rounded, and solved by CG, relative to them, not to itself.
+inline double pair_terms(const SpringNetwork& net, const Mat2X& x, const Mat2X& v, const Mat2X& f,
+                         double h) {
+  double s = 0;
+  for (Eigen::Index q = 0; q < net.n(); ++q) {
+    const NetworkSpring& sp = net.springs[std::size_t(q)];  // particle q's anchored spring
+    const double xc = wbtest::max_abs(x.col(q)) + wbtest::max_abs(sp.anchor);
+    s = std::max(s, xc + wbtest::max_abs(v.col(q)) +
+                        h * (sp.k * xc + wbtest::max_abs(f.col(q))) / net.m[q]);
+  }
+  return s;
+}
+
 // A network's workspace carried from step to step the way the grader carries it
 // (backward_euler.h, NewtonWorkspace): its data (the system, the warm start) kept,
 // its LDLT fresh at every step, so that a test reads the same here and through the
@@ -306,8 +355,9 @@ class CarriedWorkspace {
 // ---------------------------------------------------------------- held-out networks
 // (tests/common/heldout.h) A random network the student has never seen: 3 to 6 particles at
 // least 0.3 m apart, each joined to an earlier one (a tree) plus one more spring and one or
-// two anchored springs, rest lengths 0.6 to 1.4 times the current lengths (some compressed,
-// some stretched), damping, drag, every particle moving; with `pin`, one particle pinned.
+// two anchored springs (anchors 0.3 m or more from their particle), rest lengths 0.6 to 1.4 times
+// the current lengths (some compressed, some stretched), damping, drag, every particle moving;
+// with `pin`, one particle pinned.
 struct Network {
   SpringNetwork net;
   Mat2X x, v, f_ext;
@@ -316,12 +366,15 @@ struct Network {
 // compressed: spring 0 (between particles 1 and 0) compressed, rest > L by 10 to 40 %, where
 // the definite clamp changes its block (I3 wants one in every draw; Newton's steps converge
 // only linearly with a clamped block, so I4 leaves it to chance).
-// Every number is a short decimal (wbtest::Params::short_decimal), as the public tests write
-// theirs.
+// Every number is written as the public tests write theirs (public_decimal: one or two
+// significant digits), the rest lengths too (drawn within their ratio of the length); in one
+// network of eight with three digits (three_digit_decimal).
 inline Network random_network(wbtest::HeldOut& g, bool pin, bool compressed = false) {
   Network w;
-  const auto dec = wbtest::Params::short_decimal;
-  auto num = [&](double lo, double hi) { return dec(g.uniform(lo, hi)); };
+  const bool three = g.integer(0, 7) == 0;  // one network in eight: three_digit_decimal
+  auto num = [&](double lo, double hi) {
+    return three ? three_digit_decimal(g, lo, hi) : public_decimal(g, lo, hi);
+  };
   auto points = [&](Eigen::Index n, double lo, double hi) {
     Mat2X p(2, n);
     for (Eigen::Index i = 0; i < n; ++i) p(0, i) = num(lo, hi), p(1, i) = num(lo, hi);
@@ -345,18 +398,21 @@ inline Network random_network(wbtest::HeldOut& g, bool pin, bool compressed = fa
   auto add = [&](Eigen::Index i, Eigen::Index j, const Vec2& anchor) {
     const Vec2 xj = j < 0 ? anchor : Vec2(w.x.col(j));
     const double L = (Vec2(w.x.col(i)) - xj).norm();
-    const double k = num(5.0, 60.0), rest = dec(L * g.uniform(0.6, 1.4)), kd = num(0.0, 1.0);
+    const double k = num(5.0, 60.0), rest = num(0.6 * L, 1.4 * L), kd = num(0.0, 1.0);
     w.net.springs.push_back(spring(i, j, k, rest, kd, anchor));
   };
   for (Eigen::Index i = 1; i < n; ++i) add(i, g.integer(0, i - 1), Vec2::Zero());
   add(n - 1, 0, Vec2::Zero());
   if (compressed) {
     NetworkSpring& sp = w.net.springs[0];
-    sp.rest = dec((Vec2(w.x.col(sp.i)) - Vec2(w.x.col(sp.j))).norm() * g.uniform(1.1, 1.4));
+    const double L = (Vec2(w.x.col(sp.i)) - Vec2(w.x.col(sp.j))).norm();
+    sp.rest = num(1.1 * L, 1.4 * L);
   }
   for (long a = g.integer(1, 2); a > 0; --a) {
     const Eigen::Index i = g.integer(0, n - 1);
-    add(i, -1, points(1, -2.0, 2.0).col(0));
+    Vec2 anchor = points(1, -2.0, 2.0).col(0);
+    while ((anchor - Vec2(w.x.col(i))).norm() <= 0.3) anchor = points(1, -2.0, 2.0).col(0);
+    add(i, -1, anchor);
   }
   if (pin) {
     w.net.pinned.assign(std::size_t(n), 0);
@@ -364,7 +420,10 @@ inline Network random_network(wbtest::HeldOut& g, bool pin, bool compressed = fa
     w.net.pinned[std::size_t(p)] = 1;
     // It arrives moving, at 0.3 to 1 m/s: a v left unzeroed shows on every draw.
     const Vec2 u = g.unit2() * g.uniform(0.3, 1.0);
-    w.v.col(p) = Vec2(dec(u.x()), dec(u.y()));
+    auto written = [&](double z) {
+      return three ? wbtest::Params::short_decimal(z) : public_rounded(g, z);
+    };
+    w.v.col(p) = Vec2(written(u.x()), written(u.y()));
   }
   return w;
 }

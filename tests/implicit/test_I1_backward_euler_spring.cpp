@@ -97,7 +97,12 @@ void energy_decay(const wbtest::Params& p) {
 void first_order(const wbtest::Params& p) {
   const double m = 1.0, w = 2.0 * M_PI, k = w * w * m;
   const long N0 = p.steps(400, 40);
-  const double h0 = p.num(0.5 / 400, 0.001, 0.0015), T = h0 * double(N0);
+  // h0, h0/2 and h0/4 written with 3, 3 and 4 digits, as the published 0.00125, 0.000625 and
+  // 0.0003125 are (an even h0 would halve to fewer digits: its calls told apart).
+  double h0 = p.num(0.5 / 400, 0.001, 0.0015);
+  while (wbtest::Params::digits(h0 / 2) != 3 || wbtest::Params::digits(h0 / 4) != 4)
+    h0 = p.num(0.5 / 400, 0.001, 0.0015);
+  const double T = h0 * double(N0);
   const Vec2 x0(p.num(1.0, 0.5, 1.5), p.num(0.0, -0.5, 0.5)),
       v0(p.num(0.0, -1.0, 1.0), p.num(3.0, 2.0, 4.0));
   auto error = [&](long N) {
@@ -121,17 +126,25 @@ void first_order(const wbtest::Params& p) {
 }
 
 // The held-out test's own check: springs far from the published ones (stiff, slack, no drag, no
-// load), in the public tests' format (short decimals), each step against the one linear
-// equation in v'.
+// load), in the public tests' format (one or two significant digits: imtest::public_decimal;
+// the last with three, imtest::three_digit_decimal), each step against the one linear equation
+// in v'.
 void random_springs(wbtest::HeldOut& g) {
-  const auto dec = wbtest::Params::short_decimal;
+  bool three = false;  // the last spring: every number with three digits
+  auto dec = [&](double lo, double hi) {
+    return three ? imtest::three_digit_decimal(g, lo, hi) : imtest::public_decimal(g, lo, hi);
+  };
+  auto log_dec = [&](double lo, double hi) {
+    return three ? wbtest::Params::short_decimal(g.log_uniform(lo, hi))
+                 : imtest::public_log_decimal(g, lo, hi);
+  };
   for (int s = 0; s < 6; ++s) {
-    const double m = dec(g.uniform(0.1, 5.0)), k = dec(g.log_uniform(0.1, 200.0)),
-                 b = s == 0 ? 0.0 : dec(g.uniform(0.0, 3.0)), h = dec(g.log_uniform(1e-3, 1.0));
-    const Vec2 c(dec(g.uniform(-2, 2)), dec(g.uniform(-2, 2)));
-    const Vec2 f = s == 1 ? Vec2(0, 0) : Vec2(dec(g.uniform(-20, 20)), dec(g.uniform(-20, 20)));
-    Vec2 x(dec(g.uniform(-3, 3)), dec(g.uniform(-3, 3))),
-        v(dec(g.uniform(-5, 5)), dec(g.uniform(-5, 5)));
+    three = s == 5;
+    const double m = dec(0.1, 5.0), k = log_dec(0.1, 200.0), b = s == 0 ? 0.0 : dec(0.0, 3.0),
+                 h = log_dec(1e-3, 1.0);
+    const Vec2 c(dec(-2, 2), dec(-2, 2));
+    const Vec2 f = s == 1 ? Vec2(0, 0) : Vec2(dec(-20, 20), dec(-20, 20));
+    Vec2 x(dec(-3, 3), dec(-3, 3)), v(dec(-5, 5), dec(-5, 5));
     const Vec2 x0 = x, v0 = v;
     const Vec2 ve = (m * v0 - h * k * (x0 - c) + h * f) / (m + h * b + h * h * k);
     const Vec2 xe = x0 + h * ve;

@@ -43,9 +43,9 @@ struct Spring {
         vi(p.num(0.7, -1.0, 1.0), p.num(-0.2, -1.0, 1.0)),
         vj(p.num(-0.3, -1.0, 1.0), p.num(0.9, -1.0, 1.0)),
         kd(p.num(2.5, 1.0, 4.0)) {
-    const Vec2 d(p.num(0.9, 0.7, 1.1), p.num(0.7, 0.5, 0.9));
-    const auto dec = wbtest::Params::short_decimal;
-    xj = p.held_out() ? Vec2(dec(xi.x() - d.x()), dec(xi.y() - d.y())) : Vec2(-0.5, 0.6);
+    // x_j drawn itself, with the published -0.5 and 0.6's one digit, where x_i - x_j falls in
+    // (0.7..1.1, 0.5..0.9).
+    xj = Vec2(p.num(-0.5, xi.x() - 1.1, xi.x() - 0.7), p.num(0.6, xi.y() - 0.9, xi.y() - 0.5));
   }
   double stretched(const wbtest::Params& p) const { return p.num(0.5, 0.3, 0.7); }
   double compressed(const wbtest::Params& p) const { return p.num(1.6, 1.5, 1.8); }
@@ -157,27 +157,33 @@ void coincident(const wbtest::Params& p) {
   }
 }
 
-// The held-out test's own check: springs anywhere, stretched or compressed, every input a short
-// decimal as in the public tests; k as published in two of three (see Spring), else drawn.
+// The held-out test's own check: springs anywhere, stretched or compressed, every input written
+// as in the public tests (one or two significant digits: imtest::public_decimal; one spring
+// with three, imtest::three_digit_decimal); k as published in two of three (see Spring), else
+// drawn.
 void random_springs(wbtest::HeldOut& g) {
-  const auto dec = wbtest::Params::short_decimal;
-  auto vec = [&](double lo, double hi) {
-    return Vec2(dec(g.uniform(lo, hi)), dec(g.uniform(lo, hi)));
+  bool three = false;  // spring 9 (compressed): every number with three digits
+  auto dec = [&](double lo, double hi) {
+    return three ? imtest::three_digit_decimal(g, lo, hi) : imtest::public_decimal(g, lo, hi);
+  };
+  auto vec = [&](double lo, double hi) { return Vec2(dec(lo, hi), dec(lo, hi)); };
+  auto written = [&](double z) {
+    return three ? wbtest::Params::short_decimal(z) : imtest::public_rounded(g, z);
   };
   for (int s = 0; s < 12; ++s) {
+    three = s == 9;
     const Vec2 a = vec(-2, 2), va = vec(-3, 3), vb = vec(-3, 3);
     Vec2 b = a;
-    if (s != 0) {
+    while (s != 0 && !((a - b).norm() >= 0.1)) {  // 0.1 to 2 m from a, then rounded
       const Vec2 d = g.uniform(0.1, 2.0) * g.unit2();
-      b = Vec2(dec(a.x() + d.x()), dec(a.y() + d.y()));
+      b = Vec2(written(a.x() + d.x()), written(a.y() + d.y()));
     }
-    const double kk = s % 3 == 1 ? dec(g.uniform(10.0, 50.0)) : 30.0,
-                 kdd = dec(g.uniform(0.0, 5.0));
+    const double kk = s % 3 == 1 ? dec(10.0, 50.0) : 30.0, kdd = dec(0.0, 5.0);
     const double L = (a - b).norm();
     // Half of them compressed (rest > L), half stretched (and two more compressed).
-    const double rest = dec(s == 0             ? g.uniform(0.0, 1.0)
-                            : s % 2 || s >= 10 ? L * g.uniform(1.1, 2.0)
-                                               : L * g.uniform(0.3, 0.9));
+    const double rest = s == 0             ? dec(0.0, 1.0)
+                        : s % 2 || s >= 10 ? dec(1.1 * L, 2.0 * L)
+                                           : dec(0.3 * L, 0.9 * L);
     // The last two compressed, with the clamp off, then on (where the clamp matters).
     const bool definite = s >= 10 ? s == 11 : g.coin();
     // f holds (1, 1) before a third of the calls, as before the public test's calls with

@@ -28,7 +28,9 @@ struct Setup {
 Setup setup(const wbtest::Params& p) {
   Setup s;
   imtest::small_network(p, s.net, s.x0, s.v0, 1.5, 0.3);
-  s.h = p.num(0.1, 0.08, 0.12);
+  // 0.1 or 0.2: x0 + h vl then has the published one's decimal places (0.08 would add one, and
+  // its calls would be told apart by their digits).
+  s.h = p.num(0.1, 0.1, 0.2);
   // A linearisation point away from x0 + h vl, so that b's K term counts.
   s.vl = s.v0 + Mat2X::Constant(2, 4, p.num(0.2, 0.1, 0.3));
   s.xl = s.x0 + s.h * s.vl;
@@ -368,10 +370,30 @@ TEST_CASE(
       for (const bool definite : {false, true}) {
         imtest::Network w = imtest::random_network(g, pin, true);
         const Eigen::Index n = w.net.n();
-        const double h = g.log_uniform(1e-3, 0.1);
+        // One significant digit, as the published 0.1: x + h vl keeps few digits.
+        const double hd = g.log_uniform(1e-3, 0.1),
+                     h = wbtest::Params(g).num(0.1, 0.8 * hd, 1.2 * hd);
         SparseSystem sys;
         for (int call = 0; call < 2; ++call) {
-          Mat2X vl = w.v + g.points(n, -0.5, 0.5), xl = w.x + h * vl + g.points(n, -0.05, 0.05);
+          // As the public tests write theirs: vl and xl offsets of one or two significant digits
+          // from v and x + h vl, the sums as computed (every spring longer than 0.1 m at xl).
+          Mat2X vl, xl;
+          for (bool near = true; near;) {
+            vl = w.v, xl = w.x;
+            for (Eigen::Index k = 0; k < vl.size(); ++k)
+              vl.data()[k] += imtest::public_decimal(g, -0.5, 0.5);
+            xl += h * vl;
+            for (Eigen::Index k = 0; k < xl.size(); ++k)
+              xl.data()[k] += imtest::public_decimal(g, -0.05, 0.05);
+            // One call in eight at the start (b = h (f + f_ext + h K v)), as one public call in
+            // eight is.
+            if (call == 0 && !pin && !definite) vl = w.v, xl = w.x;
+            near = false;
+            for (const NetworkSpring& sp : w.net.springs)
+              near = near ||
+                     (Vec2(xl.col(sp.i)) - (sp.j < 0 ? sp.anchor : Vec2(xl.col(sp.j)))).norm() <=
+                         0.1;
+          }
           for (Eigen::Index p = 0; p < n; ++p) {
             if (w.net.is_pinned(p))
               vl.col(p).setZero(), xl.col(p) = w.x.col(p);  // as the caller does
