@@ -55,9 +55,13 @@ void one_step(const wbtest::Params& p) {
 // is conserved exactly (expand Q(x', v') - Q(x, v): every term cancels).
 // The true energy E = Q + 1/2 h k x v wobbles around it without drifting.
 // Held-out: m, k and the start drawn near the published ones (the wobble's sweep depends on the
-// start's shape), h w in three bands up to 1.1, 100 steps each (300 calls: the share of the
+// start's shape), h w in three bands up to 1.2, 100 steps each (300 calls: the share of the
 // public test's, as tools/adversary --inputs samples them): near h w = 2 the energy's peaks are
 // too sharp for 100 samples to reach, and 100 steps at h w = 0.1 already turn the phase by 10.
+// h is written as the published h = h w / 5 are, one digit five times in six (0.02, 0.3) and
+// three once (0.398): the last band takes three digits on half the seeds, and it is wide
+// enough to hold a one-digit h for every drawn w (0.9 to 1.1 held none for w above 5.5, and
+// its two-digit h told the held-out calls apart; tools/adversary --inputs).
 void modified_energy(const wbtest::Params& p) {
   const double m = p.num(0.8, 0.6, 1.0), k = p.num(20.0, 15.0, 25.0), w = std::sqrt(k / m);
   const double x0[2] = {p.num(0.6, 0.5, 0.7), p.num(-0.2, -0.25, -0.15)},
@@ -66,11 +70,12 @@ void modified_energy(const wbtest::Params& p) {
     double lo, hi;
   };
   const std::vector<double> published = {0.01, 0.1, 0.5, 1.0, 1.5, 1.99};
-  const std::vector<Band> bands = {{0.08, 0.12}, {0.4, 0.6}, {0.9, 1.1}};
+  const std::vector<Band> bands = {{0.08, 0.12}, {0.4, 0.6}, {0.8, 1.2}};
   const std::size_t cases = p.held_out() ? bands.size() : published.size();
   for (std::size_t j = 0; j < cases; ++j) {
+    const double digits_of = j + 1 == cases ? p.pick({0.0, 0.398}) : 0.0;
     const double h =
-        p.held_out() ? p.num(0.0, bands[j].lo / w, bands[j].hi / w) : published[j] / w;
+        p.held_out() ? p.num(digits_of, bands[j].lo / w, bands[j].hi / w) : published[j] / w;
     const double hw = p.held_out() ? h * w : published[j];
     INFO("h w = " << hw << " (h = " << h << ")");
     Run r(oscillator(w), cols({{x0[0], x0[1]}}), cols({{v0[0], v0[1]}}));
@@ -109,9 +114,11 @@ void modified_energy(const wbtest::Params& p) {
 // with x1 = (1 - (hw)^2) x0 + h v0.
 // Held-out: w, the start and each case's h w drawn (within 20 % of the published, below 1.95,
 // where sin theta is still 0.3), h = (h w) / w as published (not a short decimal, as the
-// published h are not), 100 steps each (the public test's share of calls).
+// published h are not: w is the root of a drawn w^2 of 5 to 10, since a one-digit w of 2 or 4
+// made h = 0.9 and 0.425 and told the held-out calls apart; tools/adversary --inputs), 100
+// steps each (the public test's share of calls).
 void phase(const wbtest::Params& p) {
-  const double w = p.num(3.0, 2.0, 4.0);
+  const double w = std::sqrt(p.num(9.0, 5.0, 10.0));
   struct Case {
     double hw, lo, hi;
   };
@@ -180,17 +187,21 @@ wb::Mat2 step_matrix(double h, double w) {
 // For a central force x cross a = 0, so v' = v + h a keeps x cross v, and
 // x' = x + h v' keeps it again: L is conserved to rounding. The energy error
 // is bounded (a modified energy is conserved), so it does not grow orbit after orbit.
-// Held-out: GM, a, e drawn (e 0.3 to 0.5), 2 orbits of about 150 steps each (300 calls, the
-// public test's share of calls): at 150 steps an orbit the apoapsis is still within 0.035 of
-// a (1 + e) and the last orbit's error within 1.003 times the first's (every one of 1000 such
-// draws, tried in a double-precision model of the test), inside the checks' 0.05 and 1.5.
-// GM from 2 to 3.5: the speeds, and so the calls' magnitudes, about the published orbit's.
+// Held-out: a, e (0.3 to 0.5), h and the steps an orbit drawn, 2 orbits of 140 to 160 steps
+// each (300 calls, the public test's share of calls): at 150 steps an orbit the apoapsis is
+// still within 0.035 of a (1 + e) and the last orbit's error within 1.003 times the first's
+// (every one of 1000 such draws, tried in a double-precision model of the test), inside the
+// checks' 0.05 and 1.5. h is one digit, 0.02 or 0.03, as the published 0.001 (a two-digit h
+// told the held-out calls apart; tools/adversary --inputs), and GM = a^3 (2 pi / T)^2 follows
+// from the period T = h times the steps an orbit (1.3 to 5: the speeds, and so the calls'
+// magnitudes, 1.6 to 3.9, below the published orbit's 4.4); a Kepler orbit's shape depends on
+// e and the steps an orbit only, so the model's draws cover these.
 void eccentric_orbit(const wbtest::Params& p) {
-  const double GM = p.num(1.0, 2.0, 3.5), e = p.num(0.9, 0.3, 0.5), a = p.num(1.0, 0.9, 1.2);
+  const double e = p.num(0.9, 0.3, 0.5), a = p.num(1.0, 0.9, 1.2), h = p.num(1e-3, 0.02, 0.03);
+  const double T = h * double(p.count(0, 140, 160));  // the held-out period (unused publicly)
+  const double GM = p.held_out() ? a * a * a * (2.0 * M_PI / T) * (2.0 * M_PI / T) : 1.0;
   const double rp = a * (1.0 - e), vp = std::sqrt(GM * (1.0 + e) / rp);
   const double period = 2.0 * M_PI * std::sqrt(a * a * a / GM);
-  const double h = p.num(1e-3, wbtest::Params::short_decimal(period / 160.0),
-                         wbtest::Params::short_decimal(period / 140.0));
   const int per_orbit = int(std::lround(period / h));
   Run r(attractor(GM), cols({{rp, 0.0}}), cols({{0.0, vp}}));
   auto energy = [&] { return 0.5 * r.v.squaredNorm() - GM / r.x.norm(); };
