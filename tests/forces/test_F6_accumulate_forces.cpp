@@ -212,7 +212,11 @@ void random_systems(wbtest::HeldOut& g) {
   for (const Eigen::Index cols : {Eigen::Index(g.integer(0, 1)), n, n + g.integer(1, 3)}) {
     const double garbage[] = {0.0, q.num(1e30, 3e29, 3e30), q.num(-3.0, -5.0, -1.0),
                               std::numeric_limits<double>::quiet_NaN(), q.num(5.0, 1.0, 9.0)};
-    Mat2X f = Mat2X::Constant(2, cols, garbage[g.integer(0, 4)]);
+    // Too many columns of NaN on one call in two (else any kind): the public test's NaN call
+    // has the fewest short decimals of its calls, and without these it sat at the edge of the
+    // held-out calls (rank 0.05 with 40 seeds, tools/adversary --inputs).
+    const long kind = cols > n && g.coin() ? 3 : g.integer(0, 4);
+    Mat2X f = Mat2X::Constant(2, cols, garbage[kind]);
     INFO(kinds.size() << " terms, " << n << " particles, f coming in with " << cols
                       << " columns of " << (cols > 0 ? f(0, 0) : 0.0));
     accumulate_forces(terms, s.x, s.v, s.m, f);

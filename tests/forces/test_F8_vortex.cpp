@@ -49,28 +49,42 @@ Vec2 rankine(const Vec2& x, const VortexParams& p) {
   return r <= p.core ? Vec2(p.omega * perp) : Vec2(p.omega * p.core * p.core * perp / (r * r));
 }
 
-// In the public test `published`; else the point at distance r in direction `angle` from the
-// vortex's centre, written as the public tests write positions (a short decimal).
+// In the public test `published`; else a point at a distance drawn in [lo, hi] from the
+// vortex's centre, in a drawn direction, written as the public test writes that point: each
+// coordinate with the published one's significant digits (4 and 3 stay one-digit numbers, 1.6
+// and -0.2 two and one). Rounding to one digit moves a coordinate by up to 0.5, so the rounded
+// point is drawn again until it has those digits and still lies in [lo, hi] (its regime: inside
+// the core, near its edge, outside it); 3 digits after 64 tries (a move under 0.01).
 Vec2 at(const wbtest::Params& q, const Vec2& published, const VortexParams& p, double r,
-        double angle) {
+        double lo, double hi) {
   if (!q.held_out()) return published;
-  return Vec2(wbtest::Params::short_decimal(p.center.x() + r * std::cos(angle)),
-              wbtest::Params::short_decimal(p.center.y() + r * std::sin(angle)));
+  using wbtest::Params;
+  const int dx = Params::digits(published.x()), dy = Params::digits(published.y());
+  for (int tries = 0; tries < 64; ++tries) {
+    const double d = q.num(r, lo, hi), angle = q.num(0.93, 0.0, 6.28);
+    const Vec2 x(Params::rounded(p.center.x() + d * std::cos(angle), dx),
+                 Params::rounded(p.center.y() + d * std::sin(angle), dy));
+    const double dist = (x - p.center).norm();
+    if (Params::digits(x.x()) == dx && Params::digits(x.y()) == dy && dist >= lo && dist <= hi)
+      return x;
+  }
+  const double d = q.num(r, lo, hi), angle = q.num(0.93, 0.0, 6.28);
+  return Vec2(Params::short_decimal(p.center.x() + d * std::cos(angle)),
+              Params::short_decimal(p.center.y() + d * std::sin(angle)));
 }
-// Points inside the core (0.1 R to 0.9 R from the centre) and outside it (1.2 R to 2.6 R): a
-// rounded coordinate moves a point by less than 0.01, far less than 0.1 R.
+// Points inside the core (0.1 R to 0.9 R from the centre) and outside it (1.2 R to 2.6 R).
 Vec2 inside(const wbtest::Params& q, const Vec2& published, const VortexParams& p, double r) {
-  return at(q, published, p, q.num(r, 0.1 * p.core, 0.9 * p.core), q.num(0.93, 0.0, 6.28));
+  return at(q, published, p, r, 0.1 * p.core, 0.9 * p.core);
 }
 // A point inside the core near its edge (0.8 R to 0.93 R): beyond sqrt(R) for every drawn R
-// of vortex() (0.8 R - sqrt(R) >= 0.056 at R = 1.7, more than a rounded coordinate moves it), so
-// a core test of r^2 against R instead of R^2 reads it as outside on every seed.
+// of vortex() (0.8 R - sqrt(R) >= 0.056 at R = 1.7), so a core test of r^2 against R instead of
+// R^2 reads it as outside on every seed.
 Vec2 inside_near_edge(const wbtest::Params& q, const Vec2& published, const VortexParams& p,
                       double r) {
-  return at(q, published, p, q.num(r, 0.8 * p.core, 0.93 * p.core), q.num(0.93, 0.0, 6.28));
+  return at(q, published, p, r, 0.8 * p.core, 0.93 * p.core);
 }
 Vec2 outside(const wbtest::Params& q, const Vec2& published, const VortexParams& p, double r) {
-  return at(q, published, p, q.num(r, 1.2 * p.core, 2.6 * p.core), q.num(0.93, 0.0, 6.28));
+  return at(q, published, p, r, 1.2 * p.core, 2.6 * p.core);
 }
 
 // `published` (hand-derived) in the public test, the formula on a drawn vortex.
@@ -147,8 +161,8 @@ void drag(const wbtest::Params& q) {
   // Particle 1 at (1.6, -0.2) moves with the flow, v = u = (-1.6, 1.2): no force.
   // Particle 2 on the axis at rest: u = 0, v = 0, no force.
   // Particle 3 at (0.1, -2.2), v = (1, 1): f = 1.5 ((2.4, -1.8) - (1, 1)) = (2.1, -4.2).
-  // Held-out: the same four situations drawn (particle 1's velocity the flow's, written as a
-  // short decimal: it then feels a drag of rounding size).
+  // Held-out: the same four situations drawn (particle 1's velocity the flow's, written with
+  // two digits as the published one: it then feels a small drag, checked by the formula).
   Mat2X x(2, 4), v(2, 4), f(2, 4);
   x.col(0) = outside(q, Vec2(4.0, 3.0), p, 5.0);
   x.col(1) = inside(q, Vec2(1.6, -0.2), p, 1.0);
@@ -156,9 +170,9 @@ void drag(const wbtest::Params& q) {
   x.col(3) = inside(q, Vec2(0.1, -2.2), p, 1.5);
   const Vec2 u1 = rankine(x.col(1), p);
   v.col(0) = Vec2(0, 0);
-  v.col(1) = q.held_out() ? Vec2(wbtest::Params::short_decimal(u1.x()),
-                                 wbtest::Params::short_decimal(u1.y()))
-                          : Vec2(-1.6, 1.2);
+  v.col(1) = q.held_out()
+                 ? Vec2(wbtest::Params::rounded(u1.x(), 2), wbtest::Params::rounded(u1.y(), 2))
+                 : Vec2(-1.6, 1.2);
   v.col(2) = Vec2(0, 0);
   v.col(3) = Vec2(q.num(1.0, -1.5, 1.5), q.num(1.0, -1.5, 1.5));
   const Mat2X f0 = (Mat2X(2, 4) << 2.0, 1.0, 4.0, 3.0,  // forces already there: add to them
