@@ -326,8 +326,8 @@ inline double pair_terms(const SpringNetwork& net, const Mat2X& x, const Mat2X& 
   for (Eigen::Index q = 0; q < net.n(); ++q) {
     const NetworkSpring& sp = net.springs[std::size_t(q)];  // particle q's anchored spring
     const double xc = wbtest::max_abs(x.col(q)) + wbtest::max_abs(sp.anchor);
-    s = std::max(s, xc + wbtest::max_abs(v.col(q)) +
-                        h * (sp.k * xc + wbtest::max_abs(f.col(q))) / net.m[q]);
+    s = wbtest::worst_of(s, xc + wbtest::max_abs(v.col(q)) +
+                                h * (sp.k * xc + wbtest::max_abs(f.col(q))) / net.m[q]);
   }
   return s;
 }
