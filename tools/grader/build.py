@@ -429,7 +429,8 @@ class Grader:
                              headers)
 
     def compile_commands(self):
-        """{absolute source path: compiler command as a list} of the configured build."""
+        """{absolute source path: (compiler command as a list, the folder it runs in)} of the
+        configured build."""
         try:
             with open(os.path.join(self.build, "compile_commands.json"), encoding="utf-8") as f:
                 entries = json.load(f)
@@ -438,7 +439,7 @@ class Grader:
         out = {}
         for e in entries:
             path = os.path.normpath(os.path.join(e.get("directory", ""), e["file"]))
-            out[path] = e.get("arguments") or shlex.split(e["command"])
+            out[path] = (e.get("arguments") or shlex.split(e["command"]), e.get("directory"))
         return out
 
     def screen_lab(self, lab, files, commands=None):
@@ -458,7 +459,7 @@ class Grader:
             def check(name):
                 try:
                     cmd = commands.get(paths[name])
-                    screen.check(name, files[name], (paths[name], cmd) if cmd else None)
+                    screen.check(name, files[name], (paths[name], *cmd) if cmd else None)
                     return ""
                 except Refused as e:
                     return str(e)

@@ -140,10 +140,10 @@ def run_capped(cmd, timeout, cap, cwd=None, keep_tail=False):
     return rc, reader.text()
 
 
-def run_collect(cmd, timeout, cap):
-    """Runs cmd; returns (rc, stdout bytes, stderr tail bytes); rc None on timeout,
-    -1 when stdout passed `cap` bytes (the process is then stopped)."""
-    proc = _start(cmd, subprocess.PIPE, subprocess.PIPE)
+def run_collect(cmd, timeout, cap, cwd=None):
+    """Runs cmd (in the folder cwd); returns (rc, stdout bytes, stderr tail bytes); rc None on
+    timeout, -1 when stdout passed `cap` bytes (the process is then stopped)."""
+    proc = _start(cmd, subprocess.PIPE, subprocess.PIPE, cwd=cwd)
     out, err = _Capture(proc.stdout, cap + 1), _Capture(proc.stderr, 16 * 1024, keep_tail=True)
     out.start()
     err.start()

@@ -46,7 +46,8 @@ DENIED_IDENTIFIERS = {
     "signals and jumps": "signal sigaction sigprocmask sigqueue sigsetjmp siglongjmp setjmp "
                          "longjmp alarm pause",
     "threads and time": "thread jthread this_thread async future promise packaged_task "
-                        "sleep usleep nanosleep sleep_for sleep_until",
+                        "sleep usleep nanosleep sleep_for sleep_until clock_gettime "
+                        "clock_getres clock_nanosleep gettimeofday timespec_get sched_yield",
     "files and I/O": "open openat openat2 creat close read write pread pwrite readv writev lseek "
                      "dup dup2 dup3 pipe pipe2 fcntl ioctl mmap munmap mprotect mremap fopen "
                      "freopen fdopen fclose fflush fread fwrite fputs fputc putc putchar puts "
@@ -57,7 +58,10 @@ DENIED_IDENTIFIERS = {
                      "access getcwd realpath fsync sendfile splice memfd_create stdin stdout "
                      "stderr FILE cin cout cerr clog wcin wcout wcerr wclog ofstream ifstream "
                      "fstream filebuf basic_ofstream basic_ifstream basic_fstream basic_filebuf "
-                     "filesystem rdbuf",
+                     "filesystem rdbuf fopen64 freopen64 tmpfile64 setvbuf setbuf setbuffer "
+                     "setlinebuf fileno getc_unlocked getchar_unlocked putc_unlocked "
+                     "putchar_unlocked fgetc_unlocked fputc_unlocked fgets_unlocked "
+                     "fputs_unlocked fread_unlocked fwrite_unlocked fflush_unlocked",
     "network": "socket connect bind listen accept send recv sendto recvfrom getaddrinfo",
     "dynamic loading": "dlopen dlmopen dlsym dlvsym dlclose dladdr",
     "linkage and machine code": "asm __asm__ __asm extern main __attribute__ __attribute "
@@ -100,6 +104,9 @@ _ID_CHAR = _ID_START | set("0123456789")
 _RAW_PREFIXES = {"R", "u8R", "uR", "UR", "LR"}
 _STR_PREFIXES = {"u8", "u", "U", "L"}
 _TRIGRAPH = re.compile(r"\?\?[=/'()!<>-]")
+# A line splice as g++ reads it: a backslash, any horizontal white space (a CR of a CR LF line
+# end among it; g++ only warns), then the newline. Every place that reads a splice uses this.
+_SPLICE = re.compile(r"\\[ \t\f\v\r]*\n")
 
 
 def tokenize(text, name="", first_line=1):
@@ -112,11 +119,12 @@ def tokenize(text, name="", first_line=1):
     out, i, n, line, start = [], 0, len(text), first_line, True
 
     def splice(k):
-        """Index past any backslash-newlines at k (and the lines they join)."""
+        """Index past any line splices at k (and the lines they join)."""
         nonlocal line
-        while text.startswith("\\\n", k) or text.startswith("\\\r\n", k):
-            k += 2 if text[k + 1] == "\n" else 3
-            line += 1
+        m = _SPLICE.match(text, k)
+        while m:
+            k, line = m.end(), line + 1
+            m = _SPLICE.match(text, k)
         return k
 
     def quoted(k, q, what):
@@ -141,7 +149,7 @@ def tokenize(text, name="", first_line=1):
 
     while i < n:
         c = text[i]
-        if c == "\\" and (text.startswith("\\\n", i) or text.startswith("\\\r\n", i)):
+        if c == "\\" and _SPLICE.match(text, i):
             i = splice(i)
             continue
         if c == "\n":
@@ -165,9 +173,9 @@ def tokenize(text, name="", first_line=1):
             continue
         if c in _ID_START:
             j = i
-            while j < n and (text[j] in _ID_CHAR or text.startswith("\\\n", j)):
+            while j < n and (text[j] in _ID_CHAR or _SPLICE.match(text, j)):
                 j = splice(j) if text[j] == "\\" else j + 1
-            word = text[i:j].replace("\\\n", "").replace("\\\r\n", "")
+            word = _SPLICE.sub("", text[i:j])
             if word in _RAW_PREFIXES and j < n and text[j] == '"':
                 m = re.match(r'"([^()\\\s]{0,16})\(', text[j:j + 20])
                 if not m:
@@ -197,7 +205,7 @@ def tokenize(text, name="", first_line=1):
                     j += 2
                 elif text[j] in "+-" and text[j - 1] in "eEpP":
                     j += 1
-                elif text.startswith("\\\n", j):
+                elif _SPLICE.match(text, j):
                     j = splice(j)
                 else:
                     break
@@ -246,9 +254,10 @@ class Screen:
 
     def check(self, name, data, build=None):
         """Raises Refused naming the line and the rule; returns None if the file may be built.
-        build: (path, compiler command) of the file in the scratch build: the file is written
-        there and preprocessed with exactly the build's command (flags, dialect, the
-        force-included precompiled header), so that the text screened is the text compiled."""
+        build: (path, compiler command[, folder]) of the file in the scratch build: the file is
+        written there and preprocessed with exactly the build's command (flags, dialect, the
+        force-included precompiled header), in the folder the build runs it in (a path through
+        /proc/self/cwd names the same file), so that the text screened is the text compiled."""
         if b"\0" in data:
             raise Refused(f"{name}: not a text file (it contains NUL bytes)")
         try:
@@ -302,8 +311,10 @@ class Screen:
 
     def _preprocessed(self, name, data, build=None):
         with tempfile.TemporaryDirectory(prefix="wb-screen-") as tmp:
-            if build:  # the build's own command, -c/-o replaced by -E
-                path, cmd = build
+            cwd = tmp
+            if build:  # the build's own command, -c/-o replaced by -E, in the build's folder
+                path, cmd = build[:2]
+                cwd = build[2] if len(build) > 2 and build[2] else cwd
                 try:
                     with open(path, "rb") as f:
                         same = f.read() == data
@@ -322,7 +333,7 @@ class Screen:
                     cmd += ["-I", d]
                 cmd += ["-I", os.path.join(self.repo, "framework", "include"), "-isystem",
                         self.eigen, path]
-            rc, out, err = run_collect(cmd, SCREEN_TIMEOUT, SCREEN_OUTPUT_CAP)
+            rc, out, err = run_collect(cmd, SCREEN_TIMEOUT, SCREEN_OUTPUT_CAP, cwd=cwd)
             if rc is None:
                 raise Refused(f"{name}: preprocessing took longer than {SCREEN_TIMEOUT} s")
             if rc == -1:

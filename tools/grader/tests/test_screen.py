@@ -24,6 +24,37 @@ def test_splices_join_identifiers_and_continue_comments():
     assert ("id", "system") not in toks and ("id", "y") in toks
 
 
+@pytest.mark.parametrize("splice", ["\\\r\n", "\\ \n", "\\\t \r\n", "\\\f\n"])
+def test_every_splice_gcc_reads_joins_like_a_plain_one(splice):
+    """Defect (red team, session 7): a backslash, a CR and a newline (a Windows line end), or
+    a backslash and spaces before the newline, is a splice to g++ (it only warns), but ended
+    the screening's identifier there: `__has_<splice>include` passed as two harmless names
+    while g++ read the refused `__has_include`. Line numbers keep counting the joined lines."""
+    toks = tokenize(f"#if __has_{splice}include(\"x\")\n#endif\nsys{splice}tem(1);\nint y;")
+    assert [t for k, t, _, _ in toks if k == "id"][:2] == ["if", "__has_include"]
+    assert ("id", "system", 4) in [(k, t, line) for k, t, line, _ in toks]
+    assert next(line for k, t, line, _ in toks if t == "y") == 6
+    with pytest.raises(Refused) as e:
+        lab_screen()._directives("f.cpp", f"#if __has_{splice}include(\"/x\")\n#endif\n")
+    assert "__has_include" in str(e.value)
+
+
+def test_the_screen_preprocesses_in_the_folder_the_build_compiles_in(tmp_path, monkeypatch):
+    """Defect (red team, session 7): the screening's preprocessor ran in the grader's folder,
+    the build's compiler in the build's: a path through /proc/self/cwd named a different file
+    in each, so the text screened was not the text compiled."""
+    build, src, seen = tmp_path / "build", tmp_path / "explicit_euler.cpp", []
+    build.mkdir()
+
+    def run_collect(cmd, timeout, cap, cwd=None):
+        seen.append(cwd)
+        return 0, b"", b""
+    monkeypatch.setattr(screen, "run_collect", run_collect)
+    cmd = ["g++", "-std=c++17", "-c", str(src), "-o", "x.o"]
+    lab_screen().check("explicit_euler.cpp", b"int f();\n", (str(src), cmd, str(build)))
+    assert seen == [str(build)]
+
+
 def test_raw_strings_are_verbatim_and_tracked_over_lines():
     """Defect: a raw string's content read as code (a false refusal) or a line count that
     drifts after it (the refusal names the wrong line)."""
