@@ -254,7 +254,7 @@ class Screen:
 
     def check(self, name, data, build=None):
         """Raises Refused naming the line and the rule; returns None if the file may be built.
-        build: (path, compiler command[, folder]) of the file in the scratch build: the file is
+        build: (path, compiler command, folder) of the file in the scratch build: the file is
         written there and preprocessed with exactly the build's command (flags, dialect, the
         force-included precompiled header), in the folder the build runs it in (a path through
         /proc/self/cwd names the same file), so that the text screened is the text compiled."""
@@ -313,8 +313,8 @@ class Screen:
         with tempfile.TemporaryDirectory(prefix="wb-screen-") as tmp:
             cwd = tmp
             if build:  # the build's own command, -c/-o replaced by -E, in the build's folder
-                path, cmd = build[:2]
-                cwd = build[2] if len(build) > 2 and build[2] else cwd
+                path, cmd, cwd = build
+                cwd = cwd or tmp
                 try:
                     with open(path, "rb") as f:
                         same = f.read() == data
